@@ -1,0 +1,796 @@
+//! Typed bulk data cards, read from raw cards field by field.
+//!
+//! Field index `k` is the card's data field counted from 0 (NASTRAN field 2 of the
+//! first line), running on through continuation lines 8 fields a line.
+
+use super::bulk::RawCard;
+use super::diag::{Diagnostic, Diagnostics, Pos};
+use super::number::{parse_int, parse_real, RealToken};
+
+/// Where a card came from, for messages raised after reading (model building).
+#[derive(Debug, Clone)]
+pub struct CardRef {
+    pub name: String,
+    pub pos: Pos,
+    pub source: String,
+}
+
+impl CardRef {
+    /// An error about this card, quoting it.
+    pub fn error(&self, message: impl Into<String>) -> Diagnostic {
+        Diagnostic::error(Some(self.pos.clone()), message)
+            .card(&self.name)
+            .quote(&self.source)
+    }
+}
+
+/// A set of DOF components 1-6 (bit i-1 for component i); empty for scalar points.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Components(pub u8);
+
+impl Components {
+    pub fn contains(self, c: usize) -> bool {
+        (1..=6).contains(&c) && self.0 & (1 << (c - 1)) != 0
+    }
+    pub fn iter(self) -> impl Iterator<Item = usize> {
+        (1..=6).filter(move |&c| self.contains(c))
+    }
+}
+
+#[derive(Debug, Clone)]
+pub struct Grid {
+    pub id: i64,
+    pub cp: i64,
+    pub x: [f64; 3],
+    pub cd: i64,
+    pub ps: Option<Components>,
+    pub at: CardRef,
+}
+
+#[derive(Debug, Clone, Default)]
+pub struct GrdSet {
+    pub cp: i64,
+    pub cd: i64,
+    pub ps: Components,
+}
+
+#[derive(Debug, Clone)]
+pub struct Crod {
+    pub eid: i64,
+    pub pid: i64,
+    pub g: [i64; 2],
+    pub at: CardRef,
+}
+
+#[derive(Debug, Clone)]
+pub struct Prod {
+    pub pid: i64,
+    pub mid: i64,
+    pub a: f64,
+    pub j: f64,
+    pub nsm: f64,
+    pub at: CardRef,
+}
+
+#[derive(Debug, Clone)]
+pub struct Cquad4 {
+    pub eid: i64,
+    pub pid: i64,
+    pub g: [i64; 4],
+    pub at: CardRef,
+}
+
+#[derive(Debug, Clone)]
+pub struct Pshell {
+    pub pid: i64,
+    pub mid1: Option<i64>,
+    pub t: f64,
+    pub mid2: Option<i64>,
+    /// 12 I / T^3.
+    pub bend_ratio: f64,
+    pub mid3: Option<i64>,
+    pub nsm: f64,
+    pub at: CardRef,
+}
+
+#[derive(Debug, Clone)]
+pub struct Mat1 {
+    pub mid: i64,
+    pub e: f64,
+    pub g: f64,
+    pub nu: f64,
+    pub rho: f64,
+    pub at: CardRef,
+}
+
+/// Anisotropic 2-D material: `[G11 G12 G13; G12 G22 G23; G13 G23 G33]`.
+#[derive(Debug, Clone)]
+pub struct Mat2 {
+    pub mid: i64,
+    pub g: [[f64; 3]; 3],
+    pub rho: f64,
+    pub at: CardRef,
+}
+
+#[derive(Debug, Clone)]
+pub struct Conm2 {
+    pub eid: i64,
+    pub g: i64,
+    pub mass: f64,
+    /// I11, I21, I22, I31, I32, I33.
+    pub inertia: [f64; 6],
+    pub at: CardRef,
+}
+
+#[derive(Debug, Clone)]
+pub struct Spc1 {
+    pub sid: i64,
+    pub c: Components,
+    pub grids: Vec<i64>,
+    pub at: CardRef,
+}
+
+#[derive(Debug, Clone)]
+pub struct TfTerm {
+    pub g: i64,
+    pub c: usize,
+    pub a: [f64; 3],
+}
+
+#[derive(Debug, Clone)]
+pub struct Tf {
+    pub sid: i64,
+    pub gd: i64,
+    pub cd: usize,
+    pub b: [f64; 3],
+    pub terms: Vec<TfTerm>,
+    pub at: CardRef,
+}
+
+#[derive(Debug, Clone)]
+pub struct Tstep {
+    pub sid: i64,
+    pub n: usize,
+    pub dt: f64,
+    pub every: usize,
+    pub at: CardRef,
+}
+
+#[derive(Debug, Clone)]
+pub struct Nolin3 {
+    pub sid: i64,
+    pub gi: i64,
+    pub ci: usize,
+    pub s: f64,
+    pub gj: i64,
+    pub cj: usize,
+    pub a: f64,
+    pub at: CardRef,
+}
+
+#[derive(Debug, Clone)]
+pub struct Tic {
+    pub sid: i64,
+    pub g: i64,
+    pub c: usize,
+    pub u0: f64,
+    pub v0: f64,
+    pub at: CardRef,
+}
+
+/// All bulk data of a deck, typed.
+#[derive(Debug, Clone, Default)]
+pub struct Bulk {
+    pub grids: Vec<Grid>,
+    pub grdset: GrdSet,
+    pub epoints: Vec<(i64, CardRef)>,
+    pub spoints: Vec<(i64, CardRef)>,
+    pub crods: Vec<Crod>,
+    pub prods: Vec<Prod>,
+    pub cquad4s: Vec<Cquad4>,
+    pub pshells: Vec<Pshell>,
+    pub mat1s: Vec<Mat1>,
+    pub mat2s: Vec<Mat2>,
+    pub conm2s: Vec<Conm2>,
+    pub spc1s: Vec<Spc1>,
+    pub tfs: Vec<Tf>,
+    pub tsteps: Vec<Tstep>,
+    pub nolin3s: Vec<Nolin3>,
+    pub tics: Vec<Tic>,
+}
+
+/// Reads the fields of one raw card, recording every problem.
+struct Reader<'a> {
+    card: &'a RawCard,
+    diags: &'a mut Diagnostics,
+    ok: bool,
+}
+
+impl<'a> Reader<'a> {
+    fn new(card: &'a RawCard, diags: &'a mut Diagnostics) -> Self {
+        Reader { card, diags, ok: true }
+    }
+
+    fn at(&self) -> CardRef {
+        CardRef {
+            name: self.card.name.clone(),
+            pos: self.card.pos.clone(),
+            source: self.card.source.clone(),
+        }
+    }
+
+    fn text(&self, k: usize) -> &'a str {
+        self.card.text(k)
+    }
+
+    fn fail(&mut self, k: usize, name: &str, message: impl Into<String>) {
+        let (pos, number) = match self.card.field(k) {
+            Some(f) => (f.pos.clone(), f.number),
+            None => (self.card.pos.clone(), k % 8 + 2),
+        };
+        let mut d = Diagnostic::error(Some(pos), message)
+            .card(&self.card.name)
+            .field(number, name)
+            .quote(&self.card.source);
+        let t = self.text(k);
+        if !t.is_empty() {
+            d = d.token(t);
+        }
+        if let Some(r) = &self.card.replicated_at {
+            d.message.push_str(&format!(" (card generated by replication at {r})"));
+        }
+        self.diags.push(d);
+        self.ok = false;
+    }
+
+    fn warn(&mut self, k: usize, name: &str, message: impl Into<String>) {
+        let (pos, number) = match self.card.field(k) {
+            Some(f) => (f.pos.clone(), f.number),
+            None => (self.card.pos.clone(), k % 8 + 2),
+        };
+        let mut d = Diagnostic::warning(Some(pos), message)
+            .card(&self.card.name)
+            .field(number, name)
+            .quote(&self.card.source);
+        let t = self.text(k);
+        if !t.is_empty() {
+            d = d.token(t);
+        }
+        self.diags.push(d);
+    }
+
+    fn int_opt(&mut self, k: usize, name: &str) -> Option<i64> {
+        let t = self.text(k);
+        if t.is_empty() {
+            return None;
+        }
+        match parse_int(t) {
+            Some(v) => Some(v),
+            None => {
+                self.fail(k, name, "is not an integer");
+                None
+            }
+        }
+    }
+
+    fn int(&mut self, k: usize, name: &str) -> i64 {
+        if self.text(k).is_empty() {
+            self.fail(k, name, "is blank: an integer is required");
+            return 0;
+        }
+        self.int_opt(k, name).unwrap_or(0)
+    }
+
+    /// A required identification number: a positive integer.
+    fn id(&mut self, k: usize, name: &str) -> i64 {
+        let v = self.int(k, name);
+        if self.text(k).is_empty() || parse_int(self.text(k)).is_none() {
+            return v;
+        }
+        if v <= 0 {
+            self.fail(k, name, "must be a positive integer");
+        }
+        v
+    }
+
+    fn int_or(&mut self, k: usize, name: &str, default: i64) -> i64 {
+        self.int_opt(k, name).unwrap_or(default)
+    }
+
+    fn real_opt(&mut self, k: usize, name: &str) -> Option<f64> {
+        let t = self.text(k);
+        if t.is_empty() {
+            return None;
+        }
+        match parse_real(t) {
+            Some(RealToken::Real(v)) => Some(v),
+            Some(RealToken::Integer(v)) => {
+                self.warn(
+                    k,
+                    name,
+                    "is an integer where NASTRAN expects a real (no decimal point); read as a real",
+                );
+                Some(v)
+            }
+            None => {
+                self.fail(k, name, "is not a real number");
+                None
+            }
+        }
+    }
+
+    fn real(&mut self, k: usize, name: &str) -> f64 {
+        if self.text(k).is_empty() {
+            self.fail(k, name, "is blank: a real number is required");
+            return 0.0;
+        }
+        self.real_opt(k, name).unwrap_or(0.0)
+    }
+
+    fn real_or(&mut self, k: usize, name: &str, default: f64) -> f64 {
+        self.real_opt(k, name).unwrap_or(default)
+    }
+
+    fn positive(&mut self, k: usize, name: &str, v: f64) {
+        if self.text(k).is_empty() || parse_real(self.text(k)).is_none() {
+            return;
+        }
+        if v <= 0.0 {
+            self.fail(k, name, "must be positive");
+        }
+    }
+
+    fn non_negative(&mut self, k: usize, name: &str, v: f64) {
+        if v < 0.0 {
+            self.fail(k, name, "must not be negative");
+        }
+    }
+
+    /// Component list such as `123456`; blank gives the empty set.
+    fn components(&mut self, k: usize, name: &str) -> Components {
+        let t = self.text(k);
+        let mut c = 0u8;
+        for ch in t.chars() {
+            match ch.to_digit(10) {
+                Some(d @ 1..=6) if c & (1 << (d - 1)) == 0 => c |= 1 << (d - 1),
+                Some(0) if t.len() == 1 => {}
+                _ => {
+                    self.fail(k, name, "is not a component list (distinct digits 1-6)");
+                    return Components(0);
+                }
+            }
+        }
+        Components(c)
+    }
+
+    /// A single component: 0 or blank for a scalar point, 1-6 for a grid.
+    fn component(&mut self, k: usize, name: &str) -> usize {
+        let v = self.int_or(k, name, 0);
+        if !(0..=6).contains(&v) {
+            self.fail(k, name, "is not a component number (0-6)");
+            return 0;
+        }
+        v as usize
+    }
+
+    /// Reads ids from field k on, with `THRU` ranges.
+    fn id_list(&mut self, from: usize, name: &str) -> Vec<i64> {
+        let mut out = Vec::new();
+        let n = self.card.fields.len();
+        let mut k = from;
+        while k < n {
+            let t = self.text(k);
+            if t.is_empty() {
+                k += 1;
+                continue;
+            }
+            if t.eq_ignore_ascii_case("THRU") {
+                let Some(&a) = out.last() else {
+                    self.fail(k, name, "THRU has no start id before it");
+                    return out;
+                };
+                let b = self.int(k + 1, name);
+                if !self.ok {
+                    return out;
+                }
+                if b < a {
+                    self.fail(
+                        k + 1,
+                        name,
+                        format!("ends a THRU range that is reversed ({a} THRU {b})"),
+                    );
+                    return out;
+                }
+                out.extend(a + 1..=b);
+                k += 2;
+                continue;
+            }
+            let v = self.id(k, name);
+            if self.ok {
+                out.push(v);
+            }
+            k += 1;
+        }
+        out
+    }
+
+    fn extra_fields(&mut self, max: usize) {
+        for k in max..self.card.fields.len() {
+            if !self.text(k).is_empty() {
+                self.fail(
+                    k,
+                    "unused",
+                    format!("{} has no field here; this value would be ignored", self.card.name),
+                );
+                return;
+            }
+        }
+    }
+}
+
+/// Cards the reader knows. `PARAM` is accepted and ignored with a warning.
+pub const KNOWN_CARDS: [&str; 19] = [
+    "GRID", "GRDSET", "EPOINT", "SPOINT", "CROD", "PROD", "CQUAD4", "PSHELL", "MAT1", "MAT2", "CONM2", "SPC1", "TF",
+    "TSTEP", "NOLIN3", "TIC", "PARAM", "INCLUDE", "ENDDATA",
+];
+
+/// Types all raw cards. Unknown card names are collected and returned.
+pub fn type_cards(raw: &[RawCard], diags: &mut Diagnostics) -> (Bulk, Vec<(String, Pos)>) {
+    let mut b = Bulk::default();
+    let mut unknown = Vec::new();
+    for card in raw {
+        let mut r = Reader::new(card, diags);
+        match card.name.as_str() {
+            "GRID" => {
+                let g = Grid {
+                    id: r.id(0, "ID"),
+                    cp: r.int_or(1, "CP", 0),
+                    x: [
+                        r.real_or(2, "X1", 0.0),
+                        r.real_or(3, "X2", 0.0),
+                        r.real_or(4, "X3", 0.0),
+                    ],
+                    cd: r.int_or(5, "CD", 0),
+                    ps: if r.text(6).is_empty() {
+                        None
+                    } else {
+                        Some(r.components(6, "PS"))
+                    },
+                    at: r.at(),
+                };
+                r.extra_fields(8);
+                if r.ok {
+                    b.grids.push(g);
+                }
+            }
+            "GRDSET" => {
+                b.grdset = GrdSet {
+                    cp: r.int_or(1, "CP", 0),
+                    cd: r.int_or(5, "CD", 0),
+                    ps: r.components(6, "PS"),
+                };
+                r.extra_fields(8);
+            }
+            "EPOINT" | "SPOINT" => {
+                let ids = r.id_list(0, "ID");
+                if r.ok {
+                    let at = r.at();
+                    let list = if card.name == "EPOINT" {
+                        &mut b.epoints
+                    } else {
+                        &mut b.spoints
+                    };
+                    list.extend(ids.into_iter().map(|i| (i, at.clone())));
+                }
+            }
+            "CROD" => {
+                let c = Crod {
+                    eid: r.id(0, "EID"),
+                    pid: r.int_or(1, "PID", 0),
+                    g: [r.id(2, "G1"), r.id(3, "G2")],
+                    at: r.at(),
+                };
+                let pid = if r.text(1).is_empty() { c.eid } else { c.pid };
+                if c.g[0] == c.g[1] && r.ok {
+                    r.fail(3, "G2", "is the same grid as G1");
+                }
+                r.extra_fields(4);
+                if r.ok {
+                    b.crods.push(Crod { pid, ..c });
+                }
+            }
+            "PROD" => {
+                let p = Prod {
+                    pid: r.id(0, "PID"),
+                    mid: r.id(1, "MID"),
+                    a: r.real(2, "A"),
+                    j: r.real_or(3, "J", 0.0),
+                    nsm: r.real_or(5, "NSM", 0.0),
+                    at: r.at(),
+                };
+                r.real_opt(4, "C");
+                r.positive(2, "A", p.a);
+                r.non_negative(3, "J", p.j);
+                r.extra_fields(6);
+                if r.ok {
+                    b.prods.push(p);
+                }
+            }
+            "CQUAD4" => {
+                let c = Cquad4 {
+                    eid: r.id(0, "EID"),
+                    pid: r.int_or(1, "PID", 0),
+                    g: [r.id(2, "G1"), r.id(3, "G2"), r.id(4, "G3"), r.id(5, "G4")],
+                    at: r.at(),
+                };
+                let pid = if r.text(1).is_empty() { c.eid } else { c.pid };
+                let theta = r.real_or(6, "THETA/MCID", 0.0);
+                if theta != 0.0 {
+                    r.fail(
+                        6,
+                        "THETA/MCID",
+                        "a material orientation is not supported (must be blank or 0.0)",
+                    );
+                }
+                let zoffs = r.real_or(7, "ZOFFS", 0.0);
+                if zoffs != 0.0 {
+                    r.fail(7, "ZOFFS", "an offset plate is not supported (must be blank or 0.0)");
+                }
+                let mut gs = c.g.to_vec();
+                gs.sort();
+                gs.dedup();
+                if gs.len() != 4 && r.ok {
+                    r.fail(2, "G1-G4", "the four corner grids must be distinct");
+                }
+                if r.ok {
+                    b.cquad4s.push(Cquad4 { pid, ..c });
+                }
+            }
+            "PSHELL" => {
+                let p = Pshell {
+                    pid: r.id(0, "PID"),
+                    mid1: r.int_opt(1, "MID1"),
+                    t: r.real(2, "T"),
+                    mid2: r.int_opt(3, "MID2"),
+                    bend_ratio: r.real_or(4, "12I/T**3", 1.0),
+                    mid3: r.int_opt(5, "MID3"),
+                    nsm: r.real_or(7, "NSM", 0.0),
+                    at: r.at(),
+                };
+                r.real_opt(6, "TS/T");
+                r.positive(2, "T", p.t);
+                r.positive(4, "12I/T**3", p.bend_ratio);
+                if r.int_opt(10, "MID4").is_some() {
+                    r.fail(10, "MID4", "membrane-bending coupling material is not supported");
+                }
+                if r.ok {
+                    b.pshells.push(p);
+                }
+            }
+            "MAT1" => {
+                let e = r.real_opt(1, "E");
+                let g = r.real_opt(2, "G");
+                let nu = r.real_opt(3, "NU");
+                let rho = r.real_or(4, "RHO", 0.0);
+                let (e, g, nu) = match (e, g, nu) {
+                    (Some(e), Some(g), Some(nu)) => (e, g, nu),
+                    (Some(e), None, Some(nu)) => (e, e / (2.0 * (1.0 + nu)), nu),
+                    (Some(e), Some(g), None) => (e, g, e / (2.0 * g) - 1.0),
+                    (None, Some(g), Some(nu)) => (2.0 * g * (1.0 + nu), g, nu),
+                    (Some(e), None, None) => (e, 0.0, 0.0),
+                    _ => {
+                        if r.ok {
+                            r.fail(1, "E", "MAT1 needs E, or two of E, G and NU");
+                        }
+                        (0.0, 0.0, 0.0)
+                    }
+                };
+                if r.ok {
+                    if e <= 0.0 {
+                        r.fail(1, "E", format!("Young's modulus must be positive (E = {e})"));
+                    }
+                    if !(-1.0..0.5).contains(&nu) {
+                        r.fail(3, "NU", format!("Poisson's ratio must lie in (-1, 0.5) (NU = {nu})"));
+                    }
+                    r.non_negative(4, "RHO", rho);
+                }
+                let m = Mat1 {
+                    mid: r.id(0, "MID"),
+                    e,
+                    g,
+                    nu,
+                    rho,
+                    at: r.at(),
+                };
+                if r.ok {
+                    b.mat1s.push(m);
+                }
+            }
+            "MAT2" => {
+                let v: Vec<f64> = (1..=6)
+                    .map(|k| r.real_or(k, ["", "G11", "G12", "G13", "G22", "G23", "G33"][k], 0.0))
+                    .collect();
+                let rho = r.real_or(7, "RHO", 0.0);
+                r.non_negative(7, "RHO", rho);
+                for (k, name) in [
+                    (8, "A1"),
+                    (9, "A2"),
+                    (10, "A3"),
+                    (11, "TREF"),
+                    (12, "GE"),
+                    (13, "ST"),
+                    (14, "SC"),
+                    (15, "SS"),
+                ] {
+                    r.real_opt(k, name);
+                }
+                let g = [[v[0], v[1], v[2]], [v[1], v[3], v[4]], [v[2], v[4], v[5]]];
+                let m = Mat2 {
+                    mid: r.id(0, "MID"),
+                    g,
+                    rho,
+                    at: r.at(),
+                };
+                if r.ok {
+                    b.mat2s.push(m);
+                }
+            }
+            "CONM2" => {
+                let cid = r.int_or(2, "CID", 0);
+                if cid != 0 {
+                    r.fail(2, "CID", "only the basic system (CID blank or 0) is supported");
+                }
+                for (k, name) in [(4, "X1"), (5, "X2"), (6, "X3")] {
+                    if r.real_or(k, name, 0.0) != 0.0 {
+                        r.fail(k, name, "mass offsets are not supported (must be blank or 0.0)");
+                    }
+                }
+                let names = ["I11", "I21", "I22", "I31", "I32", "I33"];
+                let mut inertia = [0.0; 6];
+                for (i, name) in names.iter().enumerate() {
+                    inertia[i] = r.real_or(8 + i, name, 0.0);
+                }
+                let c = Conm2 {
+                    eid: r.id(0, "EID"),
+                    g: r.id(1, "G"),
+                    mass: r.real(3, "M"),
+                    inertia,
+                    at: r.at(),
+                };
+                r.positive(3, "M", c.mass);
+                for (i, k) in [(0, 8), (2, 10), (5, 13)] {
+                    r.non_negative(k, names[i], inertia[i]);
+                }
+                if inertia[4] != 0.0 && inertia[5] == 0.0 {
+                    r.warn(
+                        12,
+                        "I32",
+                        "CONM2 inertia has a product of inertia I32 but no I33: a value meant for I33 may sit one field early",
+                    );
+                }
+                r.extra_fields(14);
+                if r.ok {
+                    b.conm2s.push(c);
+                }
+            }
+            "SPC1" => {
+                let s = Spc1 {
+                    sid: r.id(0, "SID"),
+                    c: r.components(1, "C"),
+                    grids: r.id_list(2, "G"),
+                    at: r.at(),
+                };
+                if r.ok && s.grids.is_empty() {
+                    r.fail(2, "G1", "SPC1 names no grid");
+                }
+                if r.ok && s.c.0 == 0 && !r.text(1).is_empty() && r.text(1) != "0" {
+                    r.fail(1, "C", "names no component");
+                }
+                if r.ok {
+                    b.spc1s.push(s);
+                }
+            }
+            "TF" => {
+                let mut t = Tf {
+                    sid: r.id(0, "SID"),
+                    gd: r.id(1, "GD"),
+                    cd: r.component(2, "CD"),
+                    b: [
+                        r.real_or(3, "B0", 0.0),
+                        r.real_or(4, "B1", 0.0),
+                        r.real_or(5, "B2", 0.0),
+                    ],
+                    terms: Vec::new(),
+                    at: r.at(),
+                };
+                let nlines = card.fields.len().div_ceil(8);
+                for line in 1..nlines {
+                    let k = 8 * line;
+                    if (k..k + 8).all(|i| r.text(i).is_empty()) {
+                        continue;
+                    }
+                    let term = TfTerm {
+                        g: r.id(k, "G(i)"),
+                        c: r.component(k + 1, "C(i)"),
+                        a: [
+                            r.real_or(k + 2, "A0(i)", 0.0),
+                            r.real_or(k + 3, "A1(i)", 0.0),
+                            r.real_or(k + 4, "A2(i)", 0.0),
+                        ],
+                    };
+                    for i in k + 5..k + 8 {
+                        if !r.text(i).is_empty() {
+                            r.fail(i, "unused", "TF continuation holds one term in fields 2-6");
+                        }
+                    }
+                    t.terms.push(term);
+                }
+                if r.ok {
+                    b.tfs.push(t);
+                }
+            }
+            "TSTEP" => {
+                let t = Tstep {
+                    sid: r.id(0, "SID"),
+                    n: r.int(1, "N(1)").max(0) as usize,
+                    dt: r.real(2, "DT(1)"),
+                    every: r.int_or(3, "NO(1)", 1).max(0) as usize,
+                    at: r.at(),
+                };
+                if r.ok && t.n == 0 {
+                    r.fail(1, "N(1)", "the number of steps must be positive");
+                }
+                r.positive(2, "DT(1)", t.dt);
+                if r.ok && t.every == 0 {
+                    r.fail(3, "NO(1)", "the output interval must be positive");
+                }
+                if card.fields.len() > 8 {
+                    r.fail(9, "N(2)", "more than one TSTEP interval is not supported");
+                }
+                if r.ok {
+                    b.tsteps.push(t);
+                }
+            }
+            "NOLIN3" => {
+                let n = Nolin3 {
+                    sid: r.id(0, "SID"),
+                    gi: r.id(1, "GI"),
+                    ci: r.component(2, "CI"),
+                    s: r.real(3, "S"),
+                    gj: r.id(4, "GJ"),
+                    cj: r.component(5, "CJ"),
+                    a: r.real(6, "A"),
+                    at: r.at(),
+                };
+                if r.ok && n.a <= 0.0 {
+                    r.fail(6, "A", "the exponent must be positive");
+                }
+                r.extra_fields(7);
+                if r.ok {
+                    b.nolin3s.push(n);
+                }
+            }
+            "TIC" => {
+                let t = Tic {
+                    sid: r.id(0, "SID"),
+                    g: r.id(1, "G"),
+                    c: r.component(2, "C"),
+                    u0: r.real_or(3, "U0", 0.0),
+                    v0: r.real_or(4, "V0", 0.0),
+                    at: r.at(),
+                };
+                r.extra_fields(5);
+                if r.ok {
+                    b.tics.push(t);
+                }
+            }
+            "PARAM" => r.diags.push(
+                Diagnostic::warning(Some(card.pos.clone()), "PARAM cards are not used by impactlab; ignored")
+                    .card("PARAM")
+                    .quote(&card.source),
+            ),
+            _ => unknown.push((card.name.clone(), card.pos.clone())),
+        }
+    }
+    (b, unknown)
+}

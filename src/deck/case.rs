@@ -1,0 +1,295 @@
+//! Executive control and case control.
+
+use super::diag::{Diagnostic, Diagnostics, Pos};
+use super::number::parse_int;
+use super::source::SrcLine;
+use std::collections::BTreeMap;
+
+/// Executive control: only what decides the analysis.
+#[derive(Debug, Clone, Default)]
+pub struct Executive {
+    pub id: Option<String>,
+    pub sol: Option<u32>,
+    pub time_limit: Option<String>,
+}
+
+/// Solution sequences that mean direct transient response.
+pub const DIRECT_TRANSIENT_SOLS: [u32; 4] = [9, 27, 109, 129];
+
+/// A case-control selection with where it was written.
+#[derive(Debug, Clone)]
+pub struct Selection {
+    pub id: i64,
+    pub pos: Pos,
+}
+
+/// What an output request selects.
+#[derive(Debug, Clone, PartialEq)]
+pub enum OutputSet {
+    All,
+    None,
+    Set(i64),
+}
+
+#[derive(Debug, Clone)]
+pub struct OutputRequest {
+    pub set: OutputSet,
+    pub pos: Pos,
+}
+
+/// A case-control SET: its members (THRU ranges expanded).
+#[derive(Debug, Clone)]
+pub struct SetDef {
+    pub members: Vec<i64>,
+    pub pos: Pos,
+}
+
+#[derive(Debug, Clone, Default)]
+pub struct CaseControl {
+    pub title: String,
+    pub subtitle: String,
+    pub label: String,
+    pub sets: BTreeMap<i64, SetDef>,
+    pub spc: Option<Selection>,
+    pub ic: Option<Selection>,
+    pub nonlinear: Option<Selection>,
+    pub tstep: Option<Selection>,
+    pub tfl: Option<Selection>,
+    /// Output requests by keyword: NLLOAD, DISP, VELO, ACCEL, STRESS, STRAIN.
+    pub outputs: BTreeMap<String, OutputRequest>,
+}
+
+pub fn parse_executive(lines: &[SrcLine], diags: &mut Diagnostics) -> Executive {
+    let mut e = Executive::default();
+    for l in lines {
+        let t = l.text.trim();
+        let mut words = t.splitn(2, |c: char| c.is_whitespace());
+        let key = words.next().unwrap_or("").to_ascii_uppercase();
+        let rest = words.next().unwrap_or("").trim();
+        match key.as_str() {
+            "ID" => e.id = Some(rest.to_string()),
+            "TIME" => e.time_limit = Some(rest.to_string()),
+            "SOL" => {
+                let word = rest.split([' ', ',']).next().unwrap_or("");
+                match parse_int(word) {
+                    Some(n) if DIRECT_TRANSIENT_SOLS.contains(&(n as u32)) => e.sol = Some(n as u32),
+                    Some(n) => diags.push(
+                        Diagnostic::error(
+                            Some(l.pos(1)),
+                            format!("SOL {n} is not supported: only direct transient response (SOL 9, 27, 109, 129)"),
+                        )
+                        .card("SOL")
+                        .quote(&l.text),
+                    ),
+                    None => {
+                        let up = word.to_ascii_uppercase();
+                        if up == "SEDTRAN" || up == "NLTRAN" {
+                            e.sol = Some(109);
+                        } else {
+                            diags.push(
+                                Diagnostic::error(
+                                    Some(l.pos(1)),
+                                    "is not a supported solution sequence (SOL 9, 27, 109, 129)",
+                                )
+                                .card("SOL")
+                                .token(word)
+                                .quote(&l.text),
+                            )
+                        }
+                    }
+                }
+            }
+            "APP" | "DIAG" | "CHKPNT" | "ECHOON" | "ECHOOFF" => {}
+            _ => diags.push(
+                Diagnostic::warning(Some(l.pos(1)), "unknown executive control statement, ignored")
+                    .token(&key)
+                    .quote(&l.text),
+            ),
+        }
+    }
+    if e.sol.is_none() && !diags.has_errors() {
+        diags.push(Diagnostic::error(
+            lines.first().map(|l| l.pos(1)),
+            "executive control has no SOL statement (direct transient: SOL 9, 27, 109 or 129)",
+        ));
+    }
+    e
+}
+
+/// Parses a comma/space separated id list with THRU ranges, as in SET and SPC1.
+fn parse_id_list(text: &str, pos: &Pos, src: &str, diags: &mut Diagnostics) -> Vec<i64> {
+    let toks: Vec<String> = text
+        .split([',', ' '])
+        .map(str::trim)
+        .filter(|t| !t.is_empty())
+        .map(str::to_ascii_uppercase)
+        .collect();
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < toks.len() {
+        let t = &toks[i];
+        if t == "THRU" {
+            let (a, b) = (out.last().copied(), toks.get(i + 1).and_then(|s| parse_int(s)));
+            match (a, b) {
+                (Some(a), Some(b)) if b >= a => out.extend(a + 1..=b),
+                (Some(a), Some(b)) => diags.push(
+                    Diagnostic::error(Some(pos.clone()), format!("THRU range {a} THRU {b} is reversed"))
+                        .card("SET")
+                        .quote(src),
+                ),
+                _ => diags.push(
+                    Diagnostic::error(Some(pos.clone()), "THRU needs an integer on each side")
+                        .card("SET")
+                        .quote(src),
+                ),
+            }
+            i += 2;
+            continue;
+        }
+        match parse_int(t) {
+            Some(v) => out.push(v),
+            None => diags.push(
+                Diagnostic::error(Some(pos.clone()), "is not an integer set member")
+                    .card("SET")
+                    .token(t)
+                    .quote(src),
+            ),
+        }
+        i += 1;
+    }
+    out
+}
+
+const SELECTORS: [&str; 5] = ["SPC", "IC", "NONLINEAR", "TSTEP", "TFL"];
+const OUTPUTS: [&str; 6] = ["NLLOAD", "DISP", "VELO", "ACCEL", "STRESS", "STRAIN"];
+const IGNORED: [&str; 8] = [
+    "ECHO", "LINE", "MAXLINES", "OUTPUT", "ELFORCE", "FORCE", "OLOAD", "SPCFORCE",
+];
+
+pub fn parse_case(lines: &[SrcLine], diags: &mut Diagnostics) -> CaseControl {
+    let mut cc = CaseControl::default();
+    let mut i = 0;
+    while i < lines.len() {
+        let l = &lines[i];
+        i += 1;
+        let t = l.text.trim();
+        let Some(eq) = t.find('=') else {
+            diags.push(Diagnostic::warning(Some(l.pos(1)), "case control line without '=' is ignored").quote(&l.text));
+            continue;
+        };
+        let lhs = t[..eq].trim();
+        let mut rhs = t[eq + 1..].trim().to_string();
+        let key_full = lhs.to_ascii_uppercase();
+        let key = key_full.split('(').next().unwrap_or("").trim().to_string();
+        let pos = l.pos(1);
+        let words: Vec<&str> = key.split_whitespace().collect();
+        match words.as_slice() {
+            ["TITLE"] => cc.title = rhs,
+            ["SUBTITLE"] | ["SUBTI"] => cc.subtitle = rhs,
+            ["LABEL"] => cc.label = rhs,
+            ["SET", n] => {
+                let mut src = l.text.clone();
+                while rhs.trim_end().ends_with(',') && i < lines.len() {
+                    rhs.push_str(lines[i].text.trim());
+                    src.push('\n');
+                    src.push_str(&lines[i].text);
+                    i += 1;
+                }
+                let Some(id) = parse_int(n) else {
+                    diags.push(
+                        Diagnostic::error(Some(pos), "is not a set number")
+                            .card("SET")
+                            .token(n)
+                            .quote(&src),
+                    );
+                    continue;
+                };
+                let members = parse_id_list(&rhs, &pos, &src, diags);
+                if cc
+                    .sets
+                    .insert(
+                        id,
+                        SetDef {
+                            members,
+                            pos: pos.clone(),
+                        },
+                    )
+                    .is_some()
+                {
+                    diags.push(
+                        Diagnostic::error(Some(pos), format!("SET {id} is defined twice"))
+                            .card("SET")
+                            .quote(&src),
+                    );
+                }
+            }
+            [k] if SELECTORS.contains(k) => match parse_int(&rhs) {
+                Some(id) => {
+                    let sel = Some(Selection { id, pos });
+                    match *k {
+                        "SPC" => cc.spc = sel,
+                        "IC" => cc.ic = sel,
+                        "NONLINEAR" => cc.nonlinear = sel,
+                        "TSTEP" => cc.tstep = sel,
+                        _ => cc.tfl = sel,
+                    }
+                }
+                None => diags.push(
+                    Diagnostic::error(Some(pos), "is not a set identification number")
+                        .card(k)
+                        .token(&rhs)
+                        .quote(&l.text),
+                ),
+            },
+            [k] if OUTPUTS.contains(k) => {
+                let up = rhs.to_ascii_uppercase();
+                let set = match up.as_str() {
+                    "ALL" => Some(OutputSet::All),
+                    "NONE" => Some(OutputSet::None),
+                    _ => parse_int(&up).map(OutputSet::Set),
+                };
+                match set {
+                    Some(set) => {
+                        cc.outputs.insert(k.to_string(), OutputRequest { set, pos });
+                    }
+                    None => diags.push(
+                        Diagnostic::error(Some(pos), "is not ALL, NONE or a set number")
+                            .card(k)
+                            .token(&rhs)
+                            .quote(&l.text),
+                    ),
+                }
+            }
+            ["SUBCASE"] | ["SUBCASE", ..] => diags.push(
+                Diagnostic::error(Some(pos), "SUBCASE is not supported: one transient case per deck")
+                    .card("SUBCASE")
+                    .quote(&l.text),
+            ),
+            [k] if IGNORED.contains(k) => diags.push(
+                Diagnostic::warning(Some(pos), "case control request is not supported and is ignored")
+                    .card(k)
+                    .quote(&l.text),
+            ),
+            _ => diags.push(
+                Diagnostic::warning(Some(pos), "unknown case control command, ignored")
+                    .token(lhs)
+                    .quote(&l.text),
+            ),
+        }
+    }
+    // Every set named by an output request must exist.
+    for (k, req) in &cc.outputs {
+        if let OutputSet::Set(id) = req.set {
+            if !cc.sets.contains_key(&id) {
+                diags.push(
+                    Diagnostic::error(
+                        Some(req.pos.clone()),
+                        format!("names SET {id}, which case control does not define"),
+                    )
+                    .card(k),
+                );
+            }
+        }
+    }
+    cc
+}

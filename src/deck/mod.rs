@@ -1,0 +1,203 @@
+//! The deck reader: NASTRAN bulk data files to typed data with source positions.
+//!
+//! Stages: lines (with INCLUDE expanded) → sections → raw cards (fields, continuation,
+//! replication) → typed cards. Every error carries file, line, column, card and field;
+//! all errors of a deck are collected (up to [`diag::MAX_ERRORS`]).
+
+pub mod bulk;
+pub mod cards;
+pub mod case;
+pub mod diag;
+pub mod number;
+pub mod source;
+
+pub use cards::{Bulk, CardRef, Components};
+pub use case::{CaseControl, Executive, OutputSet};
+pub use diag::{Diagnostic, Diagnostics, Pos, Severity};
+
+use std::collections::HashMap;
+use std::fmt;
+use std::path::Path;
+
+/// The deck's declared unit system (from a `$ Units: length, force, time` comment).
+/// impactlab never converts units: these names only label outputs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Units {
+    pub length: String,
+    pub force: String,
+    pub time: String,
+}
+
+impl Default for Units {
+    fn default() -> Self {
+        Units {
+            length: "length".into(),
+            force: "force".into(),
+            time: "s".into(),
+        }
+    }
+}
+
+/// A deck read without errors.
+#[derive(Debug, Clone)]
+pub struct Deck {
+    pub name: String,
+    pub executive: Executive,
+    pub case: CaseControl,
+    pub bulk: Bulk,
+    pub units: Units,
+    pub warnings: Vec<Diagnostic>,
+}
+
+/// Reading a deck failed: every error found, and the warnings.
+#[derive(Debug, Clone)]
+pub struct DeckError {
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+impl DeckError {
+    pub fn errors(&self) -> impl Iterator<Item = &Diagnostic> {
+        self.diagnostics.iter().filter(|d| d.is_error())
+    }
+}
+
+impl fmt::Display for DeckError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let errors: Vec<_> = self.errors().collect();
+        for d in errors.iter().take(diag::MAX_ERRORS) {
+            writeln!(f, "{d}")?;
+        }
+        if errors.len() > diag::MAX_ERRORS {
+            writeln!(f, "... and {} more errors", errors.len() - diag::MAX_ERRORS)?;
+        }
+        write!(f, "{} error(s) in deck", errors.len())
+    }
+}
+
+impl std::error::Error for DeckError {}
+
+/// Options of the reader.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct ReadOptions {
+    /// Unknown cards become warnings instead of errors.
+    pub allow_unknown: bool,
+}
+
+/// Reads a deck file.
+pub fn read_deck(path: &Path, opts: ReadOptions) -> Result<Deck, DeckError> {
+    let mut diags = Diagnostics::default();
+    let sections = source::read_sections(path, &mut diags);
+    let name = path
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "deck".into());
+    finish(name, sections, opts, diags)
+}
+
+/// Reads deck text held in memory.
+pub fn parse_deck_str(name: &str, text: &str, opts: ReadOptions) -> Result<Deck, DeckError> {
+    let mut diags = Diagnostics::default();
+    let sections = source::sections_from_str(name, text, &mut diags);
+    finish(name.to_string(), sections, opts, diags)
+}
+
+fn finish(
+    name: String,
+    sections: source::Sections,
+    opts: ReadOptions,
+    mut diags: Diagnostics,
+) -> Result<Deck, DeckError> {
+    let executive = case::parse_executive(&sections.executive, &mut diags);
+    let case = case::parse_case(&sections.case, &mut diags);
+    let raw = bulk::assemble(&sections.bulk, &mut diags);
+    let (bulk, unknown) = cards::type_cards(&raw, &mut diags);
+    report_unknown(&unknown, opts, &mut diags);
+    check_duplicates(&bulk, &mut diags);
+    let units = sections
+        .units
+        .map(|(length, force, time)| Units { length, force, time })
+        .unwrap_or_default();
+    if diags.has_errors() {
+        return Err(DeckError {
+            diagnostics: diags.items,
+        });
+    }
+    Ok(Deck {
+        name,
+        executive,
+        case,
+        bulk,
+        units,
+        warnings: diags.items,
+    })
+}
+
+fn report_unknown(unknown: &[(String, Pos)], opts: ReadOptions, diags: &mut Diagnostics) {
+    if unknown.is_empty() {
+        return;
+    }
+    let mut names: Vec<&str> = unknown.iter().map(|(n, _)| n.as_str()).collect();
+    names.sort();
+    names.dedup();
+    let list = names.join(", ");
+    for (n, pos) in unknown {
+        let msg = format!(
+            "unknown card (this deck has {} unknown card type(s): {list}); supported: {}",
+            names.len(),
+            cards::KNOWN_CARDS.join(" ")
+        );
+        let d = if opts.allow_unknown {
+            Diagnostic::warning(Some(pos.clone()), format!("{msg}; ignored because of --allow-unknown"))
+        } else {
+            Diagnostic::error(Some(pos.clone()), format!("{msg}; use --allow-unknown to ignore them"))
+        };
+        diags.push(d.card(n));
+    }
+}
+
+fn check_duplicates(b: &Bulk, diags: &mut Diagnostics) {
+    fn dup<'a>(kind: &str, items: impl Iterator<Item = (i64, &'a CardRef)>, diags: &mut Diagnostics) {
+        let mut seen: HashMap<i64, &CardRef> = HashMap::new();
+        for (id, at) in items {
+            if let Some(first) = seen.get(&id) {
+                diags.push(at.error(format!("duplicate {kind} id {id} (first defined at {})", first.pos)));
+            } else {
+                seen.insert(id, at);
+            }
+        }
+    }
+    dup(
+        "point",
+        b.grids
+            .iter()
+            .map(|g| (g.id, &g.at))
+            .chain(b.epoints.iter().map(|(i, a)| (*i, a)))
+            .chain(b.spoints.iter().map(|(i, a)| (*i, a))),
+        diags,
+    );
+    dup(
+        "element",
+        b.crods
+            .iter()
+            .map(|c| (c.eid, &c.at))
+            .chain(b.cquad4s.iter().map(|c| (c.eid, &c.at)))
+            .chain(b.conm2s.iter().map(|c| (c.eid, &c.at))),
+        diags,
+    );
+    dup(
+        "property",
+        b.prods
+            .iter()
+            .map(|p| (p.pid, &p.at))
+            .chain(b.pshells.iter().map(|p| (p.pid, &p.at))),
+        diags,
+    );
+    dup(
+        "material",
+        b.mat1s
+            .iter()
+            .map(|m| (m.mid, &m.at))
+            .chain(b.mat2s.iter().map(|m| (m.mid, &m.at))),
+        diags,
+    );
+}

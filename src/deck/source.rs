@@ -1,0 +1,243 @@
+//! Reading deck files: INCLUDE expansion and the split into executive control,
+//! case control and bulk data.
+
+use super::diag::{Diagnostic, Diagnostics, Pos};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// One physical line of a deck with where it came from.
+#[derive(Debug, Clone)]
+pub struct SrcLine {
+    pub file: Arc<str>,
+    pub line: usize,
+    pub text: String,
+}
+
+impl SrcLine {
+    pub fn pos(&self, column: usize) -> Pos {
+        Pos {
+            file: self.file.clone(),
+            line: self.line,
+            column,
+        }
+    }
+}
+
+/// The three sections of a deck, as lines.
+#[derive(Debug, Default)]
+pub struct Sections {
+    pub executive: Vec<SrcLine>,
+    pub case: Vec<SrcLine>,
+    pub bulk: Vec<SrcLine>,
+    /// Unit system declared in a `$ Units: length, force, time` comment, if any.
+    pub units: Option<(String, String, String)>,
+}
+
+/// Reads `path`, expands INCLUDEs (relative to the including file) and splits sections.
+pub fn read_sections(path: &Path, diags: &mut Diagnostics) -> Sections {
+    let mut lines = Vec::new();
+    let mut stack = Vec::new();
+    expand(path, None, &mut stack, &mut lines, diags);
+    split(lines, diags)
+}
+
+/// Reads deck text held in memory (used by tests and fuzzing); INCLUDEs are resolved
+/// relative to the working directory.
+pub fn sections_from_str(name: &str, text: &str, diags: &mut Diagnostics) -> Sections {
+    let file: Arc<str> = Arc::from(name);
+    let mut lines = Vec::new();
+    let mut stack = vec![PathBuf::from(name)];
+    push_lines(file, text, Path::new("."), &mut stack, &mut lines, diags);
+    split(lines, diags)
+}
+
+fn expand(path: &Path, from: Option<Pos>, stack: &mut Vec<PathBuf>, out: &mut Vec<SrcLine>, diags: &mut Diagnostics) {
+    let canon = path.canonicalize().unwrap_or_else(|_| path.to_path_buf());
+    if stack.contains(&canon) {
+        diags.push(
+            Diagnostic::error(from, format!("INCLUDE cycle: '{}' includes itself", path.display())).card("INCLUDE"),
+        );
+        return;
+    }
+    let bytes = match std::fs::read(path) {
+        Ok(b) => b,
+        Err(e) => {
+            let what = if from.is_some() { "INCLUDE file" } else { "deck" };
+            let mut d = Diagnostic::error(from.clone(), format!("cannot read {what} '{}': {e}", path.display()));
+            if from.is_some() {
+                d = d.card("INCLUDE");
+            }
+            diags.push(d);
+            return;
+        }
+    };
+    let text = String::from_utf8_lossy(&bytes);
+    let file: Arc<str> = Arc::from(path.display().to_string().as_str());
+    let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+    stack.push(canon);
+    push_lines(file, &text, &dir, stack, out, diags);
+    stack.pop();
+}
+
+fn push_lines(
+    file: Arc<str>,
+    text: &str,
+    dir: &Path,
+    stack: &mut Vec<PathBuf>,
+    out: &mut Vec<SrcLine>,
+    diags: &mut Diagnostics,
+) {
+    for (i, raw) in text.lines().enumerate() {
+        let line = SrcLine {
+            file: file.clone(),
+            line: i + 1,
+            text: expand_tabs(raw.trim_end_matches('\r')),
+        };
+        if let Some(target) = include_target(&line.text) {
+            match target {
+                Ok(name) => {
+                    let p = dir.join(&name);
+                    expand(&p, Some(line.pos(1)), stack, out, diags);
+                }
+                Err(msg) => diags.push(
+                    Diagnostic::error(Some(line.pos(1)), msg)
+                        .card("INCLUDE")
+                        .quote(&line.text),
+                ),
+            }
+            continue;
+        }
+        out.push(line);
+    }
+}
+
+/// Tabs advance to the next multiple of 8 columns (the small-field grid).
+fn expand_tabs(s: &str) -> String {
+    if !s.contains('\t') {
+        return s.to_string();
+    }
+    let mut out = String::with_capacity(s.len() + 8);
+    for c in s.chars() {
+        if c == '\t' {
+            let n = 8 - out.chars().count() % 8;
+            out.extend(std::iter::repeat_n(' ', n));
+        } else {
+            out.push(c);
+        }
+    }
+    out
+}
+
+/// `INCLUDE 'file'` (MSC style). Returns the quoted file name, or an error message.
+fn include_target(text: &str) -> Option<Result<String, String>> {
+    let t = text.trim_start();
+    if t.len() < 7 || !t[..7].eq_ignore_ascii_case("INCLUDE") {
+        return None;
+    }
+    let rest = t[7..].trim();
+    if !(rest.starts_with('\'') || rest.starts_with('"') || rest.is_empty()) {
+        return None; // some other word starting with INCLUDE
+    }
+    let q = rest.chars().next();
+    match q {
+        Some(q) if rest.len() >= 2 && rest[1..].contains(q) => {
+            let end = rest[1..].find(q).unwrap() + 1;
+            Some(Ok(rest[1..end].to_string()))
+        }
+        _ => Some(Err("INCLUDE needs a quoted file name: INCLUDE 'file.bdf'".into())),
+    }
+}
+
+fn first_word(text: &str) -> String {
+    text.trim_start()
+        .split(|c: char| c.is_whitespace() || c == ',' || c == '=' || c == '(')
+        .next()
+        .unwrap_or("")
+        .to_ascii_uppercase()
+}
+
+fn split(lines: Vec<SrcLine>, diags: &mut Diagnostics) -> Sections {
+    #[derive(PartialEq)]
+    enum S {
+        Exec,
+        Case,
+        Bulk,
+        Done,
+    }
+    let mut s = Sections::default();
+    let mut state = S::Exec;
+    let mut last_pos = None;
+    let has_cend = lines.iter().any(|l| first_word(&l.text) == "CEND");
+    if !has_cend {
+        // A bulk-only deck is not a runnable transient deck.
+        state = S::Case;
+        diags.push(Diagnostic::error(
+            lines.first().map(|l| l.pos(1)),
+            "no CEND card: a deck needs executive control (SOL ...) ending in CEND",
+        ));
+    }
+    for l in lines {
+        last_pos = Some(l.pos(1));
+        let trimmed = l.text.trim_start();
+        if trimmed.starts_with('$') {
+            if let Some(u) = units_comment(trimmed) {
+                s.units = Some(u);
+            }
+            continue;
+        }
+        if trimmed.is_empty() {
+            continue;
+        }
+        match state {
+            S::Exec => {
+                if first_word(&l.text) == "CEND" {
+                    state = S::Case;
+                } else {
+                    s.executive.push(l);
+                }
+            }
+            S::Case => {
+                let up = l.text.trim().to_ascii_uppercase();
+                if up.split_whitespace().collect::<Vec<_>>() == ["BEGIN", "BULK"] {
+                    state = S::Bulk;
+                } else {
+                    s.case.push(l);
+                }
+            }
+            S::Bulk => {
+                if first_word(&l.text) == "ENDDATA" {
+                    state = S::Done;
+                } else {
+                    s.bulk.push(l);
+                }
+            }
+            S::Done => diags.push(Diagnostic::warning(Some(l.pos(1)), "text after ENDDATA is ignored").quote(&l.text)),
+        }
+    }
+    match state {
+        S::Case => diags.push(Diagnostic::error(last_pos, "missing BEGIN BULK")),
+        S::Bulk => diags.push(Diagnostic::error(
+            last_pos,
+            "missing ENDDATA at the end of the bulk data",
+        )),
+        _ => {}
+    }
+    s
+}
+
+/// `$ Units: in, lbf, s` declares the deck's unit system (length, force, time).
+fn units_comment(comment: &str) -> Option<(String, String, String)> {
+    let body = comment.trim_start_matches('$').trim();
+    let lower = body.to_ascii_lowercase();
+    let rest = lower.strip_prefix("units:")?;
+    let start = body.len() - rest.len();
+    let parts: Vec<String> = body[start..]
+        .trim_end_matches('.')
+        .split(',')
+        .map(|p| p.trim().to_string())
+        .collect();
+    match parts.as_slice() {
+        [l, f, t] if !l.is_empty() && !f.is_empty() && !t.is_empty() => Some((l.clone(), f.clone(), t.clone())),
+        _ => None,
+    }
+}

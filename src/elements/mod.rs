@@ -1,0 +1,5 @@
+//! Element kernels: pure functions from geometry and material to local matrices and
+//! recovered strains. They know nothing of global numbering.
+
+pub mod mass;
+pub mod rod;

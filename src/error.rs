@@ -1,0 +1,33 @@
+//! The program's error, by stage, and its exit codes.
+
+use crate::deck::DeckError;
+use crate::integrate::SolveError;
+use crate::model::ModelError;
+
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    #[error("{0}")]
+    Deck(#[from] DeckError),
+    #[error("{0}")]
+    Model(#[from] ModelError),
+    #[error("numerical failure: {0}")]
+    Solve(#[from] SolveError),
+    #[error("invalid option: {0}")]
+    Usage(String),
+    #[error("cannot write outputs to {path}: {source}")]
+    Io {
+        path: String,
+        #[source]
+        source: std::io::Error,
+    },
+}
+
+impl Error {
+    /// 2 for bad input, 3 for numerical failure (1 is reserved for failed verification).
+    pub fn exit_code(&self) -> i32 {
+        match self {
+            Error::Deck(_) | Error::Model(_) | Error::Usage(_) | Error::Io { .. } => 2,
+            Error::Solve(_) => 3,
+        }
+    }
+}

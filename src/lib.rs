@@ -1,0 +1,29 @@
+//! impactlab: low-velocity impact analysis of linear finite-element targets struck by
+//! a rigid impactor through a Hertzian contact, with an audited energy ledger.
+//!
+//! The pipeline (one home per stage): [`deck`] → [`model`] → [`assembly`] →
+//! [`integrate`] → [`ledger`] → [`output`].
+
+pub mod assembly;
+pub mod deck;
+pub mod elements;
+pub mod error;
+pub mod integrate;
+pub mod ledger;
+pub mod model;
+pub mod output;
+pub mod run;
+
+pub use error::Error;
+
+/// Reads a deck and builds its model; warnings are returned alongside.
+pub fn load_deck(
+    path: &std::path::Path,
+    opts: deck::ReadOptions,
+) -> Result<(model::Model, Vec<deck::Diagnostic>), Error> {
+    let d = deck::read_deck(path, opts)?;
+    let (m, mut warnings) = model::build_model(&d)?;
+    let mut all = d.warnings;
+    all.append(&mut warnings);
+    Ok((m, all))
+}

@@ -1,0 +1,101 @@
+//! The `impactlab` command line: argument parsing and exit codes only.
+
+use clap::{Parser, Subcommand};
+use impactlab::integrate::Scheme;
+use impactlab::run::RunOptions;
+use impactlab::{deck, output, run, Error};
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(
+    name = "impactlab",
+    version,
+    about = "Low-velocity impact analysis with an audited energy ledger"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Run a NASTRAN-style transient deck and write history.csv, energy.csv, summary.json.
+    Run {
+        /// The deck (.bdf).
+        deck: PathBuf,
+        /// Output directory [default: out/<deck name>].
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Time integration scheme.
+        #[arg(long, value_enum, default_value_t = Scheme::Newmark)]
+        scheme: Scheme,
+        /// Time step in the deck's time unit [default: the deck's TSTEP].
+        #[arg(long)]
+        dt: Option<f64>,
+        /// Number of steps [default: the deck's TSTEP].
+        #[arg(long)]
+        steps: Option<usize>,
+        /// Stop with exit code 3 when the relative energy error exceeds this.
+        #[arg(long)]
+        max_energy_error: Option<f64>,
+        /// Unknown bulk data cards become warnings instead of errors.
+        #[arg(long)]
+        allow_unknown: bool,
+    },
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match execute(cli) {
+        Ok(code) => ExitCode::from(code),
+        Err(e) => {
+            eprintln!("{e}");
+            ExitCode::from(e.exit_code() as u8)
+        }
+    }
+}
+
+fn execute(cli: Cli) -> Result<u8, Error> {
+    match cli.command {
+        Command::Run {
+            deck: path,
+            out,
+            scheme,
+            dt,
+            steps,
+            max_energy_error,
+            allow_unknown,
+        } => {
+            if let Some(dt) = dt {
+                if !(dt > 0.0 && dt.is_finite()) {
+                    return Err(Error::Usage(format!("--dt must be a positive number, not {dt}")));
+                }
+            }
+            if steps == Some(0) {
+                return Err(Error::Usage("--steps must be positive".into()));
+            }
+            let (model, warnings) = impactlab::load_deck(&path, deck::ReadOptions { allow_unknown })?;
+            for w in &warnings {
+                eprintln!("{w}");
+            }
+            let opts = RunOptions {
+                scheme,
+                dt,
+                steps,
+                max_energy_error,
+                progress: std::io::stderr().is_terminal(),
+            };
+            let r = run::run_model(&model, &opts)?;
+            let dir = out.unwrap_or_else(|| PathBuf::from("out").join(&model.name));
+            output::write_dir_atomically(&dir, &output::run_files(&model, &r)).map_err(|source| Error::Io {
+                path: dir.display().to_string(),
+                source,
+            })?;
+            print!("{}", output::human_summary(&model, &r));
+            println!("  outputs:  {}", dir.display());
+            Ok(0)
+        }
+    }
+}

@@ -1,0 +1,671 @@
+//! Deck → model.
+
+use super::*;
+use crate::deck::case::{OutputSet, Selection};
+use crate::deck::{Deck, Diagnostic};
+use std::collections::{BTreeMap, HashMap};
+
+/// Building the model failed: every problem found, each tied to its card.
+#[derive(Debug, Clone)]
+pub struct ModelError {
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+impl fmt::Display for ModelError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let errors: Vec<_> = self.diagnostics.iter().filter(|d| d.is_error()).collect();
+        for d in &errors {
+            writeln!(f, "{d}")?;
+        }
+        write!(f, "{} error(s) in model", errors.len())
+    }
+}
+
+impl std::error::Error for ModelError {}
+
+struct Ctx {
+    diags: Vec<Diagnostic>,
+}
+
+impl Ctx {
+    fn err(&mut self, d: Diagnostic) {
+        self.diags.push(d);
+    }
+
+    fn warn(&mut self, mut d: Diagnostic) {
+        d.severity = crate::deck::Severity::Warning;
+        self.diags.push(d);
+    }
+
+    /// Cards of one kind selected by a case-control set id. Warns about cards whose
+    /// set is not selected; errors when a selection matches no card.
+    fn select<'c, T>(
+        &mut self,
+        kind: &str,
+        keyword: &str,
+        sel: &Option<Selection>,
+        cards: &'c [T],
+        sid: impl Fn(&T) -> i64,
+        at: impl Fn(&T) -> &CardRef,
+    ) -> Vec<&'c T> {
+        let chosen: Vec<&T> = match sel {
+            Some(s) => cards.iter().filter(|c| sid(c) == s.id).collect(),
+            None => Vec::new(),
+        };
+        if let Some(s) = sel {
+            if chosen.is_empty() {
+                self.err(
+                    Diagnostic::error(
+                        Some(s.pos.clone()),
+                        format!(
+                            "case control {keyword} = {} selects no {kind} card (no {kind} has SID {})",
+                            s.id, s.id
+                        ),
+                    )
+                    .card(keyword),
+                );
+            }
+        }
+        let ignored: Vec<&T> = cards
+            .iter()
+            .filter(|c| sel.as_ref().is_none_or(|s| sid(c) != s.id))
+            .collect();
+        if let Some(first) = ignored.first() {
+            let why = match sel {
+                Some(s) => format!("case control selects {keyword} = {}", s.id),
+                None => format!("case control has no {keyword} request"),
+            };
+            self.warn(at(first).error(format!(
+                "{} {kind} card(s) not selected ({why}); ignored",
+                ignored.len()
+            )));
+        }
+        chosen
+    }
+}
+
+/// Builds the model of a deck, collecting every error.
+pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> {
+    let mut cx = Ctx { diags: Vec::new() };
+    let b = &deck.bulk;
+    let case = &deck.case;
+
+    let spcs = cx.select("SPC1", "SPC", &case.spc, &b.spc1s, |c| c.sid, |c| &c.at);
+    let tfs = cx.select("TF", "TFL", &case.tfl, &b.tfs, |c| c.sid, |c| &c.at);
+    let nolins = cx.select("NOLIN3", "NONLINEAR", &case.nonlinear, &b.nolin3s, |c| c.sid, |c| &c.at);
+    let tics = cx.select("TIC", "IC", &case.ic, &b.tics, |c| c.sid, |c| &c.at);
+    let tsteps = cx.select("TSTEP", "TSTEP", &case.tstep, &b.tsteps, |c| c.sid, |c| &c.at);
+    if case.tstep.is_none() {
+        cx.err(Diagnostic::error(
+            None,
+            "case control has no TSTEP request: a transient run needs one",
+        ));
+    }
+
+    // Points.
+    let grids: BTreeMap<i64, &crate::deck::cards::Grid> = b.grids.iter().map(|g| (g.id, g)).collect();
+    for g in &b.grids {
+        let cp = if g.cp != 0 { g.cp } else { b.grdset.cp };
+        let cd = if g.cd != 0 { g.cd } else { b.grdset.cd };
+        if cp != 0 || cd != 0 {
+            cx.err(g.at.error("only the basic coordinate system is supported (CP and CD blank or 0)"));
+        }
+    }
+    let mut scalar: BTreeMap<i64, &CardRef> = BTreeMap::new();
+    for (id, at) in b.epoints.iter().chain(b.spoints.iter()) {
+        scalar.insert(*id, at);
+    }
+
+    // Constrained components per grid.
+    let mut constrained: HashMap<i64, u8> = HashMap::new();
+    for g in &b.grids {
+        let ps = g.ps.unwrap_or(b.grdset.ps);
+        constrained.insert(g.id, ps.0);
+    }
+    for s in &spcs {
+        for gid in &s.grids {
+            match constrained.get_mut(gid) {
+                Some(c) => *c |= s.c.0,
+                None if scalar.contains_key(gid) => cx.err(s.at.error(format!(
+                    "SPC1 constrains point {gid}, a scalar point: only grids are supported"
+                ))),
+                None => cx.err(s.at.error(format!("SPC1 references grid {gid}, which does not exist"))),
+            }
+        }
+    }
+
+    // Dependent (TF-defined) scalar points.
+    let mut tf_of: BTreeMap<i64, &crate::deck::cards::Tf> = BTreeMap::new();
+    for t in &tfs {
+        if !scalar.contains_key(&t.gd) {
+            cx.err(t.at.error(format!(
+                "TF dependent point {} must be an EPOINT or SPOINT (a TF on a structural DOF is not supported)",
+                t.gd
+            )));
+            continue;
+        }
+        if t.b[1] != 0.0 || t.b[2] != 0.0 || t.terms.iter().any(|x| x.a[1] != 0.0 || x.a[2] != 0.0) {
+            cx.err(t.at.error(
+                "TF with velocity or acceleration terms (B1, B2, A1, A2 nonzero) is not supported: only B0 and A0",
+            ));
+            continue;
+        }
+        if t.b[0] == 0.0 {
+            cx.err(t.at.error("TF B0 is zero: the dependent point is not defined"));
+            continue;
+        }
+        if t.terms.iter().any(|x| x.g == t.gd) {
+            cx.err(t.at.error(format!(
+                "TF references itself: point {} is both dependent and independent",
+                t.gd
+            )));
+            continue;
+        }
+        if tf_of.insert(t.gd, t).is_some() {
+            cx.err(t.at.error(format!("point {} is defined by more than one TF", t.gd)));
+        }
+    }
+
+    // Number the solved DOFs: grid components in id order, then free scalar points.
+    let mut dofs = Vec::new();
+    let mut index: HashMap<DofLabel, usize> = HashMap::new();
+    for (&id, _) in &grids {
+        let c = constrained[&id];
+        for comp in 1..=6u8 {
+            if c & (1 << (comp - 1)) == 0 {
+                let l = DofLabel { point: id, comp };
+                index.insert(l, dofs.len());
+                dofs.push(l);
+            }
+        }
+    }
+    for &id in scalar.keys() {
+        if !tf_of.contains_key(&id) {
+            let l = DofLabel { point: id, comp: 0 };
+            index.insert(l, dofs.len());
+            dofs.push(l);
+        }
+    }
+    let grid_dofs = |id: i64| -> [Option<usize>; 6] {
+        let mut d = [None; 6];
+        for (k, slot) in d.iter_mut().enumerate() {
+            *slot = index
+                .get(&DofLabel {
+                    point: id,
+                    comp: k as u8 + 1,
+                })
+                .copied();
+        }
+        d
+    };
+
+    // A reference (point, component) to a solved DOF, with a clear error otherwise.
+    let lookup = |cx: &mut Ctx, at: &CardRef, what: &str, g: i64, c: usize| -> Option<usize> {
+        let is_grid = grids.contains_key(&g);
+        let is_scalar = scalar.contains_key(&g);
+        if !is_grid && !is_scalar {
+            cx.err(at.error(format!("{what} references point {g}, which does not exist")));
+            return None;
+        }
+        if is_grid && c == 0 {
+            cx.err(at.error(format!(
+                "{what} names grid {g} with component 0: a grid needs a component 1-6"
+            )));
+            return None;
+        }
+        let l = DofLabel {
+            point: g,
+            comp: if is_scalar { 0 } else { c as u8 },
+        };
+        match index.get(&l) {
+            Some(&i) => Some(i),
+            None => {
+                cx.err(at.error(format!("{what} uses {l}, which is constrained (SPC1 or PS)")));
+                None
+            }
+        }
+    };
+
+    let mut dependent = Vec::new();
+    let mut dep_index: HashMap<i64, usize> = HashMap::new();
+    for (&gd, t) in &tf_of {
+        let mut f = Functional::new();
+        let mut ok = true;
+        for term in &t.terms {
+            if tf_of.contains_key(&term.g) {
+                cx.err(t.at.error(format!(
+                    "TF independent point {} is itself defined by a TF: chained transfer functions are not supported",
+                    term.g
+                )));
+                ok = false;
+                continue;
+            }
+            match lookup(&mut cx, &t.at, "TF", term.g, term.c) {
+                Some(i) => f.push((i, -term.a[0] / t.b[0])),
+                None => ok = false,
+            }
+        }
+        if ok {
+            dep_index.insert(gd, dependent.len());
+            dependent.push(DependentPoint {
+                label: DofLabel { point: gd, comp: 0 },
+                functional: f,
+                at: t.at.clone(),
+            });
+        }
+    }
+
+    // Materials and properties.
+    let mat1: HashMap<i64, &crate::deck::cards::Mat1> = b.mat1s.iter().map(|m| (m.mid, m)).collect();
+    let prod: HashMap<i64, &crate::deck::cards::Prod> = b.prods.iter().map(|p| (p.pid, p)).collect();
+
+    let mut elements = Vec::new();
+    let mut on_element: HashMap<i64, usize> = HashMap::new();
+    for c in &b.crods {
+        let mut ok = true;
+        let mut x = [[0.0; 3]; 2];
+        for (k, g) in c.g.iter().enumerate() {
+            match grids.get(g) {
+                Some(gr) => x[k] = gr.x,
+                None => {
+                    cx.err(c.at.error(format!("CROD {} references grid {g}, which does not exist", c.eid)));
+                    ok = false;
+                }
+            }
+        }
+        let Some(p) = prod.get(&c.pid) else {
+            cx.err(c.at.error(format!(
+                "CROD {} references PROD {}, which does not exist",
+                c.eid, c.pid
+            )));
+            continue;
+        };
+        let Some(m) = mat1.get(&p.mid) else {
+            cx.err(p.at.error(format!(
+                "PROD {} references MAT1 {}, which does not exist",
+                p.pid, p.mid
+            )));
+            continue;
+        };
+        if !ok {
+            continue;
+        }
+        if x[0] == x[1] {
+            cx.err(c.at.error(format!("CROD {} has zero length (its grids coincide)", c.eid)));
+            continue;
+        }
+        for g in c.g {
+            *on_element.entry(g).or_default() += 1;
+        }
+        elements.push(Element::Rod {
+            eid: c.eid,
+            grids: c.g,
+            x,
+            section: RodSection {
+                e: m.e,
+                g: m.g,
+                area: p.a,
+                torsion: p.j,
+                rho: m.rho,
+                nsm: p.nsm,
+            },
+            dofs: [grid_dofs(c.g[0]), grid_dofs(c.g[1])],
+        });
+    }
+    if !b.cquad4s.is_empty() {
+        cx.err(b.cquad4s[0].at.error("CQUAD4 plates are not supported yet"));
+    }
+    for m in &b.conm2s {
+        if !grids.contains_key(&m.g) {
+            cx.err(m.at.error(format!("CONM2 {} references grid {}, which does not exist", m.eid, m.g)));
+            continue;
+        }
+        elements.push(Element::Mass {
+            eid: m.eid,
+            grid: m.g,
+            mass: m.mass,
+            inertia: m.inertia,
+            dofs: grid_dofs(m.g),
+        });
+    }
+
+    // Time control.
+    let time = match tsteps.first() {
+        Some(t) => TimeControl {
+            dt: t.dt,
+            steps: t.n,
+            every: t.every,
+        },
+        None => TimeControl {
+            dt: 0.0,
+            steps: 0,
+            every: 1,
+        },
+    };
+
+    // Initial conditions.
+    let n = dofs.len();
+    let (mut u0, mut v0) = (vec![0.0; n], vec![0.0; n]);
+    for t in &tics {
+        if dep_index.contains_key(&t.g) {
+            cx.err(t.at.error(format!(
+                "TIC on point {}, which a TF defines: it has no state of its own",
+                t.g
+            )));
+            continue;
+        }
+        if let Some(i) = lookup(&mut cx, &t.at, "TIC", t.g, t.c) {
+            u0[i] = t.u0;
+            v0[i] = t.v0;
+        }
+    }
+
+    // Contact.
+    let contact = build_contact(
+        &mut cx,
+        &nolins,
+        &dependent,
+        &dep_index,
+        &elements,
+        &on_element,
+        |cx, at, w, g, c| lookup(cx, at, w, g, c),
+    );
+
+    // Output plan.
+    let mut outputs = OutputPlan::default();
+    let set_members = |req: Option<&crate::deck::case::OutputRequest>| -> Option<Vec<i64>> {
+        match req.map(|r| &r.set) {
+            None | Some(OutputSet::None) => None,
+            Some(OutputSet::All) => Some(Vec::new()),
+            Some(OutputSet::Set(id)) => case.sets.get(id).map(|s| s.members.clone()),
+        }
+    };
+    let all_points = || -> Vec<i64> { grids.keys().copied().chain(scalar.keys().copied()).collect() };
+    for (key, target) in [("DISP", 0), ("VELO", 1)] {
+        let req = case.outputs.get(key);
+        let Some(mut members) = set_members(req) else { continue };
+        if matches!(req.map(|r| &r.set), Some(OutputSet::All)) {
+            members = all_points();
+        }
+        let mut list = Vec::new();
+        for p in members {
+            if let Some(&j) = dep_index.get(&p) {
+                list.push((dependent[j].label, Source::Dependent(j)));
+            } else if grids.contains_key(&p) || scalar.contains_key(&p) {
+                let comps: Vec<u8> = if scalar.contains_key(&p) {
+                    vec![0]
+                } else {
+                    (1..=6).collect()
+                };
+                for comp in comps {
+                    let l = DofLabel { point: p, comp };
+                    if let Some(&i) = index.get(&l) {
+                        list.push((l, Source::Dof(i)));
+                    }
+                }
+            }
+        }
+        if target == 0 {
+            outputs.disp = list;
+        } else {
+            outputs.velo = list;
+        }
+    }
+    if let (Some(members), Some(c)) = (set_members(case.outputs.get("NLLOAD")), &contact) {
+        let all = members.is_empty();
+        outputs.nlload = (0..c.loads.len())
+            .filter(|&k| all || members.contains(&c.loads[k].label.point))
+            .collect();
+    }
+    let elem_pos: HashMap<i64, usize> = elements
+        .iter()
+        .enumerate()
+        .filter(|(_, e)| !matches!(e, Element::Mass { .. }))
+        .map(|(i, e)| (e.eid(), i))
+        .collect();
+    for key in ["STRESS", "STRAIN"] {
+        let req = case.outputs.get(key);
+        let Some(members) = set_members(req) else { continue };
+        let list: Vec<usize> = if members.is_empty() {
+            let mut v: Vec<usize> = elem_pos.values().copied().collect();
+            v.sort();
+            v
+        } else {
+            members.iter().filter_map(|m| elem_pos.get(m).copied()).collect()
+        };
+        if key == "STRESS" {
+            outputs.stress = list;
+        } else {
+            outputs.strain = list;
+        }
+    }
+    if case.outputs.contains_key("ACCEL") {
+        cx.warn(Diagnostic::warning(
+            case.outputs.get("ACCEL").map(|r| r.pos.clone()),
+            "ACCEL output is not written (accelerations are not part of every scheme's state); ignored",
+        ));
+    }
+
+    let rod = rod_info(&elements);
+    let model = Model {
+        name: deck.name.clone(),
+        title: case.title.clone(),
+        units: deck.units.clone(),
+        dofs,
+        dependent,
+        elements,
+        contact,
+        u0,
+        v0,
+        time,
+        outputs,
+        rod,
+    };
+    let errors = cx.diags.iter().any(|d| d.is_error());
+    if errors {
+        Err(ModelError { diagnostics: cx.diags })
+    } else {
+        Ok((model, cx.diags))
+    }
+}
+
+fn build_contact(
+    cx: &mut Ctx,
+    nolins: &[&crate::deck::cards::Nolin3],
+    dependent: &[DependentPoint],
+    dep_index: &HashMap<i64, usize>,
+    elements: &[Element],
+    on_element: &HashMap<i64, usize>,
+    lookup: impl Fn(&mut Ctx, &CardRef, &str, i64, usize) -> Option<usize>,
+) -> Option<Contact> {
+    let first = nolins.first()?;
+    // One driver and one exponent for all NOLIN3 loads: one contact.
+    let mut ok = true;
+    for n in nolins {
+        if n.gj != first.gj || n.cj != first.cj {
+            cx.err(n.at.error(format!(
+                "NOLIN3 driven by point {} while another is driven by point {}: one contact (one driving DOF) is supported",
+                n.gj, first.gj
+            )));
+            ok = false;
+        }
+        if n.a != first.a {
+            cx.err(n.at.error(format!(
+                "NOLIN3 exponent {} differs from {} on another card of the same contact",
+                n.a, first.a
+            )));
+            ok = false;
+        }
+    }
+    let (driver, driver_label) = match dep_index.get(&first.gj) {
+        Some(&j) => (dependent[j].functional.clone(), dependent[j].label),
+        None => {
+            let i = lookup(cx, &first.at, "NOLIN3 driver", first.gj, first.cj)?;
+            (
+                vec![(i, 1.0)],
+                DofLabel {
+                    point: first.gj,
+                    comp: first.cj as u8,
+                },
+            )
+        }
+    };
+    let mut loads = Vec::new();
+    for n in nolins {
+        if dep_index.contains_key(&n.gi) {
+            cx.err(n.at.error(format!(
+                "NOLIN3 loads point {}, which a TF defines: it cannot carry a load",
+                n.gi
+            )));
+            ok = false;
+            continue;
+        }
+        if let Some(dof) = lookup(cx, &n.at, "NOLIN3", n.gi, n.ci) {
+            loads.push(NonlinearLoad {
+                dof,
+                label: DofLabel {
+                    point: n.gi,
+                    comp: n.ci as u8,
+                },
+                scale: n.s,
+                at: n.at.clone(),
+            });
+        } else {
+            ok = false;
+        }
+    }
+    if !ok {
+        return None;
+    }
+    // The impactor: the loaded grid that no structural element touches.
+    let free: Vec<&NonlinearLoad> = loads
+        .iter()
+        .filter(|l| l.label.comp != 0 && !on_element.contains_key(&l.label.point))
+        .collect();
+    let imp = match free.as_slice() {
+        [one] => *one,
+        [] => {
+            cx.err(first.at.error(
+                "cannot identify the impactor: every grid loaded by NOLIN3 is attached to an element \
+                 (the impactor is a point mass loaded by the contact and attached to nothing else)",
+            ));
+            return None;
+        }
+        many => {
+            cx.err(first.at.error(format!(
+                "cannot identify the impactor: {} grids loaded by NOLIN3 carry no element ({})",
+                many.len(),
+                many.iter().map(|l| l.label.point.to_string()).collect::<Vec<_>>().join(", ")
+            )));
+            return None;
+        }
+    };
+    let mass = elements
+        .iter()
+        .filter_map(|e| match e {
+            Element::Mass { grid, mass, .. } if *grid == imp.label.point => Some(*mass),
+            _ => None,
+        })
+        .sum::<f64>();
+    if mass <= 0.0 {
+        cx.err(
+            imp.at
+                .error(format!("the impactor grid {} has no CONM2 mass", imp.label.point)),
+        );
+        return None;
+    }
+    let c_imp: f64 = driver.iter().filter(|(j, _)| *j == imp.dof).map(|(_, c)| c).sum();
+    if c_imp == 0.0 {
+        cx.err(imp.at.error(format!(
+            "the contact's driving point {driver_label} does not depend on the impactor DOF {}",
+            imp.label
+        )));
+        return None;
+    }
+    let stiffness = -imp.scale / c_imp;
+    if stiffness <= 0.0 {
+        cx.err(imp.at.error(format!(
+            "the impactor load S = {} pushes the impactor into the target as the indentation grows \
+             (S·∂α/∂u = {} must be negative for a repulsive contact)",
+            imp.scale,
+            imp.scale * c_imp
+        )));
+        return None;
+    }
+    // Non-conservative remainder g + K c over all DOFs touched.
+    let mut rem: BTreeMap<usize, f64> = BTreeMap::new();
+    for l in &loads {
+        *rem.entry(l.dof).or_default() += l.scale;
+    }
+    for &(j, c) in &driver {
+        *rem.entry(j).or_default() += stiffness * c;
+    }
+    let nonconservative: Functional = rem.into_iter().filter(|(_, v)| *v != 0.0).collect();
+    for &(j, v) in &nonconservative {
+        let load = loads.iter().find(|l| l.dof == j);
+        let msg = format!(
+            "contact load on DOF {} is not derivable from the Hertz potential of the impactor's K = {stiffness:.6e}: \
+             remainder {v:+.4e} ({:.2e} of K); its work is booked as external work. A balanced deck uses S = {:.6e}",
+            j,
+            (v / stiffness).abs(),
+            load.map(|l| l.scale - v).unwrap_or(-v),
+        );
+        match load {
+            Some(l) => cx.warn(l.at.error(msg)),
+            None => cx.warn(Diagnostic::warning(None, msg)),
+        }
+    }
+    let imp_grid = imp.label.point;
+    let imp_dofs = {
+        let mut v = Vec::new();
+        for e in elements {
+            if let Element::Mass { grid, dofs, .. } = e {
+                if *grid == imp_grid {
+                    v.extend(dofs.iter().flatten().copied());
+                }
+            }
+        }
+        if !v.contains(&imp.dof) {
+            v.push(imp.dof);
+        }
+        v.sort();
+        v.dedup();
+        v
+    };
+    Some(Contact {
+        driver,
+        driver_label,
+        exponent: first.a,
+        stiffness,
+        impactor: Impactor {
+            grid: imp_grid,
+            dof: imp.dof,
+            mass,
+            dofs: imp_dofs,
+        },
+        loads,
+        nonconservative,
+    })
+}
+
+/// A target made of CRODs of one section along one line: wave speed and length.
+fn rod_info(elements: &[Element]) -> Option<RodInfo> {
+    let rods: Vec<(&[[f64; 3]; 2], &RodSection)> = elements
+        .iter()
+        .filter_map(|e| match e {
+            Element::Rod { x, section, .. } => Some((x, section)),
+            _ => None,
+        })
+        .collect();
+    let (_, s0) = rods.first()?;
+    if rods.iter().any(|(_, s)| s != s0) || s0.rho <= 0.0 {
+        return None;
+    }
+    let length: f64 = rods.iter().map(|(x, _)| crate::elements::rod::axis(x[0], x[1]).1).sum();
+    Some(RodInfo {
+        wave_speed: (s0.e / s0.rho).sqrt(),
+        length,
+        e: s0.e,
+        area: s0.area,
+    })
+}

@@ -1,0 +1,238 @@
+//! The model: DOF numbering, constraints, elements, masses, the contact definition,
+//! initial conditions and the output plan, built from a deck.
+//!
+//! DOFs are numbered over the *solved* DOFs: grid components left free by PS and
+//! the selected SPC1 cards, and scalar points that are not defined by a TF. A scalar
+//! point defined by a TF (the paper's indentation EPOINT) is algebraic: it is kept as
+//! a linear functional of the solved DOFs, not as an unknown.
+
+mod build;
+
+pub use build::{build_model, ModelError};
+
+use crate::deck::{CardRef, Units};
+use crate::elements::rod::RodSection;
+use std::fmt;
+
+/// A DOF of the deck: point id and component (1-6 for grids, 0 for scalar points).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct DofLabel {
+    pub point: i64,
+    pub comp: u8,
+}
+
+impl fmt::Display for DofLabel {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        const NAMES: [&str; 7] = ["", "T1", "T2", "T3", "R1", "R2", "R3"];
+        if self.comp == 0 {
+            write!(f, "point {}", self.point)
+        } else {
+            write!(f, "grid {} {}", self.point, NAMES[self.comp as usize])
+        }
+    }
+}
+
+/// A linear functional Σ c_j u_j of solved DOFs.
+pub type Functional = Vec<(usize, f64)>;
+
+pub fn apply(f: &Functional, u: &[f64]) -> f64 {
+    f.iter().map(|&(j, c)| c * u[j]).sum()
+}
+
+/// A scalar point defined by a transfer function (B0 u_dep + Σ A0_j u_j = 0).
+#[derive(Debug, Clone)]
+pub struct DependentPoint {
+    pub label: DofLabel,
+    pub functional: Functional,
+    pub at: CardRef,
+}
+
+#[derive(Debug, Clone)]
+pub enum Element {
+    Rod {
+        eid: i64,
+        grids: [i64; 2],
+        x: [[f64; 3]; 2],
+        section: RodSection,
+        /// Solved DOF index of T1..R3 of each end, None where constrained.
+        dofs: [[Option<usize>; 6]; 2],
+    },
+    Mass {
+        eid: i64,
+        grid: i64,
+        mass: f64,
+        inertia: [f64; 6],
+        dofs: [Option<usize>; 6],
+    },
+}
+
+impl Element {
+    pub fn eid(&self) -> i64 {
+        match self {
+            Element::Rod { eid, .. } | Element::Mass { eid, .. } => *eid,
+        }
+    }
+}
+
+/// One NOLIN3 load: P = S·x^A on a solved DOF.
+#[derive(Debug, Clone)]
+pub struct NonlinearLoad {
+    pub dof: usize,
+    pub label: DofLabel,
+    pub scale: f64,
+    pub at: CardRef,
+}
+
+/// The rigid impactor: a point mass loaded by the contact and attached to no element.
+#[derive(Debug, Clone)]
+pub struct Impactor {
+    pub grid: i64,
+    /// The solved DOF the contact load acts on (the impact direction).
+    pub dof: usize,
+    pub mass: f64,
+    /// All solved DOFs of the impactor grid.
+    pub dofs: Vec<usize>,
+}
+
+/// The Hertzian contact: NOLIN3 loads P_i = S_i·x^A driven by one scalar x (here the
+/// indentation α), which is a linear functional of the solved DOFs.
+///
+/// The contact is conservative when the loads derive from the potential
+/// V(α) = K/(A+1)·α^(A+1), i.e. when S_i = −K ∂α/∂u_i for every loaded DOF. K is
+/// taken from the impactor's load. Any remainder `S_i + K ∂α/∂u_i` is a
+/// non-conservative load whose work the ledger books separately.
+#[derive(Debug, Clone)]
+pub struct Contact {
+    pub driver: Functional,
+    pub driver_label: DofLabel,
+    pub loads: Vec<NonlinearLoad>,
+    pub exponent: f64,
+    /// Hertz contact stiffness K of V(α) = K/(A+1) α^(A+1).
+    pub stiffness: f64,
+    pub impactor: Impactor,
+    /// Non-conservative remainder of the loads (DOF, S_i + K ∂α/∂u_i), nonzero entries.
+    pub nonconservative: Functional,
+}
+
+impl Contact {
+    /// Load factor φ(α) = max(α, 0)^A: the NOLIN3 law divided by S.
+    pub fn law(&self, alpha: f64) -> f64 {
+        if alpha > 0.0 {
+            alpha.powf(self.exponent)
+        } else {
+            0.0
+        }
+    }
+
+    /// Derivative of the law.
+    pub fn law_slope(&self, alpha: f64) -> f64 {
+        if alpha > 0.0 {
+            self.exponent * alpha.powf(self.exponent - 1.0)
+        } else {
+            0.0
+        }
+    }
+
+    /// W(α) = ∫φ = max(α,0)^(A+1)/(A+1); the contact potential is K·W.
+    pub fn law_integral(&self, alpha: f64) -> f64 {
+        if alpha > 0.0 {
+            alpha.powf(self.exponent + 1.0) / (self.exponent + 1.0)
+        } else {
+            0.0
+        }
+    }
+
+    /// Contact strain energy (Eq. 15): V = K/(A+1) α^(A+1) = 2/5 K α^(5/2) for A = 3/2.
+    pub fn potential(&self, alpha: f64) -> f64 {
+        self.stiffness * self.law_integral(alpha)
+    }
+
+    /// Contact force magnitude F = K α^A (the force on the impactor, Eq. 12).
+    pub fn force(&self, alpha: f64) -> f64 {
+        self.stiffness * self.law(alpha)
+    }
+}
+
+/// Time stepping as the deck's TSTEP gives it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TimeControl {
+    pub dt: f64,
+    pub steps: usize,
+    /// Output every `every` steps.
+    pub every: usize,
+}
+
+/// Where an output value comes from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Source {
+    Dof(usize),
+    Dependent(usize),
+}
+
+/// What the deck's case control asks to be written.
+#[derive(Debug, Clone, Default)]
+pub struct OutputPlan {
+    pub disp: Vec<(DofLabel, Source)>,
+    pub velo: Vec<(DofLabel, Source)>,
+    /// NOLIN3 loads requested by NLLOAD (index into `Contact::loads`).
+    pub nlload: Vec<usize>,
+    /// Element indices (into `Model::elements`) requested by STRESS.
+    pub stress: Vec<usize>,
+    /// Element indices requested by STRAIN.
+    pub strain: Vec<usize>,
+}
+
+/// A uniform rod target, for results in units of tC/L.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RodInfo {
+    /// Bar wave speed C = √(E/ρ).
+    pub wave_speed: f64,
+    pub length: f64,
+    pub e: f64,
+    pub area: f64,
+}
+
+#[derive(Debug, Clone)]
+pub struct Model {
+    pub name: String,
+    pub title: String,
+    pub units: Units,
+    pub dofs: Vec<DofLabel>,
+    pub dependent: Vec<DependentPoint>,
+    pub elements: Vec<Element>,
+    pub contact: Option<Contact>,
+    pub u0: Vec<f64>,
+    pub v0: Vec<f64>,
+    pub time: TimeControl,
+    pub outputs: OutputPlan,
+    pub rod: Option<RodInfo>,
+}
+
+impl Model {
+    pub fn n(&self) -> usize {
+        self.dofs.len()
+    }
+
+    /// Active DOFs as NASTRAN counts them: solved DOFs plus TF-defined scalar points.
+    pub fn active_dofs(&self) -> usize {
+        self.dofs.len() + self.dependent.len()
+    }
+
+    pub fn value(&self, s: Source, u: &[f64]) -> f64 {
+        match s {
+            Source::Dof(i) => u[i],
+            Source::Dependent(j) => apply(&self.dependent[j].functional, u),
+        }
+    }
+
+    /// True for the solved DOFs of the target (everything but the impactor).
+    pub fn target_mask(&self) -> Vec<bool> {
+        let mut mask = vec![true; self.n()];
+        if let Some(c) = &self.contact {
+            for &d in &c.impactor.dofs {
+                mask[d] = false;
+            }
+        }
+        mask
+    }
+}

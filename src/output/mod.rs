@@ -1,0 +1,173 @@
+//! Writing a run's files: `history.csv`, `energy.csv`, `summary.json`.
+//!
+//! A run's outputs are staged in a fresh directory beside the target and swapped in
+//! with renames, so an interrupted or failed run leaves either the previous complete
+//! outputs or the new complete outputs, never a mix or a half-written file.
+
+use crate::ledger;
+use crate::model::Model;
+use crate::run::Run;
+use std::fs;
+use std::io::{self, Write};
+use std::path::{Path, PathBuf};
+
+/// Writes named files into `dir` all at once (stage, then swap).
+pub fn write_dir_atomically(dir: &Path, files: &[(&str, Vec<u8>)]) -> io::Result<()> {
+    let parent = match dir.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    fs::create_dir_all(&parent)?;
+    let name = dir
+        .file_name()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "out".into());
+    let stage = tempfile::Builder::new()
+        .prefix(&format!(".{name}.staging-"))
+        .tempdir_in(&parent)?;
+    for (file, bytes) in files {
+        let mut f = fs::File::create(stage.path().join(file))?;
+        f.write_all(bytes)?;
+        f.sync_all()?;
+    }
+    let staged = stage.keep();
+    if dir.exists() {
+        let old = tempfile::Builder::new()
+            .prefix(&format!(".{name}.previous-"))
+            .tempdir_in(&parent)?
+            .keep();
+        fs::remove_dir(&old)?;
+        fs::rename(dir, &old)?;
+        if let Err(e) = fs::rename(&staged, dir) {
+            // Put the previous outputs back.
+            let _ = fs::rename(&old, dir);
+            let _ = fs::remove_dir_all(&staged);
+            return Err(e);
+        }
+        fs::remove_dir_all(&old)?;
+    } else if let Err(e) = fs::rename(&staged, dir) {
+        let _ = fs::remove_dir_all(&staged);
+        return Err(e);
+    }
+    Ok(())
+}
+
+fn csv_bytes(header: &[String], rows: impl Iterator<Item = Vec<f64>>) -> Vec<u8> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    w.write_record(header).expect("writing to memory");
+    for r in rows {
+        w.write_record(r.iter().map(|v| format!("{v:.12e}")))
+            .expect("writing to memory");
+    }
+    w.into_inner().expect("writing to memory")
+}
+
+/// Column names of `energy.csv` with units.
+pub fn energy_columns(m: &Model) -> Vec<String> {
+    let u = &m.units;
+    let e = format!("{}*{}", u.force, u.length);
+    ledger::COLUMNS
+        .iter()
+        .map(|c| match *c {
+            "time" => format!("time [{}]", u.time),
+            "error" => "error [-]".to_string(),
+            "momentum" => format!("momentum [{}*{}]", u.force, u.time),
+            other => format!("{other} [{e}]"),
+        })
+        .collect()
+}
+
+/// The three output files of a run.
+pub fn run_files(model: &Model, run: &Run) -> Vec<(&'static str, Vec<u8>)> {
+    let history = csv_bytes(&run.history_columns, run.history.iter().cloned());
+    let energy = csv_bytes(&energy_columns(model), run.energy.iter().map(|r| r.values().to_vec()));
+    let mut summary = serde_json::to_vec_pretty(&run.summary).expect("json of plain values");
+    summary.push(b'\n');
+    vec![
+        ("history.csv", history),
+        ("energy.csv", energy),
+        ("summary.json", summary),
+    ]
+}
+
+/// A short human summary of a run.
+pub fn human_summary(model: &Model, run: &Run) -> String {
+    let s = &run.summary;
+    let f = |v: &serde_json::Value| v.as_f64().map(|x| format!("{x:.4e}")).unwrap_or_else(|| "-".into());
+    let us = |v: &serde_json::Value| {
+        v.as_f64()
+            .map(|x| format!("{:.2} us", x * 1e6))
+            .unwrap_or_else(|| "-".into())
+    };
+    let u = &model.units;
+    let mut out = String::new();
+    out += &format!(
+        "{}: {} DOF ({} solved), scheme {}, dt {:e} {}, {} steps, {:.3} s wall\n",
+        model.name,
+        model.active_dofs(),
+        model.n(),
+        run.scheme.name(),
+        run.dt,
+        u.time,
+        run.stats.steps,
+        run.stats.total_time.as_secs_f64()
+    );
+    let c = &s["contact"];
+    let intervals: Vec<String> = c["intervals_s"]
+        .as_array()
+        .map(|a| a.iter().map(|i| format!("{}..{}", us(&i[0]), us(&i[1]))).collect())
+        .unwrap_or_default();
+    out += &format!(
+        "  contact:  {}\n",
+        if intervals.is_empty() {
+            "none".into()
+        } else {
+            intervals.join(", ")
+        }
+    );
+    out += &format!(
+        "  peak force {} {} at {}\n",
+        f(&c["peak_force"]),
+        u.force,
+        us(&c["peak_force_time_s"])
+    );
+    let i = &s["impactor"];
+    out += &format!(
+        "  impactor: v0 {} , at rest at {}, rebound {} {}/{}\n",
+        f(&i["initial_velocity"]),
+        us(&i["velocity_zero_time_s"]),
+        f(&i["rebound_velocity"]),
+        u.length,
+        u.time
+    );
+    let e = &s["energy"];
+    out += &format!(
+        "  energy:   initial {} {}*{}, transferred {}, max |error| {}\n",
+        f(&e["initial"]),
+        u.force,
+        u.length,
+        e["transferred_fraction"]
+            .as_f64()
+            .map(|x| format!("{:.2} %", 100.0 * x))
+            .unwrap_or("-".into()),
+        f(&e["max_relative_error"])
+    );
+    if let Some(r) = s.get("rod") {
+        out += &format!(
+            "  rod (tC/L): contact ends {}, impactor at rest {}, peak force {}\n",
+            r["contact_end_tcl"]
+                .as_f64()
+                .map(|x| format!("{x:.4}"))
+                .unwrap_or("-".into()),
+            r["velocity_zero_time_tcl"]
+                .as_f64()
+                .map(|x| format!("{x:.4}"))
+                .unwrap_or("-".into()),
+            r["peak_force_time_tcl"]
+                .as_f64()
+                .map(|x| format!("{x:.4}"))
+                .unwrap_or("-".into()),
+        );
+    }
+    out
+}

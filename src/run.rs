@@ -1,0 +1,376 @@
+//! One run: model → assembled system → integrator → recorded history, ledger and
+//! summary. Plain data in, plain data out; writing files is [`crate::output`]'s job.
+
+use crate::assembly::{assemble, System};
+use crate::integrate::{integrate, Observer, RunStats, Scheme, SolveError, StepState};
+use crate::ledger::{EnergyRow, Ledger};
+use crate::model::{Element, Model, Source};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use serde_json::{json, Value};
+
+/// How to run a model; `None` means "as the deck says".
+#[derive(Debug, Clone)]
+pub struct RunOptions {
+    pub scheme: Scheme,
+    pub dt: Option<f64>,
+    pub steps: Option<usize>,
+    /// Stop with an error when |energy error| exceeds this.
+    pub max_energy_error: Option<f64>,
+    /// Show a progress bar on a terminal.
+    pub progress: bool,
+}
+
+impl Default for RunOptions {
+    fn default() -> Self {
+        RunOptions {
+            scheme: Scheme::Newmark,
+            dt: None,
+            steps: None,
+            max_energy_error: None,
+            progress: false,
+        }
+    }
+}
+
+/// Per-step contact quantities, the basis of the summary.
+#[derive(Debug, Clone, Default)]
+pub struct Series {
+    pub time: Vec<f64>,
+    pub alpha: Vec<f64>,
+    /// Contact force magnitude K φ(α) (the force on the impactor).
+    pub force: Vec<f64>,
+    pub impactor_u: Vec<f64>,
+    pub impactor_v: Vec<f64>,
+}
+
+/// Everything a run produced.
+#[derive(Debug, Clone)]
+pub struct Run {
+    pub scheme: Scheme,
+    pub dt: f64,
+    pub steps: usize,
+    pub stats: RunStats,
+    pub series: Series,
+    pub energy: Vec<EnergyRow>,
+    pub history_columns: Vec<String>,
+    pub history: Vec<Vec<f64>>,
+    pub summary: Value,
+}
+
+struct Recorder<'a> {
+    model: &'a Model,
+    ledger: Ledger<'a>,
+    every: usize,
+    energy: Vec<EnergyRow>,
+    series: Series,
+    history: Vec<Vec<f64>>,
+    max_energy_error: Option<f64>,
+    bar: ProgressBar,
+}
+
+impl Observer for Recorder<'_> {
+    fn observe(&mut self, s: &StepState) -> Result<bool, SolveError> {
+        let m = self.model;
+        let row = self.ledger.record(s);
+        if let Some(limit) = self.max_energy_error {
+            if row.error.abs() > limit {
+                return Err(SolveError::EnergyLimit {
+                    step: s.step,
+                    time_s: s.time,
+                    error: row.error,
+                    limit,
+                });
+            }
+        }
+        self.energy.push(row);
+        let (force, iu) = match &m.contact {
+            Some(c) => (c.stiffness * s.load_factor, c.impactor.dof),
+            None => (0.0, 0),
+        };
+        self.series.time.push(s.time);
+        self.series.alpha.push(s.alpha);
+        self.series.force.push(force);
+        self.series.impactor_u.push(s.u.get(iu).copied().unwrap_or(0.0));
+        self.series.impactor_v.push(s.v.get(iu).copied().unwrap_or(0.0));
+        if s.step % self.every == 0 {
+            self.history.push(history_row(m, s, force));
+        }
+        if s.step % 64 == 0 {
+            self.bar.set_position(s.step as u64);
+        }
+        Ok(true)
+    }
+}
+
+/// Column names (with units) of `history.csv`, in the order of [`history_row`].
+pub fn history_columns(m: &Model) -> Vec<String> {
+    let u = &m.units;
+    let (l, f, t) = (&u.length, &u.force, &u.time);
+    let mut cols = vec![
+        format!("time [{t}]"),
+        format!("contact_force [{f}]"),
+        format!("indentation [{l}]"),
+        format!("impactor_disp [{l}]"),
+        format!("impactor_velo [{l}/{t}]"),
+    ];
+    let unit = |comp: u8, rate: &str| -> String {
+        if (4..=6).contains(&comp) {
+            format!("rad{rate}")
+        } else {
+            format!("{l}{rate}")
+        }
+    };
+    let tag = |d: &crate::model::DofLabel| {
+        const C: [&str; 7] = ["", "T1", "T2", "T3", "R1", "R2", "R3"];
+        if d.comp == 0 {
+            format!("{}", d.point)
+        } else {
+            format!("{}_{}", d.point, C[d.comp as usize])
+        }
+    };
+    for (d, _) in &m.outputs.disp {
+        cols.push(format!("disp_{} [{}]", tag(d), unit(d.comp, "")));
+    }
+    for (d, _) in &m.outputs.velo {
+        cols.push(format!("velo_{} [{}]", tag(d), unit(d.comp, &format!("/{t}"))));
+    }
+    if let Some(c) = &m.contact {
+        for &k in &m.outputs.nlload {
+            cols.push(format!("nlload_{} [{f}]", tag(&c.loads[k].label)));
+        }
+    }
+    for &e in &m.outputs.stress {
+        cols.push(format!("stress_{} [{f}/{l}^2]", m.elements[e].eid()));
+        cols.push(format!("strain_{} [-]", m.elements[e].eid()));
+    }
+    for &e in &m.outputs.strain {
+        if !m.outputs.stress.contains(&e) {
+            cols.push(format!("strain_{} [-]", m.elements[e].eid()));
+        }
+    }
+    cols
+}
+
+fn history_row(m: &Model, s: &StepState, force: f64) -> Vec<f64> {
+    let iu = m.contact.as_ref().map(|c| c.impactor.dof);
+    let mut row = vec![
+        s.time,
+        force,
+        s.alpha,
+        iu.map(|i| s.u[i]).unwrap_or(0.0),
+        iu.map(|i| s.v[i]).unwrap_or(0.0),
+    ];
+    for (_, src) in &m.outputs.disp {
+        row.push(m.value(*src, s.u));
+    }
+    for (_, src) in &m.outputs.velo {
+        row.push(match src {
+            Source::Dof(i) => s.v[*i],
+            Source::Dependent(j) => crate::model::apply(&m.dependent[*j].functional, s.v),
+        });
+    }
+    if let Some(c) = &m.contact {
+        for &k in &m.outputs.nlload {
+            row.push(c.loads[k].scale * s.load_factor);
+        }
+    }
+    let strain = |e: usize| element_strain(&m.elements[e], s.u);
+    for &e in &m.outputs.stress {
+        let (eps, modulus) = strain(e);
+        row.push(modulus * eps);
+        row.push(eps);
+    }
+    for &e in &m.outputs.strain {
+        if !m.outputs.stress.contains(&e) {
+            row.push(strain(e).0);
+        }
+    }
+    row
+}
+
+/// Recovered strain of an element and the modulus relating it to stress.
+fn element_strain(e: &Element, u: &[f64]) -> (f64, f64) {
+    match e {
+        Element::Rod { x, section, dofs, .. } => {
+            let t = |end: usize| -> [f64; 3] {
+                let mut v = [0.0; 3];
+                for k in 0..3 {
+                    if let Some(i) = dofs[end][k] {
+                        v[k] = u[i];
+                    }
+                }
+                v
+            };
+            (crate::elements::rod::axial_strain(x[0], x[1], t(0), t(1)), section.e)
+        }
+        Element::Mass { .. } => (0.0, 0.0),
+    }
+}
+
+/// Runs a model.
+pub fn run_model(model: &Model, opts: &RunOptions) -> Result<Run, SolveError> {
+    let sys = assemble(model);
+    run_system(model, &sys, opts)
+}
+
+/// Runs a model whose system is already assembled.
+pub fn run_system(model: &Model, sys: &System, opts: &RunOptions) -> Result<Run, SolveError> {
+    let dt = opts.dt.unwrap_or(model.time.dt);
+    let steps = opts.steps.unwrap_or(model.time.steps);
+    let bar = if opts.progress {
+        let b = ProgressBar::with_draw_target(Some(steps as u64), ProgressDrawTarget::stderr());
+        b.set_style(
+            ProgressStyle::with_template("{spinner} {msg} [{bar:40}] {pos}/{len} steps ({eta})")
+                .expect("valid template")
+                .progress_chars("=> "),
+        );
+        b.set_message(format!("{} {}", model.name, opts.scheme.name()));
+        b
+    } else {
+        ProgressBar::hidden()
+    };
+    let mut rec = Recorder {
+        model,
+        ledger: Ledger::new(model, sys),
+        every: model.time.every.max(1),
+        energy: Vec::with_capacity(steps + 1),
+        series: Series::default(),
+        history: Vec::new(),
+        max_energy_error: opts.max_energy_error,
+        bar,
+    };
+    let stats = integrate(model, sys, opts.scheme, dt, steps, &mut rec)?;
+    rec.bar.finish_and_clear();
+    let mut run = Run {
+        scheme: opts.scheme,
+        dt,
+        steps,
+        stats,
+        series: rec.series,
+        energy: rec.energy,
+        history_columns: history_columns(model),
+        history: rec.history,
+        summary: Value::Null,
+    };
+    run.summary = summary(model, &run);
+    Ok(run)
+}
+
+/// Times where a sampled signal crosses zero, by linear interpolation between samples.
+fn crossing(t: &[f64], y: &[f64], k: usize) -> f64 {
+    // sign change between k-1 and k
+    let (y0, y1) = (y[k - 1], y[k]);
+    if y1 == y0 {
+        return t[k];
+    }
+    t[k - 1] + (t[k] - t[k - 1]) * (y0 / (y0 - y1))
+}
+
+/// Contact intervals [start, end] from the indentation: contact while α > 0.
+pub fn contact_intervals(t: &[f64], alpha: &[f64]) -> (Vec<[f64; 2]>, bool) {
+    let mut out = Vec::new();
+    let mut start = None;
+    for k in 0..alpha.len() {
+        let inside = alpha[k] > 0.0;
+        match (start, inside) {
+            (None, true) => start = Some(if k == 0 { t[0] } else { crossing(t, alpha, k) }),
+            (Some(s), false) => {
+                out.push([s, crossing(t, alpha, k)]);
+                start = None;
+            }
+            _ => {}
+        }
+    }
+    let open = start.is_some();
+    if let Some(s) = start {
+        out.push([s, *t.last().unwrap_or(&s)]);
+    }
+    (out, open)
+}
+
+fn summary(model: &Model, run: &Run) -> Value {
+    let s = &run.series;
+    let (intervals, open) = contact_intervals(&s.time, &s.alpha);
+    let (kmax, fmax) = s
+        .force
+        .iter()
+        .enumerate()
+        .fold((0, 0.0f64), |acc, (k, &f)| if f > acc.1 { (k, f) } else { acc });
+    let v0 = s.impactor_v.first().copied().unwrap_or(0.0);
+    let vzero = (1..s.impactor_v.len())
+        .find(|&k| s.impactor_v[k] * v0.signum() <= 0.0 && s.impactor_v[k - 1] * v0.signum() > 0.0)
+        .map(|k| crossing(&s.time, &s.impactor_v, k));
+    let rebound = if open || intervals.is_empty() {
+        None
+    } else {
+        s.impactor_v.last().copied()
+    };
+    let max_err = run.energy.iter().map(|r| r.error.abs()).fold(0.0, f64::max);
+    let e0 = run.energy.first().map(|r| r.total).unwrap_or(0.0);
+    let p0 = run.energy.first().map(|r| r.momentum).unwrap_or(0.0);
+    let max_dp = run.energy.iter().map(|r| (r.momentum - p0).abs()).fold(0.0, f64::max);
+    let mut v = json!({
+        "deck": model.name,
+        "title": model.title,
+        "units": { "length": model.units.length, "force": model.units.force, "time": model.units.time },
+        "model": {
+            "active_dofs": model.active_dofs(),
+            "solved_dofs": model.n(),
+            "elements": model.elements.len(),
+            "contact_stiffness": model.contact.as_ref().map(|c| c.stiffness),
+            "contact_exponent": model.contact.as_ref().map(|c| c.exponent),
+            "contact_conservative": model.contact.as_ref().map(|c| c.nonconservative.is_empty()),
+        },
+        "contact": {
+            "intervals_s": intervals,
+            "open_at_end": open,
+            "duration_s": intervals.first().map(|i| i[1] - i[0]),
+            "peak_force": fmax,
+            "peak_force_time_s": s.time.get(kmax),
+        },
+        "impactor": {
+            "mass": model.contact.as_ref().map(|c| c.impactor.mass),
+            "initial_velocity": v0,
+            "velocity_zero_time_s": vzero,
+            "rebound_velocity": rebound,
+        },
+        "energy": {
+            "initial": e0,
+            "final_total": run.energy.last().map(|r| r.total),
+            "external_work": run.energy.last().map(|r| r.external_work),
+            "transferred_fraction": rebound.map(|vr| 1.0 - (vr / v0).powi(2)),
+            "max_relative_error": max_err,
+            "final_relative_error": run.energy.last().map(|r| r.error),
+        },
+        "momentum": {
+            "initial": p0,
+            "max_abs_change": max_dp,
+        },
+        "run": {
+            "scheme": run.scheme.name(),
+            "dt_s": run.dt,
+            "steps": run.steps,
+            "steps_done": run.stats.steps,
+            "factorizations": run.stats.factorizations,
+            "solves": run.stats.solves,
+            "contact_iterations": run.stats.contact_iterations,
+            "factor_s": run.stats.factor_time.as_secs_f64(),
+            "solve_s": run.stats.solve_time.as_secs_f64(),
+            "wall_s": run.stats.total_time.as_secs_f64(),
+        },
+    });
+    if let Some(r) = &model.rod {
+        let tau = r.length / r.wave_speed;
+        let scale = |x: Option<f64>| x.map(|x| x / tau);
+        v["rod"] = json!({
+            "wave_speed": r.wave_speed,
+            "length": r.length,
+            "transit_time_s": tau,
+            "contact_intervals_tcl": intervals.iter().map(|i| [i[0] / tau, i[1] / tau]).collect::<Vec<_>>(),
+            "contact_end_tcl": scale(intervals.first().map(|i| i[1])),
+            "peak_force_time_tcl": scale(s.time.get(kmax).copied()),
+            "velocity_zero_time_tcl": scale(vzero),
+        });
+    }
+    v
+}
