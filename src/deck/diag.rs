@@ -93,14 +93,15 @@ impl fmt::Display for Diagnostic {
             Severity::Error => "error: ",
             Severity::Warning => "warning: ",
         })?;
+        let mut subject = Vec::new();
         if let Some(c) = &self.card {
-            write!(f, "{c} ")?;
+            subject.push(c.clone());
         }
         if let Some((n, name)) = &self.field {
-            write!(f, "field {n} ({name}) ")?;
+            subject.push(format!("field {n} ({name})"));
         }
-        if self.card.is_some() || self.field.is_some() {
-            f.write_str(": ")?;
+        if !subject.is_empty() {
+            write!(f, "{}: ", subject.join(" "))?;
         }
         if let Some(t) = &self.token {
             write!(f, "'{t}' ")?;

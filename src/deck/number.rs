@@ -115,7 +115,7 @@ mod tests {
         for bad in [
             "", "abc", "1.0.0", "1E", "inf", "NaN", "1.0E+5E3", "--1.0", "+", ".", "1,0", "1e999",
         ] {
-            assert!(matches!(parse_real(bad), None), "{bad} should not parse");
+            assert!(parse_real(bad).is_none(), "{bad} should not parse");
         }
     }
 

@@ -31,10 +31,10 @@ impl Factor {
         let n = a.nrows();
         let mut diag = vec![0.0; n];
         let ar = a.as_ref();
-        for j in 0..n {
+        for (j, d) in diag.iter_mut().enumerate() {
             for p in ar.symbolic().col_ptr()[j]..ar.symbolic().col_ptr()[j + 1] {
                 if ar.symbolic().row_idx()[p] == j {
-                    diag[j] += ar.val()[p];
+                    *d += ar.val()[p];
                 }
             }
         }

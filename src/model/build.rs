@@ -169,7 +169,7 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
     // Number the solved DOFs: grid components in id order, then free scalar points.
     let mut dofs = Vec::new();
     let mut index: HashMap<DofLabel, usize> = HashMap::new();
-    for (&id, _) in &grids {
+    for &id in grids.keys() {
         let c = constrained[&id];
         for comp in 1..=6u8 {
             if c & (1 << (comp - 1)) == 0 {

@@ -1,0 +1,135 @@
+//! The `impactlab` binary end to end: outputs, summary keys, exit codes.
+
+mod common;
+use common::*;
+use std::process::Command;
+
+fn impactlab(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_impactlab"))
+        .args(args)
+        .output()
+        .expect("binary runs")
+}
+
+#[test]
+fn run_writes_history_energy_and_summary() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("rod");
+    let o = impactlab(&["run", deck("rod.bdf").to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("contact ends 0.413"), "{stdout}");
+    let s: serde_json::Value = serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
+    for key in [
+        "/contact/intervals_s",
+        "/contact/peak_force",
+        "/contact/peak_force_time_s",
+        "/impactor/initial_velocity",
+        "/impactor/velocity_zero_time_s",
+        "/impactor/rebound_velocity",
+        "/energy/initial",
+        "/energy/transferred_fraction",
+        "/energy/max_relative_error",
+        "/run/scheme",
+        "/run/dt_s",
+        "/run/steps",
+        "/run/wall_s",
+        "/rod/contact_end_tcl",
+        "/rod/velocity_zero_time_tcl",
+    ] {
+        assert!(s.pointer(key).is_some_and(|v| !v.is_null()), "summary lacks {key}");
+    }
+    let history = std::fs::read_to_string(out.join("history.csv")).unwrap();
+    let header = history.lines().next().unwrap();
+    for col in [
+        "time [s]",
+        "contact_force [lbf]",
+        "disp_73_T1 [in]",
+        "disp_1001 [in]",
+        "nlload_999_T1 [lbf]",
+        "stress_72 [lbf/in^2]",
+    ] {
+        assert!(header.contains(col), "history header lacks {col}: {header}");
+    }
+    assert_eq!(
+        history.lines().count(),
+        1 + 2500 / 25 + 1,
+        "TSTEP NO = 25: every 25th step"
+    );
+    let energy = std::fs::read_to_string(out.join("energy.csv")).unwrap();
+    assert_eq!(energy.lines().count(), 1 + 2501, "one ledger row per step");
+}
+
+fn temp_deck(text: &str) -> (tempfile::TempDir, std::path::PathBuf) {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("d.bdf");
+    std::fs::write(&p, text).unwrap();
+    (dir, p)
+}
+
+#[test]
+fn bad_input_exits_2_with_the_position() {
+    let rod = std::fs::read_to_string(deck("rod.bdf")).unwrap();
+    let (_d, p) = temp_deck(&rod.replace("PROD,1,11,0.196", "PROD,1,11,0.1q6"));
+    let o = impactlab(&[
+        "run",
+        p.to_str().unwrap(),
+        "--out",
+        _d.path().join("o").to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("d.bdf:43:11:") && err.contains("PROD field 4 (A): '0.1q6' is not a real number"),
+        "{err}"
+    );
+    assert!(!_d.path().join("o").exists(), "nothing written on failure");
+}
+
+#[test]
+fn mechanism_exits_3_naming_the_dof() {
+    let rod = std::fs::read_to_string(deck("rod.bdf")).unwrap();
+    // Leave the rotations of the rod grids free: no stiffness and no mass on R2.
+    let (_d, p) = temp_deck(&rod.replace("SPC1,4,23456,1,THRU,145", "SPC1,4,23,1,THRU,145"));
+    let o = impactlab(&[
+        "run",
+        p.to_str().unwrap(),
+        "--out",
+        _d.path().join("o").to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(3));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("singular at grid 1 R2") && err.contains("mechanism"),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_failed_run_leaves_the_previous_outputs_whole() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("rod");
+    let rod = deck("rod.bdf");
+    assert!(
+        impactlab(&["run", rod.to_str().unwrap(), "--out", out.to_str().unwrap()])
+            .status
+            .success()
+    );
+    let before = std::fs::read(out.join("summary.json")).unwrap();
+    let o = impactlab(&[
+        "run",
+        rod.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--max-energy-error",
+        "1e-9",
+    ]);
+    assert_eq!(o.status.code(), Some(3));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("exceeds the limit 1.000e-9"));
+    assert_eq!(std::fs::read(out.join("summary.json")).unwrap(), before);
+    let names: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(names.len(), 1, "no staging directories left behind: {names:?}");
+}
