@@ -140,12 +140,11 @@ pub fn history_columns(m: &Model) -> Vec<String> {
         }
     }
     for &e in &m.outputs.stress {
-        cols.push(format!("stress_{} [{f}/{l}^2]", m.elements[e].eid()));
-        cols.push(format!("strain_{} [-]", m.elements[e].eid()));
+        cols.extend(recovery_names(&m.elements[e], true, &format!("{f}/{l}^2")));
     }
     for &e in &m.outputs.strain {
         if !m.outputs.stress.contains(&e) {
-            cols.push(format!("strain_{} [-]", m.elements[e].eid()));
+            cols.extend(recovery_names(&m.elements[e], false, ""));
         }
     }
     cols
@@ -174,36 +173,92 @@ fn history_row(m: &Model, s: &StepState, force: f64) -> Vec<f64> {
             row.push(c.loads[k].scale * s.load_factor);
         }
     }
-    let strain = |e: usize| element_strain(&m.elements[e], s.u);
     for &e in &m.outputs.stress {
-        let (eps, modulus) = strain(e);
-        row.push(modulus * eps);
-        row.push(eps);
+        row.extend(recovery(&m.elements[e], s.u, true));
     }
     for &e in &m.outputs.strain {
         if !m.outputs.stress.contains(&e) {
-            row.push(strain(e).0);
+            row.extend(recovery(&m.elements[e], s.u, false));
         }
     }
     row
 }
 
-/// Recovered strain of an element and the modulus relating it to stress.
-fn element_strain(e: &Element, u: &[f64]) -> (f64, f64) {
+const FIBRES: [&str; 2] = ["z1", "z2"];
+const PLANE: [&str; 3] = ["xx", "yy", "xy"];
+
+/// Column names of an element's recovered results: rods give axial stress and strain;
+/// shells give, at the fibres Z1 = −T/2 and Z2 = +T/2, stresses then strains
+/// (xx, yy, and engineering shear xy).
+fn recovery_names(e: &Element, with_stress: bool, stress_unit: &str) -> Vec<String> {
+    let eid = e.eid();
     match e {
-        Element::Rod { x, section, dofs, .. } => {
-            let t = |end: usize| -> [f64; 3] {
-                let mut v = [0.0; 3];
-                for k in 0..3 {
-                    if let Some(i) = dofs[end][k] {
-                        v[k] = u[i];
+        Element::Rod { .. } => {
+            let mut v = Vec::new();
+            if with_stress {
+                v.push(format!("stress_{eid} [{stress_unit}]"));
+            }
+            v.push(format!("strain_{eid} [-]"));
+            v
+        }
+        Element::Quad4 { .. } => {
+            let mut v = Vec::new();
+            let kinds: &[(&str, &str)] = if with_stress {
+                &[("stress", stress_unit), ("strain", "-")]
+            } else {
+                &[("strain", "-")]
+            };
+            for (kind, unit) in kinds {
+                for z in FIBRES {
+                    for c in PLANE {
+                        v.push(format!("{kind}_{eid}_{z}_{c} [{unit}]"));
                     }
                 }
-                v
-            };
-            (crate::elements::rod::axial_strain(x[0], x[1], t(0), t(1)), section.e)
+            }
+            v
         }
-        Element::Mass { .. } => (0.0, 0.0),
+        Element::Mass { .. } => Vec::new(),
+    }
+}
+
+/// An element's recovered results, in the order of [`recovery_names`].
+pub fn recovery(e: &Element, u: &[f64], with_stress: bool) -> Vec<f64> {
+    let get = |d: &Option<usize>| d.map(|i| u[i]).unwrap_or(0.0);
+    match e {
+        Element::Rod { x, section, dofs, .. } => {
+            let t = |end: usize| -> [f64; 3] { [get(&dofs[end][0]), get(&dofs[end][1]), get(&dofs[end][2])] };
+            let eps = crate::elements::rod::axial_strain(x[0], x[1], t(0), t(1));
+            if with_stress {
+                vec![section.e * eps, eps]
+            } else {
+                vec![eps]
+            }
+        }
+        Element::Quad4 { xy, section, dofs, .. } => {
+            use crate::elements::quad4;
+            use nalgebra::{SMatrix, Vector3};
+            let um = SMatrix::<f64, 8, 1>::from_fn(|k, _| get(&dofs[k / 2][k % 2]));
+            let ub = SMatrix::<f64, 12, 1>::from_fn(|k, _| get(&dofs[k / 3][2 + k % 3]));
+            let em = quad4::membrane_strain(xy, &um);
+            let kappa = quad4::curvature(xy, &ub);
+            let h = 0.5 * section.thickness;
+            let mut stresses = Vec::new();
+            let mut strains = Vec::new();
+            for z in [-h, h] {
+                let eps: Vector3<f64> = em + kappa * z;
+                strains.extend(eps.iter());
+                let sm = section.g_membrane.map(|g| g * em).unwrap_or_default();
+                let sb = section.g_bending.map(|g| g * kappa * z).unwrap_or_default();
+                stresses.extend((sm + sb).iter());
+            }
+            if with_stress {
+                stresses.extend(strains);
+                stresses
+            } else {
+                strains
+            }
+        }
+        Element::Mass { .. } => Vec::new(),
     }
 }
 

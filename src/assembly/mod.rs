@@ -1,7 +1,7 @@
 //! Assembly: element matrices scattered into global sparse matrices over the solved
 //! DOFs (constrained DOFs are simply dropped: homogeneous SPCs).
 
-use crate::elements::{mass, rod};
+use crate::elements::{mass, quad4, rod};
 use crate::model::{Element, Model};
 use faer::sparse::{SparseColMat, Triplet};
 
@@ -14,6 +14,8 @@ pub struct System {
     /// Compressed K and M, for products.
     pub k_csc: SparseColMat<usize, f64>,
     pub m_csc: SparseColMat<usize, f64>,
+    /// The shell elements' part of K (the ledger's strain energy of shells).
+    pub k_shell_csc: SparseColMat<usize, f64>,
 }
 
 fn scatter(out: &mut Vec<Triplet<usize, usize, f64>>, dofs: &[Option<usize>], local: impl Fn(usize, usize) -> f64) {
@@ -34,8 +36,27 @@ pub fn assemble(model: &Model) -> System {
     let n = model.n();
     let mut k = Vec::new();
     let mut m = Vec::new();
+    let mut k_shell = Vec::new();
     for e in &model.elements {
         match e {
+            Element::Quad4 { xy, section, dofs, .. } => {
+                if let Some(a) = section.a() {
+                    let ke = quad4::membrane_stiffness(xy, &a);
+                    let d: Vec<Option<usize>> = dofs.iter().flat_map(|g| [g[0], g[1]]).collect();
+                    scatter(&mut k_shell, &d, |i, j| ke[(i, j)]);
+                }
+                if let Some(dm) = section.d() {
+                    let ke = quad4::bending_stiffness(xy, &dm);
+                    let d: Vec<Option<usize>> = dofs.iter().flat_map(|g| [g[2], g[3], g[4]]).collect();
+                    scatter(&mut k_shell, &d, |i, j| ke[(i, j)]);
+                }
+                let mn = quad4::lumped_mass(xy, section.mass_per_area);
+                for (corner, mi) in dofs.iter().zip(mn) {
+                    for d in corner[..3].iter().flatten() {
+                        m.push(Triplet::new(*d, *d, mi));
+                    }
+                }
+            }
             Element::Rod { x, section, dofs, .. } => {
                 let ke = rod::stiffness(x[0], x[1], section);
                 let all: Vec<Option<usize>> = dofs.iter().flatten().copied().collect();
@@ -61,9 +82,18 @@ pub fn assemble(model: &Model) -> System {
             }
         }
     }
+    let k_shell_csc = SparseColMat::try_new_from_triplets(n, n, &k_shell).expect("indices are in range");
+    k.extend_from_slice(&k_shell);
     let k_csc = SparseColMat::try_new_from_triplets(n, n, &k).expect("indices are in range");
     let m_csc = SparseColMat::try_new_from_triplets(n, n, &m).expect("indices are in range");
-    System { n, k, m, k_csc, m_csc }
+    System {
+        n,
+        k,
+        m,
+        k_csc,
+        m_csc,
+        k_shell_csc,
+    }
 }
 
 impl System {

@@ -2,4 +2,5 @@
 //! recovered strains. They know nothing of global numbering.
 
 pub mod mass;
+pub mod quad4;
 pub mod rod;

@@ -5,7 +5,7 @@
 //! - SE_i = V(α) = K/(A+1) α^(A+1), the integral of the contact law (Eq. 15: 2/5 K α^(5/2));
 //! - KE_t = ½ vᵀMv over the target's DOFs — the exact kinetic energy of the lumped model;
 //! - KE_t(Eq. 16) = Σ_e ½ m_e v̄_e², v̄_e the mean of the element's nodal velocities, as
-//!   the paper computes it. It is not the model's kinetic energy: it drops the energy
+//!   the paper computes it for rods (applied to shells likewise, over four corners). It is not the model's kinetic energy: it drops the energy
 //!   of the velocity difference across each element, ½ m_e (Δv/2)²;
 //! - SE_t = ½ uᵀKu, summed element by element from relative displacements (for rods
 //!   exactly Eq. 17, Σ ½ k_j (δ_j − δ_{j+1})²), so that the rigid-body drift of a
@@ -71,6 +71,8 @@ pub struct Ledger<'a> {
     target: Vec<bool>,
     direction: Vec<bool>,
     mv: Vec<f64>,
+    ku: Vec<f64>,
+    has_shells: bool,
     u_prev: Vec<f64>,
     external_work: f64,
     initial: Option<f64>,
@@ -90,10 +92,16 @@ impl<'a> Ledger<'a> {
             target: model.target_mask(),
             direction: model.dofs.iter().map(|d| d.comp == comp).collect(),
             mv: vec![0.0; n],
+            ku: vec![0.0; n],
+            has_shells: model.elements.iter().any(|e| matches!(e, Element::Quad4 { .. })),
             u_prev: model.u0.clone(),
             external_work: 0.0,
             initial: None,
         }
+    }
+
+    fn sys_shell_mul(&mut self, u: &[f64]) {
+        crate::assembly::mul(&self.sys.k_shell_csc, u, &mut self.ku);
     }
 
     /// Books a state; states must come in step order starting with step 0.
@@ -112,7 +120,11 @@ impl<'a> Ledger<'a> {
                 p += self.mv[i];
             }
         }
-        let se_t = strain_energy(m, s.u);
+        let mut se_t = strain_energy(m, s.u);
+        if self.has_shells {
+            self.sys_shell_mul(s.u);
+            se_t += 0.5 * s.u.iter().zip(&self.ku).map(|(a, b)| a * b).sum::<f64>();
+        }
         let se_i = m.contact.as_ref().map(|c| c.potential(s.alpha)).unwrap_or(0.0);
         if let Some(c) = &m.contact {
             if s.step > 0 {
@@ -145,7 +157,7 @@ impl<'a> Ledger<'a> {
     }
 }
 
-/// Strain energy of the target, element by element.
+/// Strain energy of the rods, element by element (shells are added from K_shell).
 pub fn strain_energy(model: &Model, u: &[f64]) -> f64 {
     let at = |d: &[Option<usize>; 6]| -> [f64; 6] {
         let mut out = [0.0; 6];
@@ -168,18 +180,25 @@ pub fn strain_energy(model: &Model, u: &[f64]) -> f64 {
 /// The paper's Eq. 16: element mass times the square of the mean nodal velocity.
 pub fn ke_eq16(model: &Model, v: &[f64]) -> f64 {
     let mut ke = 0.0;
-    for e in &model.elements {
-        if let Element::Rod { x, section, dofs, .. } = e {
-            let me = crate::elements::rod::mass(x[0], x[1], section);
-            let mut vm = [0.0; 3];
-            for end in dofs {
-                for (k, d) in end[..3].iter().enumerate() {
-                    if let Some(i) = d {
-                        vm[k] += 0.5 * v[*i];
-                    }
+    let mut add = |me: f64, corners: &[[Option<usize>; 6]]| {
+        let mut vm = [0.0; 3];
+        let w = 1.0 / corners.len() as f64;
+        for c in corners {
+            for (k, d) in c[..3].iter().enumerate() {
+                if let Some(i) = d {
+                    vm[k] += w * v[*i];
                 }
             }
-            ke += 0.5 * me * (vm[0] * vm[0] + vm[1] * vm[1] + vm[2] * vm[2]);
+        }
+        ke += 0.5 * me * (vm[0] * vm[0] + vm[1] * vm[1] + vm[2] * vm[2]);
+    };
+    for e in &model.elements {
+        match e {
+            Element::Rod { x, section, dofs, .. } => add(crate::elements::rod::mass(x[0], x[1], section), dofs),
+            Element::Quad4 { xy, section, dofs, .. } => {
+                add(section.mass_per_area * crate::elements::quad4::area(xy), dofs)
+            }
+            Element::Mass { .. } => {}
         }
     }
     ke

@@ -3,6 +3,7 @@
 use super::*;
 use crate::deck::case::{OutputSet, Selection};
 use crate::deck::{Deck, Diagnostic};
+use nalgebra::Matrix3;
 use std::collections::{BTreeMap, HashMap};
 
 /// Building the model failed: every problem found, each tied to its card.
@@ -312,8 +313,66 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
             dofs: [grid_dofs(c.g[0]), grid_dofs(c.g[1])],
         });
     }
-    if !b.cquad4s.is_empty() {
-        cx.err(b.cquad4s[0].at.error("CQUAD4 plates are not supported yet"));
+    let pshell: HashMap<i64, &crate::deck::cards::Pshell> = b.pshells.iter().map(|p| (p.pid, p)).collect();
+    let mut sections: HashMap<i64, Option<ShellSection>> = HashMap::new();
+    for c in &b.cquad4s {
+        let mut xyz = [[0.0; 3]; 4];
+        let mut ok = true;
+        for (k, g) in c.g.iter().enumerate() {
+            match grids.get(g) {
+                Some(gr) => xyz[k] = gr.x,
+                None => {
+                    cx.err(c.at.error(format!("CQUAD4 {} references grid {g}, which does not exist", c.eid)));
+                    ok = false;
+                }
+            }
+        }
+        let section = match sections.get(&c.pid) {
+            Some(s) => s.clone(),
+            None => {
+                let s = match pshell.get(&c.pid) {
+                    Some(p) => shell_section(&mut cx, p, &mat1, &b.mat2s),
+                    None => {
+                        cx.err(c.at.error(format!(
+                            "CQUAD4 {} references PSHELL {}, which does not exist",
+                            c.eid, c.pid
+                        )));
+                        None
+                    }
+                };
+                sections.insert(c.pid, s.clone());
+                s
+            }
+        };
+        let (Some(section), true) = (section, ok) else { continue };
+        if xyz
+            .iter()
+            .any(|p| (p[2] - xyz[0][2]).abs() > 1e-9 * (1.0 + xyz[0][2].abs()))
+        {
+            cx.err(c.at.error(format!(
+                "CQUAD4 {} is not in a plane z = const: only flat plates in the basic XY plane are supported",
+                c.eid
+            )));
+            continue;
+        }
+        let xy = xyz.map(|p| [p[0], p[1]]);
+        if crate::elements::quad4::min_jacobian(&xy) <= 0.0 {
+            cx.err(c.at.error(format!(
+                "CQUAD4 {} is degenerate, concave or numbered clockwise (non-positive Jacobian)",
+                c.eid
+            )));
+            continue;
+        }
+        for g in c.g {
+            *on_element.entry(g).or_default() += 1;
+        }
+        elements.push(Element::Quad4 {
+            eid: c.eid,
+            grids: c.g,
+            xy,
+            section,
+            dofs: c.g.map(&grid_dofs),
+        });
     }
     for m in &b.conm2s {
         if !grids.contains_key(&m.g) {
@@ -476,6 +535,7 @@ fn build_contact(
     dep_index: &HashMap<i64, usize>,
     elements: &[Element],
     on_element: &HashMap<i64, usize>,
+    labels: &[DofLabel],
     lookup: impl Fn(&mut Ctx, &CardRef, &str, i64, usize) -> Option<usize>,
 ) -> Option<Contact> {
     let first = nolins.first()?;
@@ -604,9 +664,9 @@ fn build_contact(
     for &(j, v) in &nonconservative {
         let load = loads.iter().find(|l| l.dof == j);
         let msg = format!(
-            "contact load on DOF {} is not derivable from the Hertz potential of the impactor's K = {stiffness:.6e}: \
+            "contact load on {} is not derivable from the Hertz potential of the impactor's K = {stiffness:.6e}: \
              remainder {v:+.4e} ({:.2e} of K); its work is booked as external work. A balanced deck uses S = {:.6e}",
-            j,
+            labels[j],
             (v / stiffness).abs(),
             load.map(|l| l.scale - v).unwrap_or(-v),
         );
@@ -645,6 +705,66 @@ fn build_contact(
         },
         loads,
         nonconservative,
+    })
+}
+
+/// The material matrix of a MAT1 (plane stress) or MAT2 id, checked positive definite.
+fn material_matrix(
+    cx: &mut Ctx,
+    mid: i64,
+    used_by: &CardRef,
+    mat1: &HashMap<i64, &crate::deck::cards::Mat1>,
+    mat2s: &[crate::deck::cards::Mat2],
+) -> Option<(Matrix3<f64>, f64)> {
+    if let Some(m) = mat2s.iter().find(|m| m.mid == mid) {
+        let g = Matrix3::from_fn(|i, j| m.g[i][j]);
+        if g.cholesky().is_none() {
+            cx.err(m.at.error(format!(
+                "MAT2 {mid} is not positive definite: no strain energy for some strain state (check G11..G33)"
+            )));
+            return None;
+        }
+        return Some((g, m.rho));
+    }
+    if let Some(m) = mat1.get(&mid) {
+        let q = m.e / (1.0 - m.nu * m.nu);
+        let g = Matrix3::new(q, q * m.nu, 0.0, q * m.nu, q, 0.0, 0.0, 0.0, m.g);
+        return Some((g, m.rho));
+    }
+    cx.err(used_by.error(format!("material {mid} (MAT1 or MAT2) does not exist")));
+    None
+}
+
+fn shell_section(
+    cx: &mut Ctx,
+    p: &crate::deck::cards::Pshell,
+    mat1: &HashMap<i64, &crate::deck::cards::Mat1>,
+    mat2s: &[crate::deck::cards::Mat2],
+) -> Option<ShellSection> {
+    if p.mid3.is_some() {
+        cx.warn(p.at.error(
+            "PSHELL MID3 (transverse shear flexibility) is ignored: the plate element is thin (Kirchhoff, DKQ)",
+        ));
+    }
+    let mem = match p.mid1 {
+        Some(mid) => Some(material_matrix(cx, mid, &p.at, mat1, mat2s)?),
+        None => None,
+    };
+    let bend = match p.mid2 {
+        Some(mid) => Some(material_matrix(cx, mid, &p.at, mat1, mat2s)?),
+        None => None,
+    };
+    if mem.is_none() && bend.is_none() {
+        cx.err(p.at.error("PSHELL has neither MID1 nor MID2: the shell has no stiffness"));
+        return None;
+    }
+    // NASTRAN takes the shell's density from MID1 (else MID2).
+    let rho = mem.or(bend).map(|(_, r)| r).unwrap_or(0.0);
+    Some(ShellSection {
+        thickness: p.t,
+        g_membrane: mem.map(|(g, _)| g),
+        g_bending: bend.map(|(g, _)| g * p.bend_ratio),
+        mass_per_area: rho * p.t + p.nsm,
     })
 }
 
