@@ -427,6 +427,7 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
         &dep_index,
         &elements,
         &on_element,
+        &dofs,
         |cx, at, w, g, c| lookup(cx, at, w, g, c),
     );
 
