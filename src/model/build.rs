@@ -420,16 +420,14 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
     }
 
     // Contact.
-    let contact = build_contact(
-        &mut cx,
-        &nolins,
-        &dependent,
-        &dep_index,
-        &elements,
-        &on_element,
-        &dofs,
-        |cx, at, w, g, c| lookup(cx, at, w, g, c),
-    );
+    let refs = ContactRefs {
+        dependent: &dependent,
+        dep_index: &dep_index,
+        elements: &elements,
+        on_element: &on_element,
+        labels: &dofs,
+    };
+    let contact = build_contact(&mut cx, &nolins, &refs, |cx, at, w, g, c| lookup(cx, at, w, g, c));
 
     // Output plan.
     let mut outputs = OutputPlan::default();
@@ -529,16 +527,28 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
     }
 }
 
+/// What the contact definition refers to.
+struct ContactRefs<'a> {
+    dependent: &'a [DependentPoint],
+    dep_index: &'a HashMap<i64, usize>,
+    elements: &'a [Element],
+    on_element: &'a HashMap<i64, usize>,
+    labels: &'a [DofLabel],
+}
+
 fn build_contact(
     cx: &mut Ctx,
     nolins: &[&crate::deck::cards::Nolin3],
-    dependent: &[DependentPoint],
-    dep_index: &HashMap<i64, usize>,
-    elements: &[Element],
-    on_element: &HashMap<i64, usize>,
-    labels: &[DofLabel],
+    refs: &ContactRefs,
     lookup: impl Fn(&mut Ctx, &CardRef, &str, i64, usize) -> Option<usize>,
 ) -> Option<Contact> {
+    let ContactRefs {
+        dependent,
+        dep_index,
+        elements,
+        on_element,
+        labels,
+    } = *refs;
     let first = nolins.first()?;
     // One driver and one exponent for all NOLIN3 loads: one contact.
     let mut ok = true;

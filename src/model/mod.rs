@@ -48,6 +48,8 @@ pub struct DependentPoint {
     pub at: CardRef,
 }
 
+// Elements are stored once per model; their size difference does not matter.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone)]
 pub enum Element {
     Rod {
