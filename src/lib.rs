@@ -10,6 +10,7 @@ pub mod elements;
 pub mod error;
 pub mod integrate;
 pub mod ledger;
+pub mod mesh;
 pub mod model;
 pub mod output;
 pub mod run;

@@ -44,6 +44,24 @@ enum Command {
         #[arg(long)]
         allow_unknown: bool,
     },
+    /// Generate a deck.
+    Mesh {
+        #[command(subcommand)]
+        what: MeshKind,
+    },
+}
+
+#[derive(Subcommand)]
+enum MeshKind {
+    /// The paper's clamped composite plate on an N×N mesh (N odd).
+    Plate {
+        /// Elements along each side.
+        #[arg(long)]
+        n: usize,
+        /// Where to write the deck [default: stdout].
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
 }
 
 fn main() -> ExitCode {
@@ -95,6 +113,19 @@ fn execute(cli: Cli) -> Result<u8, Error> {
             })?;
             print!("{}", output::human_summary(&model, &r));
             println!("  outputs:  {}", dir.display());
+            Ok(0)
+        }
+        Command::Mesh {
+            what: MeshKind::Plate { n, out },
+        } => {
+            let text = impactlab::mesh::plate_deck(n).map_err(Error::Usage)?;
+            match out {
+                Some(p) => output::write_file_atomically(&p, text.as_bytes()).map_err(|source| Error::Io {
+                    path: p.display().to_string(),
+                    source,
+                })?,
+                None => print!("{text}"),
+            }
             Ok(0)
         }
     }

@@ -52,6 +52,20 @@ pub fn write_dir_atomically(dir: &Path, files: &[(&str, Vec<u8>)]) -> io::Result
     Ok(())
 }
 
+/// Writes one file atomically (temporary file in the same directory, then rename).
+pub fn write_file_atomically(path: &Path, bytes: &[u8]) -> io::Result<()> {
+    let parent = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    fs::create_dir_all(&parent)?;
+    let mut tmp = tempfile::NamedTempFile::new_in(&parent)?;
+    tmp.write_all(bytes)?;
+    tmp.as_file().sync_all()?;
+    tmp.persist(path).map_err(|e| e.error)?;
+    Ok(())
+}
+
 fn csv_bytes(header: &[String], rows: impl Iterator<Item = Vec<f64>>) -> Vec<u8> {
     let mut w = csv::Writer::from_writer(Vec::new());
     w.write_record(header).expect("writing to memory");
