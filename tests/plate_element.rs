@@ -162,7 +162,7 @@ fn simply_supported_orthotropic_plate_natural_frequencies_match_navier() {
             * ((d11 * m.powi(4) + 2.0 * (d12 + 2.0 * d66) * m * m * n * n + d22 * n.powi(4)) / a.powi(4) / (rho * t))
                 .sqrt()
     };
-    let mut exact = vec![navier(1.0, 1.0), navier(1.0, 2.0), navier(2.0, 1.0)];
+    let mut exact = [navier(1.0, 1.0), navier(1.0, 2.0), navier(2.0, 1.0)];
     exact.sort_by(|x, y| x.partial_cmp(y).unwrap());
     let f = |n: usize| frequencies(&square_plate(n, a, "3", "126", &mats, t), 3);
     let (f8, f16, f32) = (f(8), f(16), f(32));
