@@ -14,6 +14,7 @@ pub mod mesh;
 pub mod model;
 pub mod output;
 pub mod run;
+pub mod study;
 
 pub use error::Error;
 

@@ -43,11 +43,42 @@ enum Command {
         /// Unknown bulk data cards become warnings instead of errors.
         #[arg(long)]
         allow_unknown: bool,
+        /// Also solve DOFs that no load, initial condition or contact reaches (they stay
+        /// zero; dropping them is exact). For measuring what dropping them saves.
+        #[arg(long)]
+        all_dofs: bool,
     },
     /// Generate a deck.
     Mesh {
         #[command(subcommand)]
         what: MeshKind,
+    },
+    /// Families of runs.
+    Study {
+        #[command(subcommand)]
+        what: StudyKind,
+    },
+    /// Time the paper's 49×49 plate (3000 steps) and report where the time goes.
+    Bench {
+        /// Timed repeats after one warm-up run; the median is reported.
+        #[arg(long, default_value_t = 5)]
+        repeats: usize,
+        /// Number of steps.
+        #[arg(long, default_value_t = 3000)]
+        steps: usize,
+    },
+}
+
+#[derive(Subcommand)]
+enum StudyKind {
+    /// The plate on several meshes (generated): contact duration, peak force, gage strains.
+    Mesh {
+        /// Mesh sizes (elements per side, odd).
+        #[arg(long, value_delimiter = ',', default_values_t = [25, 49, 61])]
+        n: Vec<usize>,
+        /// Output directory for mesh-study.csv and mesh-study.json.
+        #[arg(long, default_value = "out/mesh-study")]
+        out: PathBuf,
     },
 }
 
@@ -85,6 +116,7 @@ fn execute(cli: Cli) -> Result<u8, Error> {
             steps,
             max_energy_error,
             allow_unknown,
+            all_dofs,
         } => {
             if let Some(dt) = dt {
                 if !(dt > 0.0 && dt.is_finite()) {
@@ -104,6 +136,7 @@ fn execute(cli: Cli) -> Result<u8, Error> {
                 steps,
                 max_energy_error,
                 progress: std::io::stderr().is_terminal(),
+                skip_inert: !all_dofs,
             };
             let r = run::run_model(&model, &opts)?;
             let dir = out.unwrap_or_else(|| PathBuf::from("out").join(&model.name));
@@ -126,6 +159,25 @@ fn execute(cli: Cli) -> Result<u8, Error> {
                 })?,
                 None => print!("{text}"),
             }
+            Ok(0)
+        }
+        Command::Study {
+            what: StudyKind::Mesh { n, out },
+        } => {
+            let opts = impactlab::study::mesh_study_options(std::io::stderr().is_terminal());
+            let rows = impactlab::study::plate_mesh_study(&n, &opts)?;
+            let files = impactlab::study::mesh_study_files(&rows);
+            output::write_dir_atomically(&out, &files).map_err(|source| Error::Io {
+                path: out.display().to_string(),
+                source,
+            })?;
+            print!("{}", String::from_utf8_lossy(&files[0].1));
+            println!("outputs: {}", out.display());
+            Ok(0)
+        }
+        Command::Bench { repeats, steps } => {
+            let report = impactlab::study::bench_plate(repeats.max(1), steps)?;
+            print!("{report}");
             Ok(0)
         }
     }

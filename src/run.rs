@@ -4,7 +4,7 @@
 use crate::assembly::{assemble, System};
 use crate::integrate::{integrate, Observer, RunStats, Scheme, SolveError, StepState};
 use crate::ledger::{EnergyRow, Ledger};
-use crate::model::{Element, Model, Source};
+use crate::model::{drop_inert, Element, Model, Source};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde_json::{json, Value};
 
@@ -18,6 +18,8 @@ pub struct RunOptions {
     pub max_energy_error: Option<f64>,
     /// Show a progress bar on a terminal.
     pub progress: bool,
+    /// Solve only the live DOFs ([`crate::model::drop_inert`]); exact, so on by default.
+    pub skip_inert: bool,
 }
 
 impl Default for RunOptions {
@@ -28,6 +30,7 @@ impl Default for RunOptions {
             steps: None,
             max_energy_error: None,
             progress: false,
+            skip_inert: true,
         }
     }
 }
@@ -166,6 +169,7 @@ fn history_row(m: &Model, s: &StepState, force: f64) -> Vec<f64> {
         row.push(match src {
             Source::Dof(i) => s.v[*i],
             Source::Dependent(j) => crate::model::apply(&m.dependent[*j].functional, s.v),
+            Source::Inert => 0.0,
         });
     }
     if let Some(c) = &m.contact {
@@ -262,10 +266,34 @@ pub fn recovery(e: &Element, u: &[f64], with_stress: bool) -> Vec<f64> {
     }
 }
 
-/// Runs a model.
+/// Runs a model: assembles it, drops its inert DOFs when asked, integrates.
 pub fn run_model(model: &Model, opts: &RunOptions) -> Result<Run, SolveError> {
+    let t0 = std::time::Instant::now();
     let sys = assemble(model);
-    run_system(model, &sys, opts)
+    // A DOF with neither stiffness nor mass is a mechanism whether or not anything
+    // loads it: say so rather than drop it as inert.
+    let (kd, md) = (sys.k_diag(), sys.m_diag());
+    if let Some(i) = (0..sys.n).find(|&i| kd[i] <= 0.0 && md[i] <= 0.0) {
+        return Err(SolveError::Mechanism {
+            dof: model.dofs[i].to_string(),
+        });
+    }
+    let reduced = if opts.skip_inert {
+        drop_inert(model, &sys).map(|(m, _)| {
+            let s = assemble(&m);
+            (m, s)
+        })
+    } else {
+        None
+    };
+    let assembly_s = t0.elapsed().as_secs_f64();
+    let (model, sys) = match &reduced {
+        Some((m, s)) => (m, s),
+        None => (model, &sys),
+    };
+    let mut run = run_system(model, sys, opts)?;
+    run.summary["run"]["assembly_s"] = json!(assembly_s);
+    Ok(run)
 }
 
 /// Runs a model whose system is already assembled.
@@ -371,6 +399,7 @@ fn summary(model: &Model, run: &Run) -> Value {
         "model": {
             "active_dofs": model.active_dofs(),
             "solved_dofs": model.n(),
+            "inert_dofs_skipped": model.inert_dofs,
             "elements": model.elements.len(),
             "contact_stiffness": model.contact.as_ref().map(|c| c.stiffness),
             "contact_exponent": model.contact.as_ref().map(|c| c.exponent),

@@ -16,6 +16,8 @@ pub struct System {
     pub m_csc: SparseColMat<usize, f64>,
     /// The shell elements' part of K (the ledger's strain energy of shells).
     pub k_shell_csc: SparseColMat<usize, f64>,
+    /// The diagonal of M when M is diagonal (lumped masses, no rotary inertia coupling).
+    pub m_lumped: Option<Vec<f64>>,
 }
 
 fn scatter(out: &mut Vec<Triplet<usize, usize, f64>>, dofs: &[Option<usize>], local: impl Fn(usize, usize) -> f64) {
@@ -86,7 +88,17 @@ pub fn assemble(model: &Model) -> System {
     k.extend_from_slice(&k_shell);
     let k_csc = SparseColMat::try_new_from_triplets(n, n, &k).expect("indices are in range");
     let m_csc = SparseColMat::try_new_from_triplets(n, n, &m).expect("indices are in range");
+    let m_lumped = m.iter().all(|t| t.row == t.col || t.val == 0.0).then(|| {
+        let mut d = vec![0.0; n];
+        for t in &m {
+            if t.row == t.col {
+                d[t.row] += t.val;
+            }
+        }
+        d
+    });
     System {
+        m_lumped,
         n,
         k,
         m,
@@ -115,7 +127,10 @@ impl System {
 
     /// y = M x
     pub fn m_mul(&self, x: &[f64], y: &mut [f64]) {
-        mul(&self.m_csc, x, y);
+        match &self.m_lumped {
+            Some(d) => y.iter_mut().zip(d.iter().zip(x)).for_each(|(y, (d, x))| *y = d * x),
+            None => mul(&self.m_csc, x, y),
+        }
     }
 
     /// Diagonal of M.

@@ -74,6 +74,7 @@ pub struct Ledger<'a> {
     ku: Vec<f64>,
     has_shells: bool,
     u_prev: Vec<f64>,
+    eq16: Eq16Elements,
     external_work: f64,
     initial: Option<f64>,
 }
@@ -95,6 +96,7 @@ impl<'a> Ledger<'a> {
             ku: vec![0.0; n],
             has_shells: model.elements.iter().any(|e| matches!(e, Element::Quad4 { .. })),
             u_prev: model.u0.clone(),
+            eq16: eq16_elements(model),
             external_work: 0.0,
             initial: None,
         }
@@ -147,7 +149,7 @@ impl<'a> Ledger<'a> {
             ke_impactor: ke_i,
             se_impactor: se_i,
             ke_target: ke_t,
-            ke_target_eq16: ke_eq16(m, s.v),
+            ke_target_eq16: ke_eq16(&self.eq16, s.v),
             se_target: se_t,
             total,
             external_work: self.external_work,
@@ -177,29 +179,41 @@ pub fn strain_energy(model: &Model, u: &[f64]) -> f64 {
     se
 }
 
+/// The element masses and corner translation DOFs the paper's Eq. 16 sums over.
+pub type Eq16Elements = Vec<(f64, Vec<[Option<usize>; 3]>)>;
+
+/// Element masses and corners for [`ke_eq16`], computed once per model.
+pub fn eq16_elements(model: &Model) -> Eq16Elements {
+    let corners = |d: &[[Option<usize>; 6]]| d.iter().map(|c| [c[0], c[1], c[2]]).collect();
+    model
+        .elements
+        .iter()
+        .filter_map(|e| match e {
+            Element::Rod { x, section, dofs, .. } => {
+                Some((crate::elements::rod::mass(x[0], x[1], section), corners(dofs)))
+            }
+            Element::Quad4 { xy, section, dofs, .. } => {
+                Some((section.mass_per_area * crate::elements::quad4::area(xy), corners(dofs)))
+            }
+            Element::Mass { .. } => None,
+        })
+        .collect()
+}
+
 /// The paper's Eq. 16: element mass times the square of the mean nodal velocity.
-pub fn ke_eq16(model: &Model, v: &[f64]) -> f64 {
+pub fn ke_eq16(elements: &Eq16Elements, v: &[f64]) -> f64 {
     let mut ke = 0.0;
-    let mut add = |me: f64, corners: &[[Option<usize>; 6]]| {
+    for (me, corners) in elements {
         let mut vm = [0.0; 3];
         let w = 1.0 / corners.len() as f64;
         for c in corners {
-            for (k, d) in c[..3].iter().enumerate() {
+            for (k, d) in c.iter().enumerate() {
                 if let Some(i) = d {
                     vm[k] += w * v[*i];
                 }
             }
         }
         ke += 0.5 * me * (vm[0] * vm[0] + vm[1] * vm[1] + vm[2] * vm[2]);
-    };
-    for e in &model.elements {
-        match e {
-            Element::Rod { x, section, dofs, .. } => add(crate::elements::rod::mass(x[0], x[1], section), dofs),
-            Element::Quad4 { xy, section, dofs, .. } => {
-                add(section.mass_per_area * crate::elements::quad4::area(xy), dofs)
-            }
-            Element::Mass { .. } => {}
-        }
     }
     ke
 }

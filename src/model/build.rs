@@ -518,6 +518,7 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
         time,
         outputs,
         rod,
+        inert_dofs: 0,
     };
     let errors = cx.diags.iter().any(|d| d.is_error());
     if errors {

@@ -7,8 +7,10 @@
 //! a linear functional of the solved DOFs, not as an unknown.
 
 mod build;
+mod reduce;
 
 pub use build::{build_model, ModelError};
+pub use reduce::{drop_inert, live_dofs, Dropped};
 
 use crate::deck::{CardRef, Units};
 use crate::elements::rod::RodSection;
@@ -203,6 +205,8 @@ pub struct TimeControl {
 pub enum Source {
     Dof(usize),
     Dependent(usize),
+    /// A DOF dropped as inert (see [`drop_inert`]): identically zero.
+    Inert,
 }
 
 /// What the deck's case control asks to be written.
@@ -242,6 +246,8 @@ pub struct Model {
     pub time: TimeControl,
     pub outputs: OutputPlan,
     pub rod: Option<RodInfo>,
+    /// Solved DOFs dropped as inert (identically zero for the whole run).
+    pub inert_dofs: usize,
 }
 
 impl Model {
@@ -251,13 +257,14 @@ impl Model {
 
     /// Active DOFs as NASTRAN counts them: solved DOFs plus TF-defined scalar points.
     pub fn active_dofs(&self) -> usize {
-        self.dofs.len() + self.dependent.len()
+        self.dofs.len() + self.dependent.len() + self.inert_dofs
     }
 
     pub fn value(&self, s: Source, u: &[f64]) -> f64 {
         match s {
             Source::Dof(i) => u[i],
             Source::Dependent(j) => apply(&self.dependent[j].functional, u),
+            Source::Inert => 0.0,
         }
     }
 

@@ -119,7 +119,7 @@ pub fn human_summary(model: &Model, run: &Run) -> String {
         "{}: {} DOF ({} solved), scheme {}, dt {:e} {}, {} steps, {:.3} s wall\n",
         model.name,
         model.active_dofs(),
-        model.n(),
+        s["model"]["solved_dofs"],
         run.scheme.name(),
         run.dt,
         u.time,
