@@ -15,6 +15,7 @@ pub mod model;
 pub mod output;
 pub mod run;
 pub mod study;
+pub mod verify;
 
 pub use error::Error;
 

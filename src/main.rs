@@ -58,6 +58,22 @@ enum Command {
         #[command(subcommand)]
         what: StudyKind,
     },
+    /// Run verification cases and gate on their checks (exit 1 if any fails).
+    Verify {
+        /// Case files or directories of them [default: verification/].
+        cases: Vec<PathBuf>,
+        /// Where verify.json and junit.xml go.
+        #[arg(long, default_value = "out/verify")]
+        out: PathBuf,
+        /// Cases run in parallel.
+        #[arg(long, default_value_t = 2)]
+        jobs: usize,
+        /// Write the gold files of the cases' gold checks from this run (never in CI).
+        #[arg(long)]
+        bless: bool,
+    },
+    /// Compare two runs' output directories: what moved and by how much.
+    Audit { baseline: PathBuf, candidate: PathBuf },
     /// Time the paper's 49×49 plate (3000 steps) and report where the time goes.
     Bench {
         /// Timed repeats after one warm-up run; the median is reported.
@@ -173,6 +189,47 @@ fn execute(cli: Cli) -> Result<u8, Error> {
             })?;
             print!("{}", String::from_utf8_lossy(&files[0].1));
             println!("outputs: {}", out.display());
+            Ok(0)
+        }
+        Command::Verify {
+            cases,
+            out,
+            jobs,
+            bless,
+        } => {
+            use impactlab::verify;
+            let args = if cases.is_empty() {
+                vec![PathBuf::from("verification")]
+            } else {
+                cases
+            };
+            let cases = verify::case_files(&args)?
+                .iter()
+                .map(|p| verify::read_case(p))
+                .collect::<Result<Vec<_>, _>>()?;
+            if bless {
+                for c in &cases {
+                    if c.checks.iter().any(|k| matches!(k, verify::CheckSpec::Gold { .. })) {
+                        let (run, _) = verify::run_case(c)?;
+                        for p in verify::bless(c, &run)? {
+                            println!("wrote {}", p.display());
+                        }
+                    }
+                }
+            }
+            let v = verify::verify(&cases, jobs);
+            print!("{}", verify::table(&v));
+            let files = [("verify.json", verify::json(&v)), ("junit.xml", verify::junit(&v))];
+            output::write_dir_atomically(&out, &files).map_err(|source| Error::Io {
+                path: out.display().to_string(),
+                source,
+            })?;
+            println!("outputs: {}", out.display());
+            Ok(if v.passed() { 0 } else { 1 })
+        }
+        Command::Audit { baseline, candidate } => {
+            let moved = impactlab::verify::audit::audit(&baseline, &candidate).map_err(Error::Usage)?;
+            print!("{}", impactlab::verify::audit::audit_text(&moved));
             Ok(0)
         }
         Command::Bench { repeats, steps } => {

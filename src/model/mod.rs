@@ -7,9 +7,11 @@
 //! a linear functional of the solved DOFs, not as an unknown.
 
 mod build;
+mod modify;
 mod reduce;
 
 pub use build::{build_model, ModelError};
+pub use modify::Modify;
 pub use reduce::{drop_inert, live_dofs, Dropped};
 
 use crate::deck::{CardRef, Units};

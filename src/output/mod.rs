@@ -30,6 +30,7 @@ pub fn write_dir_atomically(dir: &Path, files: &[(&str, Vec<u8>)]) -> io::Result
         f.write_all(bytes)?;
         f.sync_all()?;
     }
+    set_mode(stage.path(), 0o755)?;
     let staged = stage.keep();
     if dir.exists() {
         let old = tempfile::Builder::new()
@@ -62,11 +63,24 @@ pub fn write_file_atomically(path: &Path, bytes: &[u8]) -> io::Result<()> {
     let mut tmp = tempfile::NamedTempFile::new_in(&parent)?;
     tmp.write_all(bytes)?;
     tmp.as_file().sync_all()?;
+    set_mode(tmp.path(), 0o644)?;
     tmp.persist(path).map_err(|e| e.error)?;
     Ok(())
 }
 
-fn csv_bytes(header: &[String], rows: impl Iterator<Item = Vec<f64>>) -> Vec<u8> {
+/// Temporary files and directories are private (0600/0700); outputs are not.
+fn set_mode(path: &Path, mode: u32) -> io::Result<()> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        fs::set_permissions(path, fs::Permissions::from_mode(mode))?;
+    }
+    #[cfg(not(unix))]
+    let _ = (path, mode);
+    Ok(())
+}
+
+pub fn csv_bytes(header: &[String], rows: impl Iterator<Item = Vec<f64>>) -> Vec<u8> {
     let mut w = csv::Writer::from_writer(Vec::new());
     w.write_record(header).expect("writing to memory");
     for r in rows {

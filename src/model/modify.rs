@@ -1,0 +1,85 @@
+//! Variations of a model for verification and stability cases: scaled impact
+//! velocity, contact stiffness or impactor mass, and an initial gap or overlap.
+
+use super::{Element, Model};
+use serde::Deserialize;
+
+/// What to change; every field defaults to "no change".
+#[derive(Debug, Clone, Default, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Modify {
+    /// Multiplies the impactor's initial velocity.
+    pub velocity_scale: Option<f64>,
+    /// Multiplies the Hertz stiffness K and every NOLIN3 scale with it.
+    pub contact_stiffness_scale: Option<f64>,
+    /// Multiplies the impactor's mass and inertia.
+    pub impactor_mass_scale: Option<f64>,
+    /// Initial indentation α(0) = −gap (negative: the impactor starts inside).
+    pub initial_gap: Option<f64>,
+}
+
+impl Modify {
+    pub fn is_empty(&self) -> bool {
+        *self == Modify::default()
+    }
+
+    /// The modified model, or why it cannot be made.
+    pub fn apply(&self, model: &Model) -> Result<Model, String> {
+        let mut m = model.clone();
+        if self.is_empty() {
+            return Ok(m);
+        }
+        let Some(c) = m.contact.as_mut() else {
+            return Err("the model has no contact to modify".into());
+        };
+        for (name, s) in [
+            ("velocity_scale", self.velocity_scale),
+            ("contact_stiffness_scale", self.contact_stiffness_scale),
+            ("impactor_mass_scale", self.impactor_mass_scale),
+        ] {
+            if let Some(s) = s {
+                if !(s.is_finite() && s > 0.0) {
+                    return Err(format!("{name} must be a positive number, not {s}"));
+                }
+            }
+        }
+        if let Some(s) = self.velocity_scale {
+            for &d in &c.impactor.dofs {
+                m.v0[d] *= s;
+            }
+        }
+        if let Some(s) = self.contact_stiffness_scale {
+            c.stiffness *= s;
+            c.loads.iter_mut().for_each(|l| l.scale *= s);
+            c.nonconservative.iter_mut().for_each(|t| t.1 *= s);
+        }
+        if let Some(s) = self.impactor_mass_scale {
+            c.impactor.mass *= s;
+            let grid = c.impactor.grid;
+            for e in &mut m.elements {
+                if let Element::Mass {
+                    grid: g, mass, inertia, ..
+                } = e
+                {
+                    if *g == grid {
+                        *mass *= s;
+                        inertia.iter_mut().for_each(|i| *i *= s);
+                    }
+                }
+            }
+        }
+        if let Some(gap) = self.initial_gap {
+            if !gap.is_finite() {
+                return Err(format!("initial_gap must be finite, not {gap}"));
+            }
+            let d = c.impactor.dof;
+            let coef = c.driver.iter().find(|t| t.0 == d).map(|t| t.1).unwrap_or(0.0);
+            if coef == 0.0 {
+                return Err("the indentation does not depend on the impactor's DOF".into());
+            }
+            let alpha0 = crate::model::apply(&c.driver, &m.u0);
+            m.u0[d] += (-gap - alpha0) / coef;
+        }
+        Ok(m)
+    }
+}

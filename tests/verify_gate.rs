@@ -1,0 +1,211 @@
+//! The verification gate: `impactlab verify` over every case in `verification/`
+//! passes, writes a JUnit report CI can read, and fails (exit 1) when a check moves or
+//! a gold file is missing. Snapshots of each case's summary and ledger (insta) make
+//! any numerical change visible in review.
+
+mod common;
+
+use common::root;
+use impactlab::verify::{self, Case};
+use std::path::Path;
+use std::process::Command;
+
+fn impactlab(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_impactlab"))
+        .args(args)
+        .current_dir(root())
+        .output()
+        .expect("impactlab runs")
+}
+
+fn cases() -> Vec<Case> {
+    verify::case_files(&[root().join("verification")])
+        .unwrap()
+        .iter()
+        .map(|p| verify::read_case(p).unwrap())
+        .collect()
+}
+
+/// Goal: the full case set passes; verify.json and junit.xml agree on the checks, and
+/// junit.xml is the standard schema (testsuites > testsuite > testcase).
+#[test]
+fn verify_passes_on_every_case_and_reports_junit() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("v");
+    let o = impactlab(&["verify", "verification", "--out", out.to_str().unwrap()]);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{stdout}\n{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let json: serde_json::Value = serde_json::from_slice(&std::fs::read(out.join("verify.json")).unwrap()).unwrap();
+    let n = json["results"].as_array().unwrap().len();
+    assert!(n >= 30, "{n} checks");
+    let xml = std::fs::read_to_string(out.join("junit.xml")).unwrap();
+    assert!(xml.starts_with("<?xml"));
+    assert!(xml.contains("<testsuites"));
+    assert_eq!(xml.matches("<testcase ").count(), n);
+    assert_eq!(xml.matches("<failure").count(), 0);
+    for c in cases() {
+        assert!(
+            xml.contains(&format!("<testsuite name=\"{}\"", c.name)),
+            "suite {}",
+            c.name
+        );
+    }
+}
+
+fn temp_case(dir: &Path, body: &str) -> std::path::PathBuf {
+    let p = dir.join("case.toml");
+    let deck = root().join("reference-data/decks/rod.bdf");
+    std::fs::write(&p, body.replace("DECK", deck.to_str().unwrap())).unwrap();
+    p
+}
+
+/// Goal: a missing gold file fails the gate (exit 1) and says which file.
+#[test]
+fn verify_fails_when_a_gold_file_is_missing() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = temp_case(
+        dir.path(),
+        r#"name = "nogold"
+deck = "DECK"
+steps = 50
+[[check]]
+kind = "gold"
+file = "missing.csv"
+default = { rel = 1e-6 }
+"#,
+    );
+    let o = impactlab(&[
+        "verify",
+        p.to_str().unwrap(),
+        "--out",
+        dir.path().join("o").to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    let s = String::from_utf8_lossy(&o.stdout);
+    assert!(s.contains("FAIL") && s.contains("missing.csv"), "{s}");
+    let xml = std::fs::read_to_string(dir.path().join("o/junit.xml")).unwrap();
+    assert_eq!(xml.matches("<failure").count(), 1);
+}
+
+/// Goal: the gold comparison catches a change of one part in 1e5 of the impact
+/// velocity and names the first column and time that moved.
+#[test]
+fn gold_comparison_names_what_moved() {
+    let dir = tempfile::tempdir().unwrap();
+    let gold = root().join("reference-data/gold/rod-history.csv");
+    let p = temp_case(
+        dir.path(),
+        &format!(
+            r#"name = "moved"
+deck = "DECK"
+dt = 2e-7
+steps = 2500
+every_step = true
+modify = {{ velocity_scale = 1.00001 }}
+[[check]]
+kind = "gold"
+file = "{}"
+default = {{ rel = 1e-7, abs = 1e-12 }}
+"#,
+            gold.display()
+        ),
+    );
+    let case = verify::read_case(&p).unwrap();
+    let (_, r) = verify::run_case(&case).unwrap();
+    assert!(!r[0].passed);
+    assert!(r[0].detail.starts_with("first difference: column "), "{}", r[0].detail);
+}
+
+/// Goal: `impactlab audit` reports nothing moved between identical runs, and the
+/// contact end and energy error as moved when Δt changes.
+#[test]
+fn audit_shows_what_a_change_moved() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = |n: &str| dir.path().join(n).to_str().unwrap().to_string();
+    let deck = root().join("reference-data/decks/rod.bdf");
+    let deck = deck.to_str().unwrap();
+    for (name, dt) in [("a", "2e-7"), ("b", "2e-7"), ("c", "1e-7")] {
+        let steps = if dt == "2e-7" { "1000" } else { "2000" };
+        let o = impactlab(&["run", deck, "--out", &d(name), "--dt", dt, "--steps", steps]);
+        assert!(o.status.success());
+    }
+    let same = impactlab(&["audit", &d("a"), &d("b")]);
+    let s = String::from_utf8_lossy(&same.stdout);
+    assert!(s.contains("\n0 quantities moved"), "{s}");
+    let moved = impactlab(&["audit", &d("a"), &d("c")]);
+    let s = String::from_utf8_lossy(&moved.stdout);
+    assert!(s.contains("summary rod.contact_end_tcl"), "{s}");
+    assert!(s.contains("summary energy.max_relative_error"), "{s}");
+}
+
+/// Rounds to `digits` significant digits; values below `floor` in magnitude are 0.
+fn round(x: f64, digits: i32, floor: f64) -> f64 {
+    if !x.is_finite() || x == 0.0 || x.abs() < floor {
+        return if x.is_finite() { 0.0 } else { x };
+    }
+    let e = x.abs().log10().floor() as i32 - digits + 1;
+    let p = 10f64.powi(-e);
+    (x * p).round() / p
+}
+
+fn rounded(v: &serde_json::Value) -> serde_json::Value {
+    use serde_json::Value;
+    match v {
+        Value::Number(n) if n.is_f64() => serde_json::json!(round(n.as_f64().unwrap(), 6, 1e-300)),
+        Value::Array(a) => Value::Array(a.iter().map(rounded).collect()),
+        Value::Object(m) => Value::Object(m.iter().map(|(k, v)| (k.clone(), rounded(v))).collect()),
+        x => x.clone(),
+    }
+}
+
+/// Snapshots: each case's summary (6 significant digits, timings and energy errors
+/// removed: they are machine- and round-off-dependent; the energy checks gate those)
+/// and its ledger at eleven instants (energies to 6 significant digits and 1e-9 of U0
+/// absolute, so round-off-level values read 0).
+#[test]
+fn verify_case_snapshots() {
+    for case in cases() {
+        if case.plate_mesh.is_some() {
+            continue; // a study over meshes; its summary is that of its first mesh
+        }
+        let model = verify::case_model(&case).unwrap();
+        let run = impactlab::run::run_model(&model, &verify::case_options(&case)).unwrap();
+        let mut s = run.summary.clone();
+        for k in ["wall_s", "factor_s", "solve_s", "assembly_s", "contact_iterations"] {
+            s["run"].as_object_mut().unwrap().remove(k);
+        }
+        for k in ["max_relative_error", "final_relative_error"] {
+            s["energy"].as_object_mut().unwrap().remove(k);
+        }
+        s["momentum"] = serde_json::Value::Null;
+        let e = &run.energy;
+        let u0 = e[0].total;
+        let mut ledger = String::from("time_s, KE_i, SE_i, KE_t, KE_t_eq16, SE_t, total, W_ext\n");
+        for i in 0..=10 {
+            let r = &e[(e.len() - 1) * i / 10];
+            let v: Vec<String> = [
+                r.ke_impactor,
+                r.se_impactor,
+                r.ke_target,
+                r.ke_target_eq16,
+                r.se_target,
+                r.total,
+                r.external_work,
+            ]
+            .iter()
+            .map(|x| format!("{:e}", round(*x, 6, 1e-9 * u0)))
+            .collect();
+            ledger += &format!("{:e}, {}\n", round(r.time, 9, 0.0), v.join(", "));
+        }
+        insta::assert_snapshot!(
+            format!("{}__summary", case.name),
+            serde_json::to_string_pretty(&rounded(&s)).unwrap()
+        );
+        insta::assert_snapshot!(format!("{}__ledger", case.name), ledger);
+    }
+}
