@@ -8,6 +8,17 @@ use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+// Printing never panics: a closed pipe (`impactlab ... | head`) just ends the output.
+macro_rules! say {
+    ($($t:tt)*) => {{ use std::io::Write; let _ = write!(std::io::stdout(), $($t)*); }};
+}
+macro_rules! sayln {
+    ($($t:tt)*) => {{ use std::io::Write; let _ = writeln!(std::io::stdout(), $($t)*); }};
+}
+macro_rules! say_err {
+    ($($t:tt)*) => {{ use std::io::Write; let _ = writeln!(std::io::stderr(), $($t)*); }};
+}
+
 #[derive(Parser)]
 #[command(
     name = "impactlab",
@@ -116,7 +127,7 @@ fn main() -> ExitCode {
     match execute(cli) {
         Ok(code) => ExitCode::from(code),
         Err(e) => {
-            eprintln!("{e}");
+            say_err!("{e}");
             ExitCode::from(e.exit_code() as u8)
         }
     }
@@ -144,7 +155,7 @@ fn execute(cli: Cli) -> Result<u8, Error> {
             }
             let (model, warnings) = impactlab::load_deck(&path, deck::ReadOptions { allow_unknown })?;
             for w in &warnings {
-                eprintln!("{w}");
+                say_err!("{w}");
             }
             let opts = RunOptions {
                 scheme,
@@ -160,8 +171,8 @@ fn execute(cli: Cli) -> Result<u8, Error> {
                 path: dir.display().to_string(),
                 source,
             })?;
-            print!("{}", output::human_summary(&model, &r));
-            println!("  outputs:  {}", dir.display());
+            say!("{}", output::human_summary(&model, &r));
+            sayln!("  outputs:  {}", dir.display());
             Ok(0)
         }
         Command::Mesh {
@@ -173,7 +184,7 @@ fn execute(cli: Cli) -> Result<u8, Error> {
                     path: p.display().to_string(),
                     source,
                 })?,
-                None => print!("{text}"),
+                None => say!("{text}"),
             }
             Ok(0)
         }
@@ -187,8 +198,8 @@ fn execute(cli: Cli) -> Result<u8, Error> {
                 path: out.display().to_string(),
                 source,
             })?;
-            print!("{}", String::from_utf8_lossy(&files[0].1));
-            println!("outputs: {}", out.display());
+            say!("{}", String::from_utf8_lossy(&files[0].1));
+            sayln!("outputs: {}", out.display());
             Ok(0)
         }
         Command::Verify {
@@ -212,29 +223,29 @@ fn execute(cli: Cli) -> Result<u8, Error> {
                     if c.checks.iter().any(|k| matches!(k, verify::CheckSpec::Gold { .. })) {
                         let (run, _) = verify::run_case(c)?;
                         for p in verify::bless(c, &run)? {
-                            println!("wrote {}", p.display());
+                            sayln!("wrote {}", p.display());
                         }
                     }
                 }
             }
             let v = verify::verify(&cases, jobs);
-            print!("{}", verify::table(&v));
+            say!("{}", verify::table(&v));
             let files = [("verify.json", verify::json(&v)), ("junit.xml", verify::junit(&v))];
             output::write_dir_atomically(&out, &files).map_err(|source| Error::Io {
                 path: out.display().to_string(),
                 source,
             })?;
-            println!("outputs: {}", out.display());
+            sayln!("outputs: {}", out.display());
             Ok(if v.passed() { 0 } else { 1 })
         }
         Command::Audit { baseline, candidate } => {
             let moved = impactlab::verify::audit::audit(&baseline, &candidate).map_err(Error::Usage)?;
-            print!("{}", impactlab::verify::audit::audit_text(&moved));
+            say!("{}", impactlab::verify::audit::audit_text(&moved));
             Ok(0)
         }
         Command::Bench { repeats, steps } => {
             let report = impactlab::study::bench_plate(repeats.max(1), steps)?;
-            print!("{report}");
+            say!("{report}");
             Ok(0)
         }
     }

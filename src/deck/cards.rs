@@ -336,7 +336,12 @@ impl<'a> Reader<'a> {
             return;
         }
         if v <= 0.0 {
-            self.fail(k, name, "must be positive");
+            let hint = if name == "RHO" {
+                " (leave it blank for a massless material)"
+            } else {
+                ""
+            };
+            self.fail(k, name, format!("must be positive{hint}"));
         }
     }
 
@@ -592,7 +597,7 @@ pub fn type_cards(raw: &[RawCard], diags: &mut Diagnostics) -> (Bulk, Vec<(Strin
                     if !(-1.0..0.5).contains(&nu) {
                         r.fail(3, "NU", format!("Poisson's ratio must lie in (-1, 0.5) (NU = {nu})"));
                     }
-                    r.non_negative(4, "RHO", rho);
+                    r.positive(4, "RHO", rho);
                 }
                 let m = Mat1 {
                     mid: r.id(0, "MID"),
@@ -611,7 +616,7 @@ pub fn type_cards(raw: &[RawCard], diags: &mut Diagnostics) -> (Bulk, Vec<(Strin
                     .map(|k| r.real_or(k, ["", "G11", "G12", "G13", "G22", "G23", "G33"][k], 0.0))
                     .collect();
                 let rho = r.real_or(7, "RHO", 0.0);
-                r.non_negative(7, "RHO", rho);
+                r.positive(7, "RHO", rho);
                 for (k, name) in [
                     (8, "A1"),
                     (9, "A2"),

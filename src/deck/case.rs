@@ -46,6 +46,8 @@ pub struct SetDef {
 
 #[derive(Debug, Clone, Default)]
 pub struct CaseControl {
+    /// Where case control ends (its last line), for errors about what it lacks.
+    pub at: Option<Pos>,
     pub title: String,
     pub subtitle: String,
     pub label: String,

@@ -108,7 +108,17 @@ fn finish(
     mut diags: Diagnostics,
 ) -> Result<Deck, DeckError> {
     let executive = case::parse_executive(&sections.executive, &mut diags);
-    let case = case::parse_case(&sections.case, &mut diags);
+    let mut case = case::parse_case(&sections.case, &mut diags);
+    case.at = sections
+        .case
+        .last()
+        .or(sections.executive.last())
+        .or(sections.bulk.first())
+        .map(|l| diag::Pos {
+            file: l.file.clone(),
+            line: l.line,
+            column: 1,
+        });
     let raw = bulk::assemble(&sections.bulk, &mut diags);
     let (bulk, unknown) = cards::type_cards(&raw, &mut diags);
     report_unknown(&unknown, opts, &mut diags);

@@ -15,8 +15,12 @@ pub struct ModelError {
 impl fmt::Display for ModelError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let errors: Vec<_> = self.diagnostics.iter().filter(|d| d.is_error()).collect();
-        for d in &errors {
+        let max = crate::deck::diag::MAX_ERRORS;
+        for d in errors.iter().take(max) {
             writeln!(f, "{d}")?;
+        }
+        if errors.len() > max {
+            writeln!(f, "... and {} more errors", errors.len() - max)?;
         }
         write!(f, "{} error(s) in model", errors.len())
     }
@@ -29,8 +33,12 @@ struct Ctx {
 }
 
 impl Ctx {
+    /// Records an error once: the same message at the same place (a property used by
+    /// many elements) is reported once.
     fn err(&mut self, d: Diagnostic) {
-        self.diags.push(d);
+        if !self.diags.iter().any(|e| e.to_string() == d.to_string()) {
+            self.diags.push(d);
+        }
     }
 
     fn warn(&mut self, mut d: Diagnostic) {
@@ -98,7 +106,7 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
     let tsteps = cx.select("TSTEP", "TSTEP", &case.tstep, &b.tsteps, |c| c.sid, |c| &c.at);
     if case.tstep.is_none() {
         cx.err(Diagnostic::error(
-            None,
+            case.at.clone(),
             "case control has no TSTEP request: a transient run needs one",
         ));
     }
@@ -550,6 +558,9 @@ fn build_contact(
         on_element,
         labels,
     } = *refs;
+    // Errors already found (a missing material, a bad TF) make the two checks below
+    // fail as a consequence; they are reported only on an otherwise clean model.
+    let prior_errors = cx.diags.iter().any(|d| d.is_error());
     let first = nolins.first()?;
     // One driver and one exponent for all NOLIN3 loads: one contact.
     let mut ok = true;
@@ -617,6 +628,9 @@ fn build_contact(
     let imp = match free.as_slice() {
         [one] => *one,
         [] => {
+            if prior_errors {
+                return None;
+            }
             cx.err(first.at.error(
                 "cannot identify the impactor: every grid loaded by NOLIN3 is attached to an element \
                  (the impactor is a point mass loaded by the contact and attached to nothing else)",
@@ -624,6 +638,9 @@ fn build_contact(
             return None;
         }
         many => {
+            if prior_errors {
+                return None;
+            }
             cx.err(first.at.error(format!(
                 "cannot identify the impactor: {} grids loaded by NOLIN3 carry no element ({})",
                 many.len(),
@@ -648,6 +665,9 @@ fn build_contact(
     }
     let c_imp: f64 = driver.iter().filter(|(j, _)| *j == imp.dof).map(|(_, c)| c).sum();
     if c_imp == 0.0 {
+        if prior_errors {
+            return None;
+        }
         cx.err(imp.at.error(format!(
             "the contact's driving point {driver_label} does not depend on the impactor DOF {}",
             imp.label
