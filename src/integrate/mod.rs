@@ -13,6 +13,7 @@
 //! - [`Scheme::Nastran`]: COSMIC NASTRAN's three-point direct transient scheme
 //!   (β = 1/3) with the nonlinear load lagged (explicit), for auditing against NASTRAN.
 
+pub mod central;
 mod contact;
 pub mod linear;
 mod nastran;
@@ -28,6 +29,8 @@ pub enum Scheme {
     Newmark,
     Energy,
     Nastran,
+    /// Explicit central differences (velocity Verlet), conditionally stable.
+    Central,
 }
 
 impl Scheme {
@@ -36,6 +39,7 @@ impl Scheme {
             Scheme::Newmark => "newmark",
             Scheme::Energy => "energy",
             Scheme::Nastran => "nastran",
+            Scheme::Central => "central",
         }
     }
 }
@@ -59,6 +63,8 @@ pub enum SolveError {
     },
     #[error("the contact equation did not converge at step {step} (t = {time_s:e} s)")]
     ContactSolve { step: usize, time_s: f64 },
+    #[error("explicit scheme refused: {reason}")]
+    Explicit { reason: String },
     #[error("linear solver failure: {0}")]
     Linear(String),
 }
@@ -118,6 +124,7 @@ pub fn integrate(
         Scheme::Newmark => newmark::run(model, sys, newmark::ContactForm::Endpoint, dt, steps, obs),
         Scheme::Energy => newmark::run(model, sys, newmark::ContactForm::DiscreteGradient, dt, steps, obs),
         Scheme::Nastran => nastran::run(model, sys, dt, steps, obs),
+        Scheme::Central => central::run(model, sys, dt, steps, obs),
     }?;
     stats.total_time = t0.elapsed();
     Ok(stats)
