@@ -13,6 +13,7 @@ pub mod ledger;
 pub mod mesh;
 pub mod model;
 pub mod output;
+pub mod report;
 pub mod run;
 pub mod study;
 pub mod verify;

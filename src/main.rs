@@ -83,6 +83,13 @@ enum Command {
         #[arg(long)]
         bless: bool,
     },
+    /// Run cases and write their reports (figures, ledger, verdicts) and an index.
+    Report {
+        /// Case files or directories [default: verification/].
+        cases: Vec<PathBuf>,
+        #[arg(long, default_value = "reports")]
+        out: PathBuf,
+    },
     /// Compare two runs' output directories: what moved and by how much.
     Audit { baseline: PathBuf, candidate: PathBuf },
     /// Time the paper's 49×49 plate (3000 steps) and report where the time goes.
@@ -164,6 +171,7 @@ fn execute(cli: Cli) -> Result<u8, Error> {
                 max_energy_error,
                 progress: std::io::stderr().is_terminal(),
                 skip_inert: !all_dofs,
+                snapshot_times: Vec::new(),
             };
             let r = run::run_model(&model, &opts)?;
             let dir = out.unwrap_or_else(|| PathBuf::from("out").join(&model.name));
@@ -237,6 +245,37 @@ fn execute(cli: Cli) -> Result<u8, Error> {
             })?;
             sayln!("outputs: {}", out.display());
             Ok(if v.passed() { 0 } else { 1 })
+        }
+        Command::Report { cases, out } => {
+            use impactlab::{report, verify};
+            let args = if cases.is_empty() {
+                vec![PathBuf::from("verification")]
+            } else {
+                cases
+            };
+            let cases = verify::case_files(&args)?
+                .iter()
+                .map(|p| verify::read_case(p))
+                .collect::<Result<Vec<_>, _>>()?;
+            let mut done = Vec::new();
+            for c in cases.iter().filter(|c| c.deck.is_some()) {
+                let r = report::report_case(c, &out.join(&c.name))?;
+                sayln!(
+                    "{}: {} checks passed, {} failed, {} figures",
+                    r.name,
+                    r.passed,
+                    r.failed,
+                    r.figures.len()
+                );
+                done.push(r);
+            }
+            let index = out.join("README.md");
+            output::write_file_atomically(&index, report::index(&done).as_bytes()).map_err(|source| Error::Io {
+                path: index.display().to_string(),
+                source,
+            })?;
+            sayln!("index: {}", index.display());
+            Ok(0)
         }
         Command::Audit { baseline, candidate } => {
             let moved = impactlab::verify::audit::audit(&baseline, &candidate).map_err(Error::Usage)?;

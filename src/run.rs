@@ -20,6 +20,8 @@ pub struct RunOptions {
     pub progress: bool,
     /// Solve only the live DOFs ([`crate::model::drop_inert`]); exact, so on by default.
     pub skip_inert: bool,
+    /// Times at which to keep the whole displacement state (the nearest step).
+    pub snapshot_times: Vec<f64>,
 }
 
 impl Default for RunOptions {
@@ -31,6 +33,7 @@ impl Default for RunOptions {
             max_energy_error: None,
             progress: false,
             skip_inert: true,
+            snapshot_times: Vec::new(),
         }
     }
 }
@@ -58,6 +61,10 @@ pub struct Run {
     pub history_columns: Vec<String>,
     pub history: Vec<Vec<f64>>,
     pub summary: Value,
+    /// The solved DOFs of the run (inert DOFs dropped), for reading snapshots.
+    pub dofs: Vec<crate::model::DofLabel>,
+    /// Displacement states at the requested snapshot times: (time, u over `dofs`).
+    pub snapshots: Vec<(f64, Vec<f64>)>,
 }
 
 struct Recorder<'a> {
@@ -69,6 +76,8 @@ struct Recorder<'a> {
     history: Vec<Vec<f64>>,
     max_energy_error: Option<f64>,
     bar: ProgressBar,
+    snapshot_steps: Vec<usize>,
+    snapshots: Vec<(f64, Vec<f64>)>,
 }
 
 impl Observer for Recorder<'_> {
@@ -97,6 +106,9 @@ impl Observer for Recorder<'_> {
         self.series.impactor_v.push(s.v.get(iu).copied().unwrap_or(0.0));
         if s.step % self.every == 0 {
             self.history.push(history_row(m, s, force));
+        }
+        if self.snapshot_steps.contains(&s.step) {
+            self.snapshots.push((s.time, s.u.to_vec()));
         }
         if s.step % 64 == 0 {
             self.bar.set_position(s.step as u64);
@@ -321,6 +333,8 @@ pub fn run_system(model: &Model, sys: &System, opts: &RunOptions) -> Result<Run,
         history: Vec::new(),
         max_energy_error: opts.max_energy_error,
         bar,
+        snapshot_steps: opts.snapshot_times.iter().map(|t| (t / dt).round() as usize).collect(),
+        snapshots: Vec::new(),
     };
     let stats = integrate(model, sys, opts.scheme, dt, steps, &mut rec)?;
     rec.bar.finish_and_clear();
@@ -334,6 +348,8 @@ pub fn run_system(model: &Model, sys: &System, opts: &RunOptions) -> Result<Run,
         history_columns: history_columns(model),
         history: rec.history,
         summary: Value::Null,
+        dofs: model.dofs.clone(),
+        snapshots: rec.snapshots,
     };
     run.summary = summary(model, &run);
     Ok(run)

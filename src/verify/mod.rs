@@ -279,7 +279,8 @@ fn column(run: &Run, name: &str) -> Result<usize, Error> {
         .ok_or_else(|| Error::Usage(format!("the run has no history column {name}")))
 }
 
-fn check(case: &Case, model: &Model, run: &Run, spec: &CheckSpec) -> Result<CheckResult, Error> {
+/// Evaluates one check of a case on its run.
+pub fn check(case: &Case, model: &Model, run: &Run, spec: &CheckSpec) -> Result<CheckResult, Error> {
     let e: &[EnergyRow] = &run.energy;
     let u0 = e.first().map(|r| r.total).unwrap_or(1.0);
     let lc = model.rod.map(|r| r.length / r.wave_speed);

@@ -1,0 +1,603 @@
+//! Reports: a verification case run, its figures (the paper's Figures 2-4 for the rod,
+//! 6-9 for the plate), its ledger at key instants and its verdicts, as `index.md` and
+//! an `index.html` with the images inline. Physics comes from the run and the
+//! analytic references; this module only draws and writes.
+
+pub mod plot;
+
+use crate::error::Error;
+use crate::ledger::EnergyRow;
+use crate::model::{Element, Model};
+use crate::run::{run_model, Run};
+use crate::verify::{self, analytic, Case, CheckResult};
+use plot::{Chart, Contour, Line};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// What a report says, for the index and for tests.
+#[derive(Debug, Clone)]
+pub struct CaseReport {
+    pub name: String,
+    pub markdown: String,
+    pub figures: Vec<PathBuf>,
+    pub passed: usize,
+    pub failed: usize,
+    pub summary: serde_json::Value,
+}
+
+/// Significant-digit formatting used in every report table.
+pub fn sig(x: f64, digits: usize) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    let e = x.abs().log10().floor() as i32;
+    if (-3..5).contains(&e) {
+        let dec = (digits as i32 - 1 - e).max(0) as usize;
+        format!("{x:.dec$}")
+    } else {
+        format!("{x:.prec$e}", prec = digits - 1)
+    }
+}
+
+fn io(path: &Path) -> impl Fn(std::io::Error) -> Error + '_ {
+    move |source| Error::Io {
+        path: path.display().to_string(),
+        source,
+    }
+}
+
+/// Runs a case and writes its report into `dir` (created; files replaced).
+pub fn report_case(case: &Case, dir: &Path) -> Result<CaseReport, Error> {
+    let model = verify::case_model(case)?;
+    let mut opts = verify::case_options(case);
+    let plate = model.elements.iter().any(|e| matches!(e, Element::Quad4 { .. }));
+    if plate {
+        opts.snapshot_times = vec![20e-6, 60e-6, 120e-6];
+    }
+    let t0 = std::time::Instant::now();
+    let run = run_model(&model, &opts)?;
+    let wall = t0.elapsed().as_secs_f64();
+    let mut checks = Vec::new();
+    for spec in &case.checks {
+        checks.push(verify::check(case, &model, &run, spec)?);
+    }
+    std::fs::create_dir_all(dir).map_err(io(dir))?;
+    let footer = format!(
+        "case {} · deck {} · scheme {} · dt {:e} s · {} steps",
+        case.name,
+        model.name,
+        run.scheme.name(),
+        run.dt,
+        run.steps
+    );
+    let figures = if model.rod.is_some() {
+        rod_figures(&model, &run, dir, &footer)
+    } else if plate {
+        plate_figures(&model, &run, dir, &footer)
+    } else {
+        Ok(Vec::new())
+    }
+    .map_err(|e| Error::Usage(format!("drawing the figures of {}: {e}", case.name)))?;
+    let markdown = markdown(case, &model, &run, &checks, &figures, wall);
+    std::fs::write(dir.join("index.md"), &markdown).map_err(io(dir))?;
+    std::fs::write(dir.join("index.html"), html(&case.name, &markdown)).map_err(io(dir))?;
+    let failed = checks.iter().filter(|c| !c.passed).count();
+    Ok(CaseReport {
+        name: case.name.clone(),
+        markdown,
+        figures,
+        passed: checks.len() - failed,
+        failed,
+        summary: run.summary.clone(),
+    })
+}
+
+fn us(t: &[f64]) -> Vec<f64> {
+    t.iter().map(|x| x * 1e6).collect()
+}
+
+fn col(run: &Run, name: &str) -> Option<Vec<f64>> {
+    let j = run
+        .history_columns
+        .iter()
+        .position(|c| c.split(' ').next() == Some(name))?;
+    Some(run.history.iter().map(|r| r[j]).collect())
+}
+
+fn energy_lines(e: &[EnergyRow], x: impl Fn(f64) -> f64) -> Vec<Line> {
+    let t: Vec<f64> = e.iter().map(|r| x(r.time)).collect();
+    let get = |f: fn(&EnergyRow) -> f64| e.iter().map(f).collect::<Vec<f64>>();
+    vec![
+        Line::new("KE impactor (Eq. 14)", t.clone(), get(|r| r.ke_impactor), 0),
+        Line::new("SE impactor (Eq. 15)", t.clone(), get(|r| r.se_impactor), 1),
+        Line::new("KE target (½vᵀMv)", t.clone(), get(|r| r.ke_target), 2),
+        Line::new("SE target (Eq. 17)", t.clone(), get(|r| r.se_target), 3),
+        Line::new("total (Eq. 13)", t, get(|r| r.total), 5),
+    ]
+}
+
+fn rod_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<Vec<PathBuf>, String> {
+    let rod = model.rod.expect("a rod");
+    let lc = rod.length / rod.wave_speed;
+    let c = model.contact.as_ref().ok_or("no contact")?;
+    let rho = rod.e / (rod.wave_speed * rod.wave_speed);
+    let p = analytic::HertzDashpot {
+        mass: c.impactor.mass,
+        v0: model.v0[c.impactor.dof].abs(),
+        stiffness: c.stiffness,
+        exponent: c.exponent,
+        impedance: rho * rod.wave_speed * rod.area,
+    };
+    let tr = p.integrate(2.0 * lc, lc / 2.0e5);
+    let u = &model.units;
+    let mut out = Vec::new();
+    let s = &run.series;
+    let end = run.summary["rod"]["contact_end_tcl"].as_f64().unwrap_or(f64::NAN);
+    let t_end = 1.2 * end * lc;
+    let (tf, ff): (Vec<f64>, Vec<f64>) = s
+        .time
+        .iter()
+        .zip(&s.force)
+        .filter(|(t, _)| **t <= t_end)
+        .map(|(a, b)| (*a, *b))
+        .unzip();
+    let (ta, fa): (Vec<f64>, Vec<f64>) = tr
+        .time
+        .iter()
+        .zip(&tr.force)
+        .filter(|(t, _)| **t <= t_end)
+        .step_by(50)
+        .map(|(a, b)| (*a, *b))
+        .unzip();
+    out.extend(plot::line_chart(
+        &Chart {
+            title: "Impact force history (paper Fig. 2)".into(),
+            x_label: "time [µs]".into(),
+            y_label: format!("contact force [{}]", u.force),
+            footer: footer.into(),
+            lines: vec![
+                Line::new("impactlab (FE rod)", us(&tf), ff, 0),
+                Line::new("ball on a semi-infinite rod (analytic)", us(&ta), fa, 1).dashed(),
+            ],
+            vlines: vec![(end * lc * 1e6, format!("contact ends, tC/L = {end:.4}"))],
+            headroom: 0.25,
+            ..Default::default()
+        },
+        &dir.join("force"),
+    )?);
+    // Mid-rod strain: the requested element nearest L/2.
+    let mid = model
+        .elements
+        .iter()
+        .filter_map(|e| match e {
+            Element::Rod { eid, x, .. } => {
+                let xc = 0.5 * (x[0][0] + x[1][0]);
+                col(run, &format!("strain_{eid}")).map(|v| (*eid, xc, v))
+            }
+            _ => None,
+        })
+        .min_by(|a, b| {
+            (a.1 - rod.length / 2.0)
+                .abs()
+                .total_cmp(&(b.1 - rod.length / 2.0).abs())
+        });
+    if let Some((eid, xc, strain)) = mid {
+        let t: Vec<f64> = run.history.iter().map(|r| r[0]).collect();
+        let x0 = model
+            .elements
+            .iter()
+            .find_map(|e| match e {
+                Element::Rod { x, .. } => Some(x[0][0].min(x[1][0])),
+                _ => None,
+            })
+            .unwrap_or(0.0);
+        let ea = rod.e * rod.area;
+        let dal: Vec<f64> = t
+            .iter()
+            .map(|&ti| {
+                if ti / lc < 1.45 {
+                    analytic::dalembert_strain(&tr, xc - x0, rod.wave_speed, ea, ti)
+                } else {
+                    f64::NAN
+                }
+            })
+            .collect();
+        let tcl = |v: &[f64]| v.iter().map(|x| x / lc).collect::<Vec<f64>>();
+        out.extend(plot::line_chart(
+            &Chart {
+                title: format!("Strain at mid-rod, element {eid} (paper Fig. 3)"),
+                x_label: "tC/L [-]".into(),
+                y_label: "axial strain [-]".into(),
+                footer: footer.into(),
+                lines: vec![
+                    Line::new("impactlab", tcl(&t), strain, 0),
+                    Line::new(
+                        "d'Alembert −F(t − x/C)/EA, until the far-end reflection",
+                        tcl(&t),
+                        dal,
+                        1,
+                    )
+                    .dashed(),
+                ],
+                ..Default::default()
+            },
+            &dir.join("strain"),
+        )?);
+    }
+    let mut lines = energy_lines(&run.energy, |t| t / lc);
+    let u0 = run.energy[0].total;
+    let tmax = run.energy.last().map_or(1.0, |r| r.time / lc);
+    lines.push(
+        Line::new(
+            "paper: 80 % of U0 left in the rod",
+            vec![0.0, tmax],
+            vec![0.8 * u0, 0.8 * u0],
+            6,
+        )
+        .dashed(),
+    );
+    let vz = run.summary["rod"]["velocity_zero_time_tcl"]
+        .as_f64()
+        .unwrap_or(f64::NAN);
+    out.extend(plot::line_chart(
+        &Chart {
+            title: "Energy distribution (paper Fig. 4)".into(),
+            x_label: "tC/L [-]".into(),
+            y_label: format!("energy [{}·{}]", u.force, u.length),
+            footer: footer.into(),
+            lines,
+            vlines: vec![
+                (0.25, "paper: impactor at rest, 0.25".into()),
+                (vz, format!("impactlab: at rest, {vz:.4}")),
+                (0.4, "paper: contact over, 0.4".into()),
+                (end, format!("impactlab: contact over, {end:.4}")),
+            ],
+            headroom: 0.75,
+            ..Default::default()
+        },
+        &dir.join("energy"),
+    )?);
+    Ok(out)
+}
+
+fn plate_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<Vec<PathBuf>, String> {
+    let u = &model.units;
+    let mut out = Vec::new();
+    let s = &run.series;
+    let c = model.contact.as_ref().ok_or("no contact")?;
+    let section = model
+        .elements
+        .iter()
+        .find_map(|e| match e {
+            Element::Quad4 { section, .. } => Some(section.clone()),
+            _ => None,
+        })
+        .ok_or("no plate")?;
+    let d = section.d().ok_or("no bending stiffness")?;
+    let z = analytic::plate_impedance(section.mass_per_area, d[(0, 0)], d[(1, 1)], d[(0, 1)], d[(2, 2)]);
+    let p = analytic::HertzDashpot {
+        mass: c.impactor.mass,
+        v0: model.v0[c.impactor.dof].abs(),
+        stiffness: c.stiffness,
+        exponent: c.exponent,
+        impedance: z,
+    };
+    let end = run.summary["contact"]["intervals_s"][0][1].as_f64().unwrap_or(250e-6);
+    let tr = p.integrate(80e-6, 1e-9);
+    let (ta, fa): (Vec<f64>, Vec<f64>) = tr
+        .time
+        .iter()
+        .zip(&tr.force)
+        .step_by(100)
+        .map(|(a, b)| (*a, *b))
+        .unzip();
+    let (tf, ff): (Vec<f64>, Vec<f64>) = s
+        .time
+        .iter()
+        .zip(&s.force)
+        .filter(|(t, _)| **t <= 1.15 * end)
+        .map(|(a, b)| (*a, *b))
+        .unzip();
+    out.extend(plot::line_chart(
+        &Chart {
+            title: "Impact force history (paper Fig. 6)".into(),
+            x_label: "time [µs]".into(),
+            y_label: format!("contact force [{}]", u.force),
+            footer: footer.into(),
+            lines: vec![
+                Line::new("impactlab (FE plate)", us(&tf), ff, 0),
+                Line::new(
+                    "infinite plate, Zener/Olsson (valid before edge reflections)",
+                    us(&ta),
+                    fa,
+                    1,
+                )
+                .dashed(),
+            ],
+            vlines: vec![
+                (204.0, "measured contact time, 204 µs".into()),
+                (175.0, "paper: secondary impact, 175 µs".into()),
+            ],
+            headroom: 0.3,
+            ..Default::default()
+        },
+        &dir.join("force"),
+    )?);
+    // Displacement field w at the snapshot times.
+    let w_index: std::collections::HashMap<i64, usize> = run
+        .dofs
+        .iter()
+        .enumerate()
+        .filter(|(_, l)| l.comp == 3)
+        .map(|(i, l)| (l.point, i))
+        .collect();
+    let panels: Vec<Contour> = run
+        .snapshots
+        .iter()
+        .map(|(t, uu)| Contour {
+            title: format!("t = {:.0} µs", t * 1e6),
+            footer: String::new(),
+            unit: u.length.clone(),
+            cells: model
+                .elements
+                .iter()
+                .filter_map(|e| match e {
+                    Element::Quad4 { grids, xy, .. } => {
+                        let v: f64 = grids
+                            .iter()
+                            .map(|g| w_index.get(g).map_or(0.0, |&i| uu[i]))
+                            .sum::<f64>()
+                            / 4.0;
+                        Some((
+                            [
+                                (xy[0][0], xy[0][1]),
+                                (xy[1][0], xy[1][1]),
+                                (xy[2][0], xy[2][1]),
+                                (xy[3][0], xy[3][1]),
+                            ],
+                            v,
+                        ))
+                    }
+                    _ => None,
+                })
+                .collect(),
+        })
+        .collect();
+    if !panels.is_empty() {
+        out.extend(plot::contours(
+            &panels,
+            &dir.join("displacement"),
+            &format!(
+                "Transverse displacement w [{}] (paper Fig. 7): elliptical, longer along the stiffer x",
+                u.length
+            ),
+            footer,
+        )?);
+    }
+    let mesh_gages: Vec<i64> = run
+        .history_columns
+        .iter()
+        .filter_map(|c| {
+            c.strip_prefix("strain_")
+                .and_then(|r| r.split('_').next())
+                .and_then(|e| e.parse().ok())
+        })
+        .collect::<std::collections::BTreeSet<i64>>()
+        .into_iter()
+        .collect();
+    let t: Vec<f64> = run.history.iter().map(|r| r[0] * 1e6).collect();
+    for (k, eid) in mesh_gages.iter().skip(1).take(2).enumerate() {
+        let (fig, gage) = if k == 0 { ("Fig. 8", "A") } else { ("Fig. 9", "B") };
+        let mut lines = Vec::new();
+        for (i, (fibre, comp)) in [("z2", "xx"), ("z2", "yy"), ("z1", "xx"), ("z1", "yy")]
+            .iter()
+            .enumerate()
+        {
+            if let Some(v) = col(run, &format!("strain_{eid}_{fibre}_{comp}")) {
+                let side = if *fibre == "z2" {
+                    "back face +T/2"
+                } else {
+                    "struck face −T/2"
+                };
+                let l = Line::new(format!("ε{comp}, {side}"), t.clone(), v, i);
+                lines.push(if *fibre == "z1" { l.dashed() } else { l });
+            }
+        }
+        out.extend(plot::line_chart(
+            &Chart {
+                title: format!("Strain at gage {gage}, element {eid} (paper {fig})"),
+                x_label: "time [µs]".into(),
+                y_label: "strain [-]".into(),
+                footer: footer.into(),
+                lines,
+                ..Default::default()
+            },
+            &dir.join(format!("gage-{}", gage.to_lowercase())),
+        )?);
+    }
+    let mut lines = energy_lines(&run.energy, |t| t * 1e6);
+    lines.push(Line::new(
+        "external work (deck's non-conservative NOLIN3)",
+        us(&run.energy.iter().map(|r| r.time).collect::<Vec<_>>()),
+        run.energy.iter().map(|r| r.external_work).collect(),
+        6,
+    ));
+    out.extend(plot::line_chart(
+        &Chart {
+            title: "Energy distribution, impactor and plate".into(),
+            x_label: "time [µs]".into(),
+            y_label: format!("energy [{}·{}]", u.force, u.length),
+            footer: footer.into(),
+            lines,
+            headroom: 0.45,
+            ..Default::default()
+        },
+        &dir.join("energy"),
+    )?);
+    Ok(out)
+}
+
+/// Ledger rows at the key instants: start, peak force, impactor at rest, separation, end.
+fn key_instants(run: &Run) -> Vec<(&'static str, usize)> {
+    let s = &run.series;
+    let nearest = |t: f64| s.time.iter().position(|&x| x >= t).unwrap_or(s.time.len() - 1);
+    let num = |k: &str| k.split('.').fold(&run.summary, |v, k| &v[k]).as_f64();
+    let mut v = vec![("start", 0)];
+    if let Some(t) = num("contact.peak_force_time_s") {
+        v.push(("peak force", nearest(t)));
+    }
+    if let Some(t) = num("impactor.velocity_zero_time_s") {
+        v.push(("impactor at rest", nearest(t)));
+    }
+    if let Some(t) = run.summary["contact"]["intervals_s"][0][1].as_f64() {
+        v.push(("separation", nearest(t)));
+    }
+    v.push(("end", s.time.len() - 1));
+    v
+}
+
+fn markdown(case: &Case, model: &Model, run: &Run, checks: &[CheckResult], figures: &[PathBuf], wall: f64) -> String {
+    let s = &run.summary;
+    let u = &model.units;
+    let g = |k: &str| k.split('.').fold(s, |v, k| &v[k]).as_f64();
+    let mut m = String::new();
+    let _ = writeln!(m, "# {} — {}\n", case.name, case.description);
+    let _ = writeln!(m, "## What was run\n");
+    let _ = writeln!(m, "| | |\n|---|---|");
+    let _ = writeln!(m, "| deck | `{}` ({}) |", model.name, model.title.trim());
+    let _ = writeln!(m, "| scheme | `{}` |", run.scheme.name());
+    let _ = writeln!(m, "| Δt, steps | {:e} {}, {} |", run.dt, u.time, run.steps);
+    let _ = writeln!(
+        m,
+        "| DOF | {} active, {} solved, {} inert skipped |",
+        s["model"]["active_dofs"], s["model"]["solved_dofs"], s["model"]["inert_dofs_skipped"]
+    );
+    let _ = writeln!(m, "| wall time | {wall:.2} s (this machine) |");
+    let _ = writeln!(m, "| units | {}, {}, {} |\n", u.length, u.force, u.time);
+    let _ = writeln!(m, "## Summary\n");
+    let _ = writeln!(m, "| quantity | value |\n|---|---|");
+    let iv: Vec<String> = s["contact"]["intervals_s"]
+        .as_array()
+        .map(|a| {
+            a.iter()
+                .map(|i| {
+                    format!(
+                        "{}–{} µs",
+                        sig(i[0].as_f64().unwrap_or(0.0) * 1e6, 5),
+                        sig(i[1].as_f64().unwrap_or(0.0) * 1e6, 5)
+                    )
+                })
+                .collect()
+        })
+        .unwrap_or_default();
+    let _ = writeln!(m, "| contact intervals | {} |", iv.join(", "));
+    let row = |m: &mut String, name: &str, v: Option<f64>, unit: &str| {
+        let _ = writeln!(m, "| {name} | {} {unit} |", v.map_or("—".into(), |x| sig(x, 6)));
+    };
+    row(&mut m, "peak force", g("contact.peak_force"), &u.force);
+    row(
+        &mut m,
+        "peak force time",
+        g("contact.peak_force_time_s").map(|t| t * 1e6),
+        "µs",
+    );
+    row(
+        &mut m,
+        "impactor at rest",
+        g("impactor.velocity_zero_time_s").map(|t| t * 1e6),
+        "µs",
+    );
+    row(
+        &mut m,
+        "rebound velocity",
+        g("impactor.rebound_velocity"),
+        &format!("{}/{}", u.length, u.time),
+    );
+    row(
+        &mut m,
+        "energy transferred to the target",
+        g("energy.transferred_fraction").map(|x| 100.0 * x),
+        "%",
+    );
+    row(&mut m, "max relative energy error", g("energy.max_relative_error"), "");
+    if model.rod.is_some() {
+        row(&mut m, "contact ends (tC/L)", g("rod.contact_end_tcl"), "");
+        row(&mut m, "impactor at rest (tC/L)", g("rod.velocity_zero_time_tcl"), "");
+    }
+    let _ = writeln!(m, "\n## Energy ledger at key instants\n");
+    let _ = writeln!(
+        m,
+        "| instant | t [µs] | KE_i | SE_i | KE_t | KE_t (Eq. 16) | SE_t | total | W_ext | error |\n|---|---|---|---|---|---|---|---|---|---|"
+    );
+    for (name, k) in key_instants(run) {
+        let r = &run.energy[k];
+        let _ = writeln!(
+            m,
+            "| {name} | {} | {} | {} | {} | {} | {} | {} | {} | {:.2e} |",
+            sig(r.time * 1e6, 5),
+            sig(r.ke_impactor, 5),
+            sig(r.se_impactor, 5),
+            sig(r.ke_target, 5),
+            sig(r.ke_target_eq16, 5),
+            sig(r.se_target, 5),
+            sig(r.total, 6),
+            sig(r.external_work, 4),
+            r.error
+        );
+    }
+    let file = case
+        .path
+        .file_name()
+        .map(|f| f.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let _ = writeln!(m, "\n## Verification checks (`verification/{file}`)\n");
+    let _ = writeln!(
+        m,
+        "| check | value | reference | tolerance | verdict |\n|---|---|---|---|---|"
+    );
+    for c in checks {
+        let _ = writeln!(
+            m,
+            "| {} | {} | {} | {} | {} |",
+            c.check.replace('|', "/"),
+            sig(c.value, 6),
+            sig(c.reference, 6),
+            c.tolerance,
+            if c.passed { "pass" } else { "**FAIL**" }
+        );
+    }
+    let _ = writeln!(m, "\n## Figures\n");
+    for f in figures.iter().filter(|f| f.extension().is_some_and(|e| e == "png")) {
+        let name = f
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        let stem = name.trim_end_matches(".png");
+        let _ = writeln!(m, "![{stem}]({name}) ([SVG]({stem}.svg))\n");
+    }
+    m
+}
+
+fn html(title: &str, markdown: &str) -> String {
+    let mut body = String::new();
+    let parser = pulldown_cmark::Parser::new_ext(markdown, pulldown_cmark::Options::ENABLE_TABLES);
+    pulldown_cmark::html::push_html(&mut body, parser);
+    format!(
+        "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>{title}</title>\n<style>body{{font-family:sans-serif;max-width:1100px;margin:2em auto}}table{{border-collapse:collapse}}td,th{{border:1px solid #ccc;padding:3px 8px;text-align:right}}img{{max-width:100%}}</style></head>\n<body>\n{body}</body></html>\n"
+    )
+}
+
+/// `reports/README.md`: one line per case report.
+pub fn index(reports: &[CaseReport]) -> String {
+    let mut m = String::from(
+        "# Reports\n\nRegenerate with `cargo run --release -- report` (all cases in `verification/` that run a deck).\n\n| case | checks passed | failed | report |\n|---|---|---|---|\n",
+    );
+    for r in reports {
+        let _ = writeln!(
+            m,
+            "| {} | {} | {} | [{}/index.md]({}/index.md) |",
+            r.name, r.passed, r.failed, r.name, r.name
+        );
+    }
+    m
+}
