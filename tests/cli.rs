@@ -58,6 +58,26 @@ fn run_writes_history_energy_and_summary() {
     );
     let energy = std::fs::read_to_string(out.join("energy.csv")).unwrap();
     assert_eq!(energy.lines().count(), 1 + 2501, "one ledger row per step");
+    // The ledger's columns are the ledger's numbers: the initial total is the
+    // impactor's ½mv0², the balance column stays within the summary's max error.
+    let header: Vec<&str> = energy.lines().next().unwrap().split(',').collect();
+    let col = |name: &str| {
+        header
+            .iter()
+            .position(|h| h.starts_with(name))
+            .unwrap_or_else(|| panic!("{name}"))
+    };
+    let rows: Vec<Vec<f64>> = energy
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+        .collect();
+    let u0 = 0.5 * 9.587e-5 * 62.1 * 62.1;
+    assert!((rows[0][col("total")] / u0 - 1.0).abs() < 1e-12);
+    assert!((rows[0][col("ke_impactor")] / u0 - 1.0).abs() < 1e-12);
+    let max_err = s["energy"]["max_relative_error"].as_f64().unwrap();
+    let worst = rows.iter().map(|r| r[col("error")].abs()).fold(0.0, f64::max);
+    assert!((worst - max_err).abs() <= 1e-15, "{worst} vs {max_err}");
 }
 
 fn temp_deck(text: &str) -> (tempfile::TempDir, std::path::PathBuf) {

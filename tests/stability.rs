@@ -372,3 +372,19 @@ fn mechanism_is_named() {
         other => panic!("expected a mechanism, got {:?}", other.map(|r| r.summary)),
     }
 }
+
+/// Case 13: a NaN in the state (here an initial velocity that is not a number) stops
+/// the run with an error naming the step and the DOF, instead of propagating.
+#[test]
+fn nan_in_the_state_is_named() {
+    let mut m = rod_model();
+    let d = m.contact.as_ref().unwrap().impactor.dof;
+    m.v0[d] = f64::NAN;
+    match go(&m, Scheme::Newmark, 2e-7, 10) {
+        Err(SolveError::NonFinite { step, dof, .. }) => {
+            assert_eq!(step, 0);
+            assert_eq!(dof, "grid 999 T1");
+        }
+        other => panic!("expected NonFinite, got {:?}", other.map(|r| r.summary)),
+    }
+}

@@ -131,7 +131,8 @@ fn expand_tabs(s: &str) -> String {
 /// `INCLUDE 'file'` (MSC style). Returns the quoted file name, or an error message.
 fn include_target(text: &str) -> Option<Result<String, String>> {
     let t = text.trim_start();
-    if t.len() < 7 || !t[..7].eq_ignore_ascii_case("INCLUDE") {
+    // `get` rather than indexing: the line may hold multi-byte characters.
+    if !t.get(..7).is_some_and(|w| w.eq_ignore_ascii_case("INCLUDE")) {
         return None;
     }
     let rest = t[7..].trim();
