@@ -114,6 +114,22 @@ enum StudyKind {
         #[arg(long, default_value = "out/mesh-study")]
         out: PathBuf,
     },
+    /// Stability map: the rod over Δt × impact velocity, per scheme.
+    Stability {
+        #[arg(long, default_value = "reports/stability")]
+        out: PathBuf,
+    },
+    /// Work-precision study: every scheme over Δt and mesh, errors against references.
+    Accuracy {
+        #[arg(long, default_value = "reports/accuracy")]
+        out: PathBuf,
+        /// Timed repeats after a warm-up run (wall time is their median).
+        #[arg(long, default_value_t = 5)]
+        repeats: usize,
+        /// Plate meshes of the mesh sweep (the finest is the reference).
+        #[arg(long, value_delimiter = ',', default_values_t = [13, 25, 49, 61, 97])]
+        plate_meshes: Vec<usize>,
+    },
 }
 
 #[derive(Subcommand)]
@@ -280,6 +296,43 @@ fn execute(cli: Cli) -> Result<u8, Error> {
         Command::Audit { baseline, candidate } => {
             let moved = impactlab::verify::audit::audit(&baseline, &candidate).map_err(Error::Usage)?;
             say!("{}", impactlab::verify::audit::audit_text(&moved));
+            Ok(0)
+        }
+        Command::Study {
+            what:
+                StudyKind::Accuracy {
+                    out,
+                    repeats,
+                    plate_meshes,
+                },
+        } => {
+            let rows =
+                impactlab::study::accuracy::run_study(&out, repeats.max(1), &plate_meshes, &|s| say_err!("  {s}"))?;
+            sayln!("{} runs; outputs: {}", rows.len(), out.display());
+            Ok(0)
+        }
+        Command::Study {
+            what: StudyKind::Stability { out },
+        } => {
+            use impactlab::study::stability;
+            let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("reference-data/decks/rod.bdf");
+            let (model, _) = impactlab::load_deck(&path, Default::default())?;
+            let cells = stability::run_map(&model, 2e-7, 500e-6, &|s| say_err!("  {s}"))?;
+            let io = |source| Error::Io {
+                path: out.display().to_string(),
+                source,
+            };
+            std::fs::create_dir_all(&out).map_err(io)?;
+            output::write_file_atomically(&out.join("stability-map.csv"), stability::csv(&cells).as_bytes())
+                .map_err(io)?;
+            stability::figure(&cells, 2e-7, &out.join("stability-map")).map_err(Error::Usage)?;
+            let failed = cells.iter().filter(|c| c.outcome.is_err()).count();
+            sayln!(
+                "{} runs, {} refused or failed; outputs: {}",
+                cells.len(),
+                failed,
+                out.display()
+            );
             Ok(0)
         }
         Command::Bench { repeats, steps } => {

@@ -9,7 +9,7 @@ use std::sync::Once;
 
 static FONT: Once = Once::new();
 
-fn register_font() {
+pub fn register_font() {
     FONT.call_once(|| {
         plotters::style::register_font(
             "sans-serif",

@@ -157,7 +157,7 @@ pub fn mesh_study_files(rows: &[MeshRow]) -> Vec<(&'static str, Vec<u8>)> {
 }
 
 /// Median of a sample (sorted copy).
-fn median(mut x: Vec<f64>) -> f64 {
+pub(crate) fn median(mut x: Vec<f64>) -> f64 {
     x.sort_by(f64::total_cmp);
     x[x.len() / 2]
 }
@@ -228,3 +228,5 @@ pub fn bench_plate(repeats: usize, steps: usize) -> Result<String, Error> {
     }
     Ok(out)
 }
+pub mod accuracy;
+pub mod stability;
