@@ -109,11 +109,11 @@ fn timed(model: &Model, opts: &RunOptions, repeats: usize) -> Result<(Run, f64),
     Ok((last.expect("at least one run"), median(walls)))
 }
 
-fn row(problem: &str, scheme: Scheme, dt: f64, mesh: usize, run: &Run, wall: f64, r: &Reference, strain: f64) -> Row {
+fn row(problem: &str, mesh: usize, run: &Run, wall: f64, r: &Reference, strain: f64) -> Row {
     Row {
         problem: problem.into(),
-        scheme,
-        dt_s: dt,
+        scheme: run.scheme,
+        dt_s: run.dt,
         mesh,
         error_contact_duration: (duration(run) / r.duration - 1.0).abs(),
         error_peak_force: (peak(run) / r.peak - 1.0).abs(),
@@ -257,7 +257,7 @@ fn rod_rows(repeats: usize, progress: &dyn Fn(&str)) -> Result<Vec<Row>, Error> 
                 &reference,
                 strain_error(&m, &run),
             ));
-            rows.push(row("rod-dt", scheme, dt, 144, &run, wall, &discrete, f64::NAN));
+            rows.push(row("rod-dt", 144, &run, wall, &discrete, f64::NAN));
         }
     }
     for n in [36, 72, 144, 288] {
@@ -347,7 +347,7 @@ fn plate_rows(repeats: usize, meshes: &[usize], progress: &dyn Fn(&str)) -> Resu
             };
             let (run, wall) = timed(&m25, &opts, repeats)?;
             let g = (gage_a(25, &run) / ref_gage - 1.0).abs();
-            rows.push(row("plate", scheme, dt, 25, &run, wall, &reference, g));
+            rows.push(row("plate", 25, &run, wall, &reference, g));
         }
     }
     // Mesh sweep at the paper's Δt against the finest mesh.
@@ -375,7 +375,7 @@ fn plate_rows(repeats: usize, meshes: &[usize], progress: &dyn Fn(&str)) -> Resu
     let ref_gage = gage_a(finest, fine);
     for (n, run, wall, reps) in &runs {
         let g = (gage_a(*n, run) / ref_gage - 1.0).abs();
-        let mut r = row("plate-mesh", Scheme::Newmark, dt0, *n, run, *wall, &reference, g);
+        let mut r = row("plate-mesh", *n, run, *wall, &reference, g);
         r.note = format!("reference: the {finest}x{finest} mesh; median of {reps} runs");
         rows.push(r);
     }
