@@ -247,16 +247,7 @@ fn rod_rows(repeats: usize, progress: &dyn Fn(&str)) -> Result<Vec<Row>, Error> 
             let mut m = base.clone();
             m.time.every = 1;
             let (run, wall) = timed(&m, &opts, repeats)?;
-            rows.push(row(
-                "rod",
-                scheme,
-                dt,
-                144,
-                &run,
-                wall,
-                &reference,
-                strain_error(&m, &run),
-            ));
+            rows.push(row("rod", 144, &run, wall, &reference, strain_error(&m, &run)));
             rows.push(row("rod-dt", 144, &run, wall, &discrete, f64::NAN));
         }
     }
@@ -279,16 +270,7 @@ fn rod_rows(repeats: usize, progress: &dyn Fn(&str)) -> Result<Vec<Row>, Error> 
                 ..Default::default()
             };
             let (run, wall) = timed(&m, &opts, repeats)?;
-            let mut r = row(
-                "rod-mesh",
-                scheme,
-                dt,
-                n,
-                &run,
-                wall,
-                &reference,
-                strain_error(&m, &run),
-            );
+            let mut r = row("rod-mesh", n, &run, wall, &reference, strain_error(&m, &run));
             r.note = "mesh sweep".into();
             rows.push(r);
         }
