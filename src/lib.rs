@@ -15,6 +15,7 @@ pub mod model;
 pub mod output;
 pub mod report;
 pub mod run;
+pub mod scene;
 pub mod study;
 pub mod verify;
 

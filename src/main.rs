@@ -32,9 +32,10 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Run a NASTRAN-style transient deck and write history.csv, energy.csv, summary.json.
+    /// Run a NASTRAN-style transient deck (or a scene, .toml) and write history.csv,
+    /// energy.csv, summary.json.
     Run {
-        /// The deck (.bdf).
+        /// The deck (.bdf), or a scene (.toml).
         deck: PathBuf,
         /// Output directory [default: out/<deck name>].
         #[arg(long)]
@@ -58,6 +59,16 @@ enum Command {
         /// zero; dropping them is exact). For measuring what dropping them saves.
         #[arg(long)]
         all_dofs: bool,
+    },
+    /// A scene: write its NASTRAN deck, or measure what each optional effect costs.
+    Scene {
+        scene: PathBuf,
+        /// Write the equivalent NASTRAN deck here.
+        #[arg(long)]
+        to_deck: Option<PathBuf>,
+        /// Time the scene with and without each optional effect (median of 3 runs).
+        #[arg(long)]
+        costs: bool,
     },
     /// Generate a deck.
     Mesh {
@@ -176,20 +187,43 @@ fn execute(cli: Cli) -> Result<u8, Error> {
             if steps == Some(0) {
                 return Err(Error::Usage("--steps must be positive".into()));
             }
-            let (model, warnings) = impactlab::load_deck(&path, deck::ReadOptions { allow_unknown })?;
-            for w in &warnings {
-                say_err!("{w}");
-            }
+            let is_scene = path.extension().is_some_and(|e| e == "toml");
+            let (model, opts, scene) = if is_scene {
+                let (s, model, mut o, _) = impactlab::scene::load(&path)?;
+                o.scheme = if scheme == Scheme::Newmark {
+                    s.run.scheme
+                } else {
+                    scheme
+                };
+                (model, o, Some(s))
+            } else {
+                let (model, warnings) = impactlab::load_deck(&path, deck::ReadOptions { allow_unknown })?;
+                for w in &warnings {
+                    say_err!("{w}");
+                }
+                (
+                    model,
+                    RunOptions {
+                        scheme,
+                        skip_inert: !all_dofs,
+                        ..Default::default()
+                    },
+                    None,
+                )
+            };
             let opts = RunOptions {
-                scheme,
-                dt,
-                steps,
+                dt: dt.or(opts.dt),
+                steps: steps.or(opts.steps),
                 max_energy_error,
                 progress: std::io::stderr().is_terminal(),
-                skip_inert: !all_dofs,
-                snapshot_times: Vec::new(),
+                ..opts
             };
-            let r = run::run_model(&model, &opts)?;
+            let mut r = run::run_model(&model, &opts)?;
+            if let Some(s) = &scene {
+                r.summary["effects"] = impactlab::scene::effects(s, &r.summary);
+                r.summary["contact_stiffness_source"] =
+                    serde_json::json!(impactlab::scene::contact_stiffness(s).map(|k| k.1).unwrap_or_default());
+            }
             let dir = out.unwrap_or_else(|| PathBuf::from("out").join(&model.name));
             output::write_dir_atomically(&dir, &output::run_files(&model, &r)).map_err(|source| Error::Io {
                 path: dir.display().to_string(),
@@ -197,6 +231,22 @@ fn execute(cli: Cli) -> Result<u8, Error> {
             })?;
             say!("{}", output::human_summary(&model, &r));
             sayln!("  outputs:  {}", dir.display());
+            Ok(0)
+        }
+        Command::Scene { scene, to_deck, costs } => {
+            let (s, model, opts, deck) = impactlab::scene::load(&scene)?;
+            let (k, how) = impactlab::scene::contact_stiffness(&s).map_err(Error::Usage)?;
+            sayln!("Hertz K = {k:.6e} ({how})");
+            if let Some(p) = to_deck {
+                output::write_file_atomically(&p, deck.as_bytes()).map_err(|source| Error::Io {
+                    path: p.display().to_string(),
+                    source,
+                })?;
+                sayln!("deck: {}", p.display());
+            }
+            if costs {
+                say!("{}", impactlab::scene::effect_costs(&model, &opts)?);
+            }
             Ok(0)
         }
         Command::Mesh {

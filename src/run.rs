@@ -22,6 +22,10 @@ pub struct RunOptions {
     pub skip_inert: bool,
     /// Times at which to keep the whole displacement state (the nearest step).
     pub snapshot_times: Vec<f64>,
+    /// Compute the energy ledger (on by default; a scene may leave it out).
+    pub ledger: bool,
+    /// Stop this long after the first separation (contact ended), if given.
+    pub stop_after_separation: Option<f64>,
 }
 
 impl Default for RunOptions {
@@ -34,6 +38,8 @@ impl Default for RunOptions {
             progress: false,
             skip_inert: true,
             snapshot_times: Vec::new(),
+            ledger: true,
+            stop_after_separation: None,
         }
     }
 }
@@ -69,7 +75,10 @@ pub struct Run {
 
 struct Recorder<'a> {
     model: &'a Model,
-    ledger: Ledger<'a>,
+    ledger: Option<Ledger<'a>>,
+    stop_after_separation: Option<f64>,
+    separated_at: Option<f64>,
+    in_contact: bool,
     every: usize,
     energy: Vec<EnergyRow>,
     series: Series,
@@ -83,18 +92,25 @@ struct Recorder<'a> {
 impl Observer for Recorder<'_> {
     fn observe(&mut self, s: &StepState) -> Result<bool, SolveError> {
         let m = self.model;
-        let row = self.ledger.record(s);
-        if let Some(limit) = self.max_energy_error {
-            if row.error.abs() > limit {
-                return Err(SolveError::EnergyLimit {
-                    step: s.step,
-                    time_s: s.time,
-                    error: row.error,
-                    limit,
-                });
+        if let Some(ledger) = &mut self.ledger {
+            let row = ledger.record(s);
+            if let Some(limit) = self.max_energy_error {
+                if row.error.abs() > limit {
+                    return Err(SolveError::EnergyLimit {
+                        step: s.step,
+                        time_s: s.time,
+                        error: row.error,
+                        limit,
+                    });
+                }
             }
+            self.energy.push(row);
         }
-        self.energy.push(row);
+        if s.alpha > 0.0 {
+            self.in_contact = true;
+        } else if self.in_contact && self.separated_at.is_none() {
+            self.separated_at = Some(s.time);
+        }
         let (force, iu) = match &m.contact {
             Some(c) => (c.stiffness * s.load_factor, c.impactor.dof),
             None => (0.0, 0),
@@ -113,7 +129,8 @@ impl Observer for Recorder<'_> {
         if s.step % 64 == 0 {
             self.bar.set_position(s.step as u64);
         }
-        Ok(true)
+        let done = matches!((self.separated_at, self.stop_after_separation), (Some(t0), Some(w)) if s.time >= t0 + w);
+        Ok(!done)
     }
 }
 
@@ -326,7 +343,10 @@ pub fn run_system(model: &Model, sys: &System, opts: &RunOptions) -> Result<Run,
     };
     let mut rec = Recorder {
         model,
-        ledger: Ledger::new(model, sys),
+        ledger: opts.ledger.then(|| Ledger::new(model, sys)),
+        stop_after_separation: opts.stop_after_separation,
+        separated_at: None,
+        in_contact: false,
         every: model.time.every.max(1),
         energy: Vec::with_capacity(steps + 1),
         series: Series::default(),
@@ -404,10 +424,12 @@ fn summary(model: &Model, run: &Run) -> Value {
     } else {
         s.impactor_v.last().copied()
     };
-    let max_err = run.energy.iter().map(|r| r.error.abs()).fold(0.0, f64::max);
-    let e0 = run.energy.first().map(|r| r.total).unwrap_or(0.0);
-    let p0 = run.energy.first().map(|r| r.momentum).unwrap_or(0.0);
-    let max_dp = run.energy.iter().map(|r| (r.momentum - p0).abs()).fold(0.0, f64::max);
+    // Without a ledger the energy and momentum entries are null, not zero.
+    let has = !run.energy.is_empty();
+    let max_err = has.then(|| run.energy.iter().map(|r| r.error.abs()).fold(0.0, f64::max));
+    let e0 = run.energy.first().map(|r| r.total);
+    let p0 = run.energy.first().map(|r| r.momentum);
+    let max_dp = p0.map(|p0| run.energy.iter().map(|r| (r.momentum - p0).abs()).fold(0.0, f64::max));
     let mut v = json!({
         "deck": model.name,
         "title": model.title,

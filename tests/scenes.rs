@@ -1,0 +1,168 @@
+//! Scenes: the two examples in `verification/scenes/` reproduce the paper's problems,
+//! a scene and the deck it writes give the same answer, and only the effects the
+//! scene calls for are simulated (the rest are listed as skipped, with why).
+
+mod common;
+
+use common::{f, root};
+use impactlab::run::run_model;
+use std::process::Command;
+
+fn impactlab(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_impactlab"))
+        .args(args)
+        .current_dir(root())
+        .output()
+        .unwrap()
+}
+
+fn scene_text(name: &str) -> String {
+    std::fs::read_to_string(root().join("verification/scenes").join(name)).unwrap()
+}
+
+fn write(dir: &std::path::Path, name: &str, text: &str) -> std::path::PathBuf {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+/// Goal: Eq. 5 with the paper's ball and rod gives the deck's K = 6.24e6 (to 0.1 %),
+/// and the rod scene reproduces the deck's run (same contact end, same peak force).
+#[test]
+fn rod_scene_is_the_papers_rod() {
+    let (s, model, opts, _) = impactlab::scene::load(&root().join("verification/scenes/rod.toml")).unwrap();
+    let (k, _) = impactlab::scene::contact_stiffness(&s).unwrap();
+    assert!((k / 6.24e6 - 1.0).abs() < 1e-3, "K = {k}");
+    let r = run_model(&model, &opts).unwrap();
+    let deck = common::run(&common::rod_model(), impactlab::integrate::Scheme::Newmark, None, None);
+    let (a, b) = (
+        f(&r.summary["rod"]["contact_end_tcl"]),
+        f(&deck.summary["rod"]["contact_end_tcl"]),
+    );
+    assert!((a / b - 1.0).abs() < 2e-3, "{a} vs {b}");
+    assert!((f(&r.summary["contact"]["peak_force"]) / f(&deck.summary["contact"]["peak_force"]) - 1.0).abs() < 2e-3);
+}
+
+/// Goal: `impactlab scene S --to-deck F` writes a deck whose run is the scene's run:
+/// the contact force histories are identical.
+#[test]
+fn scene_and_its_deck_give_the_same_answer() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = |n: &str| dir.path().join(n).to_str().unwrap().to_string();
+    let scene = root().join("verification/scenes/rod.toml");
+    let o = impactlab(&["scene", scene.to_str().unwrap(), "--to-deck", &d("rod-scene.bdf")]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("Hertz K = 6.2"));
+    assert!(impactlab(&["run", scene.to_str().unwrap(), "--out", &d("a")])
+        .status
+        .success());
+    assert!(impactlab(&["run", &d("rod-scene.bdf"), "--out", &d("b")])
+        .status
+        .success());
+    let force = |dir: &str| -> Vec<String> {
+        let h = std::fs::read_to_string(format!("{dir}/history.csv")).unwrap();
+        h.lines()
+            .skip(1)
+            .map(|l| l.split(',').nth(1).unwrap().to_string())
+            .collect()
+    };
+    let (a, b) = (force(&d("a")), force(&d("b")));
+    assert_eq!(a.len(), 2501);
+    assert_eq!(a, b);
+}
+
+/// Goal: the plate scene skips the membrane DOFs (a transverse impact without
+/// membrane-bending coupling): the contact force equals the run that solves them to
+/// 1e-10 relative, with fewer DOFs; the summary lists the effects simulated and
+/// skipped; the run stops 20 µs after separation. (13×13 mesh, for speed.)
+#[test]
+fn plate_scene_simulates_only_what_it_needs() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = scene_text("plate.toml")
+        .replace("mesh = 49", "mesh = 13")
+        .replace("gages = [3325, 4125]", "gages = []");
+    let p = write(dir.path(), "plate13.toml", &text);
+    let (s, model, opts, _) = impactlab::scene::load(&p).unwrap();
+    let skip = run_model(&model, &opts).unwrap();
+    let all = run_model(
+        &model,
+        &impactlab::run::RunOptions {
+            skip_inert: false,
+            ..opts.clone()
+        },
+    )
+    .unwrap();
+    assert!(f(&skip.summary["model"]["solved_dofs"]) < f(&all.summary["model"]["solved_dofs"]));
+    let peak = f(&all.summary["contact"]["peak_force"]);
+    for (x, y) in skip.series.force.iter().zip(&all.series.force) {
+        assert!((x - y).abs() <= 1e-10 * peak);
+    }
+    let e = impactlab::scene::effects(&s, &skip.summary);
+    let names = |k: &str| -> Vec<String> {
+        e[k].as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x["name"].as_str().unwrap().to_string())
+            .collect()
+    };
+    assert!(names("skipped").contains(&"membrane".to_string()));
+    assert!(names("simulated").contains(&"energy ledger".to_string()));
+    let end = f(&skip.summary["contact"]["intervals_s"][0][1]);
+    let last = *skip.series.time.last().unwrap();
+    assert!(
+        last >= end + 20e-6 && last < end + 21e-6,
+        "stopped at {last:e}, separation {end:e}"
+    );
+}
+
+/// Goal: no ledger asked for, none computed: energy.csv has only its header and the
+/// summary's energy entries are null.
+#[test]
+fn no_ledger_asked_none_computed() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = write(
+        dir.path(),
+        "rod.toml",
+        &scene_text("rod.toml").replace("ledger = true", "ledger = false"),
+    );
+    let out = dir.path().join("o");
+    let o = impactlab(&["run", p.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(
+        std::fs::read_to_string(out.join("energy.csv")).unwrap().lines().count(),
+        1
+    );
+    let s: serde_json::Value = serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
+    assert!(s["energy"]["max_relative_error"].is_null());
+    assert!(s["effects"]["skipped"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .any(|x| x["name"] == "energy ledger"));
+}
+
+/// Goal: an effect the model cannot represent is an error (exit 2) that says so.
+#[test]
+fn unrepresentable_effects_are_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    for (effect, says) in [
+        ("rotary_inertia = true", "rotary_inertia"),
+        ("damping = true", "damping"),
+        ("gravity = true", "gravity"),
+    ] {
+        let p = write(
+            dir.path(),
+            "s.toml",
+            &scene_text("rod.toml").replace("ledger = true", &format!("ledger = true\n{effect}")),
+        );
+        let o = impactlab(&[
+            "run",
+            p.to_str().unwrap(),
+            "--out",
+            dir.path().join("o").to_str().unwrap(),
+        ]);
+        assert_eq!(o.status.code(), Some(2));
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains("s.toml") && err.contains(says), "{err}");
+    }
+}
