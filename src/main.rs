@@ -55,6 +55,12 @@ enum Command {
         /// Unknown bulk data cards become warnings instead of errors.
         #[arg(long)]
         allow_unknown: bool,
+        /// Write displacement (and shell fibre strain) fields as VTU + a .pvd collection here.
+        #[arg(long)]
+        fields: Option<PathBuf>,
+        /// Number of field snapshots, evenly spread over the run.
+        #[arg(long, default_value_t = 50)]
+        field_count: usize,
         /// Also solve DOFs that no load, initial condition or contact reaches (they stay
         /// zero; dropping them is exact). For measuring what dropping them saves.
         #[arg(long)]
@@ -178,6 +184,8 @@ fn execute(cli: Cli) -> Result<u8, Error> {
             max_energy_error,
             allow_unknown,
             all_dofs,
+            fields,
+            field_count,
         } => {
             if let Some(dt) = dt {
                 if !(dt > 0.0 && dt.is_finite()) {
@@ -211,13 +219,20 @@ fn execute(cli: Cli) -> Result<u8, Error> {
                     None,
                 )
             };
-            let opts = RunOptions {
+            let mut opts = RunOptions {
                 dt: dt.or(opts.dt),
                 steps: steps.or(opts.steps),
                 max_energy_error,
                 progress: std::io::stderr().is_terminal(),
                 ..opts
             };
+            if fields.is_some() {
+                opts.snapshot_times = impactlab::report::fields::field_times(
+                    opts.dt.unwrap_or(model.time.dt),
+                    opts.steps.unwrap_or(model.time.steps),
+                    field_count,
+                );
+            }
             let mut r = run::run_model(&model, &opts)?;
             if let Some(s) = &scene {
                 r.summary["effects"] = impactlab::scene::effects(s, &r.summary);
@@ -231,6 +246,14 @@ fn execute(cli: Cli) -> Result<u8, Error> {
             })?;
             say!("{}", output::human_summary(&model, &r));
             sayln!("  outputs:  {}", dir.display());
+            if let Some(fdir) = fields {
+                let files = impactlab::report::fields::write_fields(&model, &r, &fdir).map_err(Error::Usage)?;
+                sayln!(
+                    "  fields:   {} VTU files and fields.pvd in {}",
+                    files.len() - 1,
+                    fdir.display()
+                );
+            }
             Ok(0)
         }
         Command::Scene { scene, to_deck, costs } => {

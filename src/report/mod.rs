@@ -3,6 +3,7 @@
 //! an `index.html` with the images inline. Physics comes from the run and the
 //! analytic references; this module only draws and writes.
 
+pub mod fields;
 pub mod plot;
 
 use crate::error::Error;
