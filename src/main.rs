@@ -306,15 +306,7 @@ fn execute(cli: Cli) -> Result<u8, Error> {
             bless,
         } => {
             use impactlab::verify;
-            let args = if cases.is_empty() {
-                vec![PathBuf::from("verification")]
-            } else {
-                cases
-            };
-            let cases = verify::case_files(&args)?
-                .iter()
-                .map(|p| verify::read_case(p))
-                .collect::<Result<Vec<_>, _>>()?;
+            let cases = verify::load_cases(&cases)?;
             if bless {
                 for c in &cases {
                     if c.checks.iter().any(|k| matches!(k, verify::CheckSpec::Gold { .. })) {
@@ -337,15 +329,7 @@ fn execute(cli: Cli) -> Result<u8, Error> {
         }
         Command::Report { cases, out } => {
             use impactlab::{report, verify};
-            let args = if cases.is_empty() {
-                vec![PathBuf::from("verification")]
-            } else {
-                cases
-            };
-            let cases = verify::case_files(&args)?
-                .iter()
-                .map(|p| verify::read_case(p))
-                .collect::<Result<Vec<_>, _>>()?;
+            let cases = verify::load_cases(&cases)?;
             let mut done = Vec::new();
             for c in cases.iter().filter(|c| c.deck.is_some()) {
                 let r = report::report_case(c, &out.join(&c.name))?;

@@ -341,12 +341,7 @@ pub fn to_deck(s: &Scene) -> Result<String, String> {
         } => {
             let mut pts = vec![999, 1];
             pts.extend(s.output.points.iter().copied());
-            let _ = writeln!(w, "  SET 15 = {}", join(&pts));
-            let _ = writeln!(w, "  NLLOAD = 15\n  DISP = 15");
-            if !s.output.gages.is_empty() {
-                let _ = writeln!(w, "  SET 20 = {}\n  STRESS = 20", join(&s.output.gages));
-            }
-            let _ = writeln!(w, "BEGIN BULK\nEPOINT,10001");
+            output_requests(w, &pts, &s.output.gages);
             let r = s.impactor.radius.unwrap_or(0.0);
             let _ = writeln!(w, "GRID,999,,{},0.0,0.0", format_real(-r));
             for i in 0..=*n {
@@ -401,12 +396,7 @@ pub fn to_deck(s: &Scene) -> Result<String, String> {
             let mut pts: Vec<i64> = vec![999];
             pts.extend(contact.iter().map(|&g| g as i64));
             pts.extend(s.output.points.iter().copied());
-            let _ = writeln!(w, "  SET 15 = {}", join(&pts));
-            let _ = writeln!(w, "  NLLOAD = 15\n  DISP = 15");
-            if !s.output.gages.is_empty() {
-                let _ = writeln!(w, "  SET 20 = {}\n  STRESS = 20", join(&s.output.gages));
-            }
-            let _ = writeln!(w, "BEGIN BULK\nEPOINT,10001");
+            output_requests(w, &pts, &s.output.gages);
             let _ = writeln!(
                 w,
                 "GRID,999,,0.0,0.0,{}",
@@ -473,6 +463,17 @@ pub fn to_deck(s: &Scene) -> Result<String, String> {
     }
     let _ = writeln!(w, "ENDDATA");
     Ok(d)
+}
+
+/// Case control output requests (the contact points and `points` displaced, the
+/// gages' stress and strain), then the start of the bulk data with the EPOINT.
+fn output_requests(w: &mut String, points: &[i64], gages: &[i64]) {
+    let _ = writeln!(w, "  SET 15 = {}", join(points));
+    let _ = writeln!(w, "  NLLOAD = 15\n  DISP = 15");
+    if !gages.is_empty() {
+        let _ = writeln!(w, "  SET 20 = {}\n  STRESS = 20", join(gages));
+    }
+    let _ = writeln!(w, "BEGIN BULK\nEPOINT,10001");
 }
 
 fn join<T: std::fmt::Display>(v: &[T]) -> String {

@@ -197,6 +197,13 @@ pub fn case_files(args: &[PathBuf]) -> Result<Vec<PathBuf>, Error> {
     Ok(out)
 }
 
+/// The cases named by files or directories; none named means `verification/`.
+pub fn load_cases(args: &[PathBuf]) -> Result<Vec<Case>, Error> {
+    let default = [PathBuf::from("verification")];
+    let args = if args.is_empty() { &default[..] } else { args };
+    case_files(args)?.iter().map(|p| read_case(p)).collect()
+}
+
 fn rel(case: &Case, p: &Path) -> PathBuf {
     case.path.parent().unwrap_or(Path::new(".")).join(p)
 }
