@@ -383,6 +383,7 @@ fn execute(cli: Cli) -> Result<u8, Error> {
             output::write_file_atomically(&out.join("stability-map.csv"), stability::csv(&cells).as_bytes())
                 .map_err(io)?;
             stability::figure(&cells, 2e-7, &out.join("stability-map")).map_err(Error::Usage)?;
+            output::write_file_atomically(&out.join("README.md"), stability::readme(&cells).as_bytes()).map_err(io)?;
             let failed = cells.iter().filter(|c| c.outcome.is_err()).count();
             sayln!(
                 "{} runs, {} refused or failed; outputs: {}",
