@@ -333,6 +333,7 @@ fn execute(cli: Cli) -> Result<u8, Error> {
             let mut done = Vec::new();
             for c in cases.iter().filter(|c| c.deck.is_some()) {
                 let r = report::report_case(c, &out.join(&c.name))?;
+                say!("{}", r.human);
                 sayln!(
                     "{}: {} checks passed, {} failed, {} figures",
                     r.name,
@@ -343,7 +344,7 @@ fn execute(cli: Cli) -> Result<u8, Error> {
                 done.push(r);
             }
             let index = out.join("README.md");
-            output::write_file_atomically(&index, report::index(&done).as_bytes()).map_err(|source| Error::Io {
+            output::write_file_atomically(&index, report::index(&out).as_bytes()).map_err(|source| Error::Io {
                 path: index.display().to_string(),
                 source,
             })?;

@@ -24,6 +24,8 @@ pub struct CaseReport {
     pub passed: usize,
     pub failed: usize,
     pub summary: serde_json::Value,
+    /// The run's short human summary.
+    pub human: String,
 }
 
 /// Significant-digit formatting used in every report table.
@@ -90,6 +92,7 @@ pub fn report_case(case: &Case, dir: &Path) -> Result<CaseReport, Error> {
         passed: checks.len() - failed,
         failed,
         summary: run.summary.clone(),
+        human: crate::output::human_summary(&model, &run),
     })
 }
 
@@ -588,17 +591,37 @@ fn html(title: &str, markdown: &str) -> String {
     )
 }
 
-/// `reports/README.md`: one line per case report.
-pub fn index(reports: &[CaseReport]) -> String {
+/// `reports/README.md`: one line per case report found in `dir` (a subdirectory with
+/// an `index.md`), with its verdict counts read from that report, so regenerating one
+/// case keeps the others listed.
+pub fn index(dir: &Path) -> String {
     let mut m = String::from(
-        "# Reports\n\nRegenerate with `cargo run --release -- report` (all cases in `verification/` that run a deck).\n\n| case | checks passed | failed | report |\n|---|---|---|---|\n",
+        "# Reports\n\nRegenerate with `cargo run --release -- report` (all cases in `verification/` that run a \
+         deck); the studies with `impactlab study accuracy` and `impactlab study stability`.\n\n\
+         | case | checks passed | failed | report |\n|---|---|---|---|\n",
     );
-    for r in reports {
+    let mut cases: Vec<(String, String)> = std::fs::read_dir(dir)
+        .into_iter()
+        .flatten()
+        .flatten()
+        .filter_map(|e| {
+            let md = std::fs::read_to_string(e.path().join("index.md")).ok()?;
+            Some((e.file_name().to_string_lossy().into_owned(), md))
+        })
+        .collect();
+    cases.sort();
+    for (name, md) in &cases {
+        let passed = md.matches("| pass |").count();
+        let failed = md.matches("| **FAIL** |").count();
         let _ = writeln!(
             m,
-            "| {} | {} | {} | [{}/index.md]({}/index.md) |",
-            r.name, r.passed, r.failed, r.name, r.name
+            "| {name} | {passed} | {failed} | [{name}/index.md]({name}/index.md) |"
         );
     }
+    let _ = writeln!(
+        m,
+        "\nStudies: [accuracy](accuracy/README.md) (what accuracy costs in time), \
+         [stability](stability/README.md) (the stability map), [scenes](scenes/README.md) (what each effect costs)."
+    );
     m
 }
