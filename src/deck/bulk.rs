@@ -253,6 +253,10 @@ fn pad(card: &mut RawCard, large_next: bool) {
     }
 }
 
+/// The most cards one replication line may generate: far above any real mesh line,
+/// low enough that a typo (`=(100000000)`) is an error rather than exhausted memory.
+pub const MAX_REPLICATION: usize = 1_000_000;
+
 /// The repeat count of a replication line's field 1: `=` (1), `=(n)` or `=n`.
 fn repeat_count(first: &Field, src: &str, diags: &mut Diagnostics) -> Option<usize> {
     let t = first.text.trim();
@@ -261,7 +265,19 @@ fn repeat_count(first: &Field, src: &str, diags: &mut Diagnostics) -> Option<usi
     }
     let inner = t[1..].trim().trim_start_matches('(').trim_end_matches(')').trim();
     match parse_int(inner) {
-        Some(n) if n >= 1 => Some(n as usize),
+        Some(n) if n >= 1 && n as u64 <= MAX_REPLICATION as u64 => Some(n as usize),
+        Some(n) if n >= 1 => {
+            diags.push(
+                Diagnostic::error(
+                    Some(first.pos.clone()),
+                    format!("replicates {n} cards, more than the limit of {MAX_REPLICATION}"),
+                )
+                .field(1, "replication")
+                .token(t)
+                .quote(src),
+            );
+            None
+        }
         _ => {
             diags.push(
                 Diagnostic::error(
