@@ -522,7 +522,7 @@ fn figures(rows: &[Row], dir: &Path) -> Result<Vec<PathBuf>, String> {
 /// The cheapest setting (least wall time) per scheme reaching each tolerance.
 fn cheapest_table(rows: &[Row]) -> String {
     let mut s = String::new();
-    for problem in ["rod", "plate"] {
+    for problem in ["rod", "rod-dt", "plate"] {
         let _ = writeln!(s, "\n### {problem}\n");
         let _ = writeln!(
             s,
