@@ -115,4 +115,23 @@ mod tests {
             assert!((dg - exact).abs() <= 1e-9 * exact.abs(), "{a0} {a1}: {dg} vs {exact}");
         }
     }
+
+    /// Goal: for nearly equal indentations (d/α = 1e-10) the discrete gradient is the
+    /// mean of φ over the interval to round-off, where the difference quotient of W
+    /// would lose about ten digits. Reference: φ at the midpoint (the interval is so
+    /// short that the mean and the midpoint value agree to 1e-20). Tolerance 1e-13.
+    #[test]
+    fn discrete_gradient_of_close_pairs_keeps_its_digits() {
+        let w = |a: f64| if a > 0.0 { a.powf(2.5) / 2.5 } else { 0.0 };
+        let phi = |a: f64| hertz(a).0;
+        let (a0, a1) = (1e-3, 1e-3 * (1.0 + 1e-10));
+        let dg = discrete_gradient(a0, a1, w, phi);
+        let mid = phi(0.5 * (a0 + a1));
+        assert!((dg - mid).abs() <= 1e-13 * mid, "{dg} vs {mid}");
+        let quotient = (w(a1) - w(a0)) / (a1 - a0);
+        assert!(
+            (quotient - mid).abs() > 1e-10 * mid,
+            "the quotient alone would not do: {quotient}"
+        );
+    }
 }
