@@ -32,3 +32,10 @@ pub fn load_deck(
     all.append(&mut warnings);
     Ok((m, all))
 }
+
+/// Builds the model of a deck held in memory (a generated mesh or a scene's deck);
+/// warnings are dropped, errors name `name` as the file.
+pub fn model_from_text(name: &str, text: &str) -> Result<model::Model, Error> {
+    let d = deck::parse_deck_str(name, text, deck::ReadOptions::default())?;
+    Ok(model::build_model(&d)?.0)
+}

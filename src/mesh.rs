@@ -52,8 +52,56 @@ impl PlateMesh {
         GAGE_Y.map(|y| self.grid(c + (y * self.n as f64 / PLATE_SIDE).round() as usize, c))
     }
 
-    fn coord(&self, k: usize) -> f64 {
-        (k as f64 - (self.n as f64 + 2.0) / 2.0) * PLATE_SIDE / self.n as f64
+    /// Coordinate of grid line k (1-based) of a square plate of the given side,
+    /// centred on the origin: (k − (N+2)/2)·side/N.
+    fn coord(&self, k: usize, side: f64) -> f64 {
+        (k as f64 - (self.n as f64 + 2.0) / 2.0) * side / self.n as f64
+    }
+
+    /// The four corners of the centre element, which the impactor loads.
+    pub fn contact_grids(&self) -> [usize; 4] {
+        let e = self.centre_element();
+        [e, e + 1, e + self.base, e + self.base + 1]
+    }
+
+    /// GRID cards of a square plate of the given side (z = 0) and its CQUAD4 cards
+    /// (id = lower-left grid, PSHELL 1).
+    pub fn write_grids_and_quads(&self, w: &mut String, side: f64) {
+        let (n, base) = (self.n, self.base);
+        for r in 1..=n + 1 {
+            for c in 1..=n + 1 {
+                let _ = writeln!(
+                    w,
+                    "GRID,{},,{},{},0.0",
+                    self.grid(r, c),
+                    format_real(self.coord(c, side)),
+                    format_real(self.coord(r, side))
+                );
+            }
+        }
+        for r in 1..=n {
+            for c in 1..=n {
+                let g = self.grid(r, c);
+                let _ = writeln!(w, "CQUAD4,{g},1,{g},{},{},{}", g + 1, g + base + 1, g + base);
+            }
+        }
+    }
+
+    /// The TF defining the indentation (EPOINT 10001) as the impactor's T3 minus the
+    /// mean T3 of the contact grids.
+    pub fn write_indentation_tf(&self, w: &mut String) {
+        let _ = writeln!(
+            w,
+            "TF,111,10001,0,+1.0,0.0,0.0,,,+TF-1\n+TF-1,999,3,-1.0,0.0,0.0,,,,+TF-2"
+        );
+        for (k, g) in self.contact_grids().iter().enumerate() {
+            let next = if k < 3 {
+                format!(",,,,+TF-{}", k + 3)
+            } else {
+                String::new()
+            };
+            let _ = writeln!(w, "+TF-{},{g},3,+0.25,0.0,0.0{next}", k + 2);
+        }
     }
 }
 
@@ -61,7 +109,7 @@ impl PlateMesh {
 pub fn plate_deck(n: usize) -> Result<String, String> {
     let m = PlateMesh::new(n)?;
     let (e, base) = (m.centre_element(), m.base);
-    let contact = [e, e + 1, e + base, e + base + 1];
+    let contact = m.contact_grids();
     let [ga, gb] = m.gage_elements();
     let last = n + 1;
     let mut d = String::new();
@@ -98,23 +146,7 @@ pub fn plate_deck(n: usize) -> Result<String, String> {
         w,
         "CONM2,200,999,0,8.096-5,0.0,0.0,0.0,,+CON2-2\n+CON2-2,7.459-6,,7.459-6,,,1.423-6"
     );
-    for r in 1..=last {
-        for c in 1..=last {
-            let _ = writeln!(
-                w,
-                "GRID,{},,{},{},0.0",
-                m.grid(r, c),
-                format_real(m.coord(c)),
-                format_real(m.coord(r))
-            );
-        }
-    }
-    for r in 1..=n {
-        for c in 1..=n {
-            let g = m.grid(r, c);
-            let _ = writeln!(w, "CQUAD4,{g},1,{g},{},{},{}", g + 1, g + base + 1, g + base);
-        }
-    }
+    m.write_grids_and_quads(w, PLATE_SIDE);
     let _ = writeln!(w, "PSHELL,1,101,0.15,201,1.0");
     let _ = writeln!(
         w,
@@ -132,18 +164,7 @@ pub fn plate_deck(n: usize) -> Result<String, String> {
         let _ = writeln!(w, "NOLIN3,5,{g},3,+1.945+5,10001,0,1.5");
     }
     let _ = writeln!(w, "NOLIN3,5,999,3,-7.779+5,10001,0,1.5");
-    let _ = writeln!(
-        w,
-        "TF,111,10001,0,+1.0,0.0,0.0,,,+TF-1\n+TF-1,999,3,-1.0,0.0,0.0,,,,+TF-2"
-    );
-    for (k, g) in contact.iter().enumerate() {
-        let next = if k < 3 {
-            format!(",,,,+TF-{}", k + 3)
-        } else {
-            String::new()
-        };
-        let _ = writeln!(w, "+TF-{},{g},3,+0.25,0.0,0.0{next}", k + 2);
-    }
+    m.write_indentation_tf(w);
     let _ = writeln!(w, "TIC,3,999,3,0.0,1470.0\nENDDATA");
     Ok(d)
 }

@@ -134,6 +134,26 @@ impl Observer for Recorder<'_> {
     }
 }
 
+impl Run {
+    /// Index of the history column named `name` (its header without the unit).
+    pub fn column(&self, name: &str) -> Option<usize> {
+        self.history_columns
+            .iter()
+            .position(|c| c.split(' ').next() == Some(name))
+    }
+
+    /// The values of the history column named `name`.
+    pub fn column_values(&self, name: &str) -> Option<Vec<f64>> {
+        let j = self.column(name)?;
+        Some(self.history.iter().map(|r| r[j]).collect())
+    }
+}
+
+/// A number of a summary by its dotted path (`"contact.peak_force"`).
+pub fn summary_value(summary: &Value, key: &str) -> Option<f64> {
+    key.split('.').fold(summary, |v, k| &v[k]).as_f64()
+}
+
 /// Column names (with units) of `history.csv`, in the order of [`history_row`].
 pub fn history_columns(m: &Model) -> Vec<String> {
     let u = &m.units;
@@ -308,7 +328,7 @@ pub fn run_model(model: &Model, opts: &RunOptions) -> Result<Run, SolveError> {
         });
     }
     let reduced = if opts.skip_inert {
-        drop_inert(model, &sys).map(|(m, _)| {
+        drop_inert(model, &sys).map(|m| {
             let s = assemble(&m);
             (m, s)
         })

@@ -10,7 +10,7 @@ use common::{deck, f, rod_model};
 use impactlab::integrate::{Scheme, SolveError};
 use impactlab::model::{Model, Modify};
 use impactlab::run::{run_model, Run, RunOptions};
-use impactlab::verify::analytic::{rigid_target, HertzDashpot};
+use impactlab::verify::analytic::rigid_target;
 
 fn go(m: &Model, scheme: Scheme, dt: f64, steps: usize) -> Result<Run, SolveError> {
     run_model(
@@ -70,17 +70,7 @@ fn sane(r: &Run, bound: f64) {
 /// Semi-infinite-rod contact end (s) for a rod model, the analytic reference while no
 /// reflection has returned (2L/C = 360 µs).
 fn semi_infinite_end(m: &Model) -> f64 {
-    let c = m.contact.as_ref().unwrap();
-    let r = m.rod.unwrap();
-    let rho = r.e / (r.wave_speed * r.wave_speed);
-    let p = HertzDashpot {
-        mass: c.impactor.mass,
-        v0: m.v0[c.impactor.dof],
-        stiffness: c.stiffness,
-        exponent: c.exponent,
-        impedance: rho * r.wave_speed * r.area,
-    };
-    HertzDashpot::events(&p.integrate(360e-6, 1e-9)).unwrap().contact_end
+    impactlab::verify::semi_infinite(m).unwrap().1.contact_end
 }
 
 fn contact_end(r: &Run) -> f64 {

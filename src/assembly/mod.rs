@@ -88,24 +88,20 @@ pub fn assemble(model: &Model) -> System {
     k.extend_from_slice(&k_shell);
     let k_csc = SparseColMat::try_new_from_triplets(n, n, &k).expect("indices are in range");
     let m_csc = SparseColMat::try_new_from_triplets(n, n, &m).expect("indices are in range");
-    let m_lumped = m.iter().all(|t| t.row == t.col || t.val == 0.0).then(|| {
-        let mut d = vec![0.0; n];
-        for t in &m {
-            if t.row == t.col {
-                d[t.row] += t.val;
-            }
-        }
-        d
-    });
-    System {
-        m_lumped,
+    let lumped = m.iter().all(|t| t.row == t.col || t.val == 0.0);
+    let mut sys = System {
+        m_lumped: None,
         n,
         k,
         m,
         k_csc,
         m_csc,
         k_shell_csc,
+    };
+    if lumped {
+        sys.m_lumped = Some(sys.m_diag());
     }
+    sys
 }
 
 impl System {

@@ -12,7 +12,7 @@ mod reduce;
 
 pub use build::{build_model, ModelError};
 pub use modify::Modify;
-pub use reduce::{drop_inert, live_dofs, Dropped};
+pub use reduce::drop_inert;
 
 use crate::deck::{CardRef, Units};
 use crate::elements::rod::RodSection;

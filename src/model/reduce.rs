@@ -16,15 +16,6 @@
 use super::{Element, Functional, Model, Source};
 use crate::assembly::System;
 
-/// What [`drop_inert`] removed.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct Dropped {
-    /// Number of solved DOFs dropped.
-    pub dofs: usize,
-    /// Number of dropped DOFs per component 1-6 (index 0: scalar points).
-    pub by_component: [usize; 7],
-}
-
 struct UnionFind(Vec<usize>);
 
 impl UnionFind {
@@ -44,7 +35,7 @@ impl UnionFind {
 }
 
 /// Which solved DOFs are live (see the module doc), from the assembled system.
-pub fn live_dofs(model: &Model, sys: &System) -> Vec<bool> {
+fn live_dofs(model: &Model, sys: &System) -> Vec<bool> {
     let n = model.n();
     let mut uf = UnionFind((0..n).collect());
     for t in sys.k.iter().chain(sys.m.iter()) {
@@ -76,24 +67,18 @@ pub fn live_dofs(model: &Model, sys: &System) -> Vec<bool> {
     (0..n).map(|i| live_root[uf.find(i)]).collect()
 }
 
-/// Returns the model with the inert DOFs removed (renumbered densely), or `None` when
-/// every DOF is live.
-pub fn drop_inert(model: &Model, sys: &System) -> Option<(Model, Dropped)> {
+/// Returns the model with the inert DOFs removed (renumbered densely; their count
+/// added to `inert_dofs`), or `None` when every DOF is live.
+pub fn drop_inert(model: &Model, sys: &System) -> Option<Model> {
     let live = live_dofs(model, sys);
     if live.iter().all(|&l| l) {
         return None;
     }
     let mut map = vec![None; model.n()];
     let mut next = 0;
-    let mut dropped = Dropped::default();
-    for (i, &l) in live.iter().enumerate() {
-        if l {
-            map[i] = Some(next);
-            next += 1;
-        } else {
-            dropped.dofs += 1;
-            dropped.by_component[model.dofs[i].comp as usize] += 1;
-        }
+    for (i, _) in live.iter().enumerate().filter(|(_, &l)| l) {
+        map[i] = Some(next);
+        next += 1;
     }
     let re = |i: usize| map[i].expect("contact and dependent DOFs are live");
     let re_opt = |o: Option<usize>| o.and_then(|i| map[i]);
@@ -128,8 +113,8 @@ pub fn drop_inert(model: &Model, sys: &System) -> Option<(Model, Dropped)> {
             }
         }
     }
-    m.inert_dofs = model.inert_dofs + dropped.dofs;
-    Some((m, dropped))
+    m.inert_dofs = model.inert_dofs + (model.n() - next);
+    Some(m)
 }
 
 fn keep<T: Clone>(v: &[T], live: &[bool]) -> Vec<T> {

@@ -100,14 +100,6 @@ fn us(t: &[f64]) -> Vec<f64> {
     t.iter().map(|x| x * 1e6).collect()
 }
 
-fn col(run: &Run, name: &str) -> Option<Vec<f64>> {
-    let j = run
-        .history_columns
-        .iter()
-        .position(|c| c.split(' ').next() == Some(name))?;
-    Some(run.history.iter().map(|r| r[j]).collect())
-}
-
 fn energy_lines(e: &[EnergyRow], x: impl Fn(f64) -> f64) -> Vec<Line> {
     let t: Vec<f64> = e.iter().map(|r| x(r.time)).collect();
     let get = |f: fn(&EnergyRow) -> f64| e.iter().map(f).collect::<Vec<f64>>();
@@ -122,17 +114,7 @@ fn energy_lines(e: &[EnergyRow], x: impl Fn(f64) -> f64) -> Vec<Line> {
 
 fn rod_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<Vec<PathBuf>, String> {
     let rod = model.rod.expect("a rod");
-    let lc = rod.length / rod.wave_speed;
-    let c = model.contact.as_ref().ok_or("no contact")?;
-    let rho = rod.e / (rod.wave_speed * rod.wave_speed);
-    let p = analytic::HertzDashpot {
-        mass: c.impactor.mass,
-        v0: model.v0[c.impactor.dof].abs(),
-        stiffness: c.stiffness,
-        exponent: c.exponent,
-        impedance: rho * rod.wave_speed * rod.area,
-    };
-    let tr = p.integrate(2.0 * lc, lc / 2.0e5);
+    let (tr, _, lc) = verify::semi_infinite(model).map_err(|e| e.to_string())?;
     let u = &model.units;
     let mut out = Vec::new();
     let s = &run.series;
@@ -176,7 +158,7 @@ fn rod_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<Vec
         .filter_map(|e| match e {
             Element::Rod { eid, x, .. } => {
                 let xc = 0.5 * (x[0][0] + x[1][0]);
-                col(run, &format!("strain_{eid}")).map(|v| (*eid, xc, v))
+                run.column_values(&format!("strain_{eid}")).map(|v| (*eid, xc, v))
             }
             _ => None,
         })
@@ -268,24 +250,7 @@ fn plate_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<V
     let u = &model.units;
     let mut out = Vec::new();
     let s = &run.series;
-    let c = model.contact.as_ref().ok_or("no contact")?;
-    let section = model
-        .elements
-        .iter()
-        .find_map(|e| match e {
-            Element::Quad4 { section, .. } => Some(section.clone()),
-            _ => None,
-        })
-        .ok_or("no plate")?;
-    let d = section.d().ok_or("no bending stiffness")?;
-    let z = analytic::plate_impedance(section.mass_per_area, d[(0, 0)], d[(1, 1)], d[(0, 1)], d[(2, 2)]);
-    let p = analytic::HertzDashpot {
-        mass: c.impactor.mass,
-        v0: model.v0[c.impactor.dof].abs(),
-        stiffness: c.stiffness,
-        exponent: c.exponent,
-        impedance: z,
-    };
+    let (p, _) = verify::infinite_plate(model).map_err(|e| e.to_string())?;
     let end = run.summary["contact"]["intervals_s"][0][1].as_f64().unwrap_or(250e-6);
     let tr = p.integrate(80e-6, 1e-9);
     let (ta, fa): (Vec<f64>, Vec<f64>) = tr
@@ -340,7 +305,6 @@ fn plate_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<V
         .iter()
         .map(|(t, uu)| Contour {
             title: format!("t = {:.0} µs", t * 1e6),
-            footer: String::new(),
             unit: u.length.clone(),
             cells: model
                 .elements
@@ -397,7 +361,7 @@ fn plate_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<V
             .iter()
             .enumerate()
         {
-            if let Some(v) = col(run, &format!("strain_{eid}_{fibre}_{comp}")) {
+            if let Some(v) = run.column_values(&format!("strain_{eid}_{fibre}_{comp}")) {
                 let side = if *fibre == "z2" {
                     "back face +T/2"
                 } else {
@@ -445,7 +409,7 @@ fn plate_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<V
 fn key_instants(run: &Run) -> Vec<(&'static str, usize)> {
     let s = &run.series;
     let nearest = |t: f64| s.time.iter().position(|&x| x >= t).unwrap_or(s.time.len() - 1);
-    let num = |k: &str| k.split('.').fold(&run.summary, |v, k| &v[k]).as_f64();
+    let num = |k: &str| crate::run::summary_value(&run.summary, k);
     let mut v = vec![("start", 0)];
     if let Some(t) = num("contact.peak_force_time_s") {
         v.push(("peak force", nearest(t)));
@@ -463,7 +427,7 @@ fn key_instants(run: &Run) -> Vec<(&'static str, usize)> {
 fn markdown(case: &Case, model: &Model, run: &Run, checks: &[CheckResult], figures: &[PathBuf], wall: f64) -> String {
     let s = &run.summary;
     let u = &model.units;
-    let g = |k: &str| k.split('.').fold(s, |v, k| &v[k]).as_f64();
+    let g = |k: &str| crate::run::summary_value(s, k);
     let mut m = String::new();
     let _ = writeln!(m, "# {} — {}\n", case.name, case.description);
     let _ = writeln!(m, "## What was run\n");

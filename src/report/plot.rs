@@ -9,7 +9,7 @@ use std::sync::Once;
 
 static FONT: Once = Once::new();
 
-pub fn register_font() {
+fn register_font() {
     FONT.call_once(|| {
         plotters::style::register_font(
             "sans-serif",
@@ -79,7 +79,7 @@ pub struct Chart {
     pub headroom: f64,
 }
 
-type Res = Result<(), String>;
+pub type Res = Result<(), String>;
 
 fn err<E: std::fmt::Display>(e: E) -> String {
     e.to_string()
@@ -102,22 +102,48 @@ fn range(v: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
     }
 }
 
-/// Writes `stem.png` and `stem.svg`; returns both paths.
-pub fn line_chart(chart: &Chart, stem: &Path) -> Result<Vec<PathBuf>, String> {
+/// A figure that draws itself on any plotters backend.
+pub trait Figure {
+    /// Size in pixels (PNG) and user units (SVG).
+    fn size(&self) -> (u32, u32);
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Res
+    where
+        DB::ErrorType: 'static;
+}
+
+/// Writes a figure as `stem.png` and `stem.svg`; returns both paths.
+pub fn write_figure(fig: &impl Figure, stem: &Path) -> Result<Vec<PathBuf>, String> {
     register_font();
     let png = stem.with_extension("png");
     let svg = stem.with_extension("svg");
     {
-        let root = BitMapBackend::new(&png, (1000, 640)).into_drawing_area();
-        draw_line_chart(chart, &root)?;
+        let root = BitMapBackend::new(&png, fig.size()).into_drawing_area();
+        fig.draw(&root)?;
         root.present().map_err(err)?;
     }
     {
-        let root = SVGBackend::new(&svg, (1000, 640)).into_drawing_area();
-        draw_line_chart(chart, &root)?;
+        let root = SVGBackend::new(&svg, fig.size()).into_drawing_area();
+        fig.draw(&root)?;
         root.present().map_err(err)?;
     }
     Ok(vec![png, svg])
+}
+
+impl Figure for Chart {
+    fn size(&self) -> (u32, u32) {
+        (1000, 640)
+    }
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Res
+    where
+        DB::ErrorType: 'static,
+    {
+        draw_line_chart(self, root)
+    }
+}
+
+/// Writes a line chart as `stem.png` and `stem.svg`; returns both paths.
+pub fn line_chart(chart: &Chart, stem: &Path) -> Result<Vec<PathBuf>, String> {
+    write_figure(chart, stem)
 }
 
 fn draw_line_chart<DB: DrawingBackend>(c: &Chart, root: &DrawingArea<DB, Shift>) -> Res
@@ -243,7 +269,6 @@ pub fn fmt_tick(v: f64) -> String {
 /// coloured by the mean of its corners, with a colour bar.
 pub struct Contour {
     pub title: String,
-    pub footer: String,
     pub unit: String,
     /// Cells: corner coordinates (x, y) and value.
     pub cells: Vec<([(f64, f64); 4], f64)>,
@@ -261,23 +286,35 @@ fn colormap(t: f64) -> RGBColor {
     RGBColor(m(a.0, b.0), m(a.1, b.1), m(a.2, b.2))
 }
 
+/// A row of contour maps (one per panel) with a title and a footer.
+struct ContourRow<'a> {
+    panels: &'a [Contour],
+    title: &'a str,
+    footer: &'a str,
+}
+
+impl Figure for ContourRow<'_> {
+    fn size(&self) -> (u32, u32) {
+        (380 * self.panels.len() as u32 + 120, 470)
+    }
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Res
+    where
+        DB::ErrorType: 'static,
+    {
+        draw_contours(self.panels, root, self.title, self.footer)
+    }
+}
+
 /// Writes a row of contour maps (one per panel) as `stem.png` and `stem.svg`.
 pub fn contours(panels: &[Contour], stem: &Path, overall_title: &str, footer: &str) -> Result<Vec<PathBuf>, String> {
-    register_font();
-    let png = stem.with_extension("png");
-    let svg = stem.with_extension("svg");
-    let w = 380 * panels.len() as u32 + 120;
-    {
-        let root = BitMapBackend::new(&png, (w, 470)).into_drawing_area();
-        draw_contours(panels, &root, overall_title, footer)?;
-        root.present().map_err(err)?;
-    }
-    {
-        let root = SVGBackend::new(&svg, (w, 470)).into_drawing_area();
-        draw_contours(panels, &root, overall_title, footer)?;
-        root.present().map_err(err)?;
-    }
-    Ok(vec![png, svg])
+    write_figure(
+        &ContourRow {
+            panels,
+            title: overall_title,
+            footer,
+        },
+        stem,
+    )
 }
 
 fn draw_contours<DB: DrawingBackend>(

@@ -390,9 +390,7 @@ pub fn to_deck(s: &Scene) -> Result<String, String> {
             ..
         } => {
             let m = crate::mesh::PlateMesh::new(*n)?;
-            let base = m.base;
-            let e = m.centre_element();
-            let contact = [e, e + 1, e + base, e + base + 1];
+            let contact = m.contact_grids();
             let mut pts: Vec<i64> = vec![999];
             pts.extend(contact.iter().map(|&g| g as i64));
             pts.extend(s.output.points.iter().copied());
@@ -404,25 +402,7 @@ pub fn to_deck(s: &Scene) -> Result<String, String> {
             );
             let _ = writeln!(w, "CONM2,999999,999,0,{}", format_real(s.impactor.mass));
             let last = n + 1;
-            let h = a / *n as f64;
-            let coord = |k: usize| (k as f64 - (*n as f64 + 2.0) / 2.0) * h;
-            for r in 1..=last {
-                for c in 1..=last {
-                    let _ = writeln!(
-                        w,
-                        "GRID,{},,{},{},0.0",
-                        m.grid(r, c),
-                        format_real(coord(c)),
-                        format_real(coord(r))
-                    );
-                }
-            }
-            for r in 1..=*n {
-                for c in 1..=*n {
-                    let g = m.grid(r, c);
-                    let _ = writeln!(w, "CQUAD4,{g},1,{g},{},{},{}", g + 1, g + base + 1, g + base);
-                }
-            }
+            m.write_grids_and_quads(w, *a);
             let _ = writeln!(w, "PSHELL,1,101,{},201,1.0", format_real(*thickness));
             mat2_line(w, 101, membrane, Some(*rho));
             mat2_line(w, 201, bending, None);
@@ -446,18 +426,7 @@ pub fn to_deck(s: &Scene) -> Result<String, String> {
                 let _ = writeln!(w, "NOLIN3,5,{g},3,{},10001,0,1.5", format_real(k / 4.0));
             }
             let _ = writeln!(w, "NOLIN3,5,999,3,{},10001,0,1.5", format_real(-k));
-            let _ = writeln!(
-                w,
-                "TF,111,10001,0,1.0,0.0,0.0,,,+TF-1\n+TF-1,999,3,-1.0,0.0,0.0,,,,+TF-2"
-            );
-            for (i, g) in contact.iter().enumerate() {
-                let next = if i < 3 {
-                    format!(",,,,+TF-{}", i + 3)
-                } else {
-                    String::new()
-                };
-                let _ = writeln!(w, "+TF-{},{g},3,0.25,0.0,0.0{next}", i + 2);
-            }
+            m.write_indentation_tf(w);
             let _ = writeln!(w, "TIC,3,999,3,0.0,{}", format_real(v0));
         }
     }
@@ -494,8 +463,7 @@ pub fn load(path: &Path) -> Result<(Scene, Model, RunOptions, String), Error> {
     let name = path
         .file_stem()
         .map_or("scene".into(), |n| n.to_string_lossy().into_owned());
-    let d = crate::deck::parse_deck_str(&name, &deck, Default::default())?;
-    let (model, _) = crate::model::build_model(&d)?;
+    let model = crate::model_from_text(&name, &deck)?;
     let opts = RunOptions {
         scheme: s.run.scheme,
         // Membrane asked for: solve the in-plane DOFs even where nothing loads them.

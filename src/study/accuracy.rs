@@ -16,7 +16,7 @@ use crate::integrate::{Scheme, SolveError};
 use crate::model::Model;
 use crate::report::plot::{self, Chart, Line};
 use crate::run::{run_model, Run, RunOptions};
-use crate::verify::analytic::{self, HertzDashpot};
+use crate::verify::analytic;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -149,8 +149,7 @@ fn skipped(problem: &str, scheme: Scheme, dt: f64, mesh: usize, why: String) -> 
 
 fn rod_model(n: usize) -> Result<Model, Error> {
     let text = crate::mesh::rod_deck(n).map_err(Error::Usage)?;
-    let d = crate::deck::parse_deck_str(&format!("rod-{n}"), &text, Default::default())?;
-    let (mut m, _) = crate::model::build_model(&d)?;
+    let mut m = crate::model_from_text(&format!("rod-{n}"), &text)?;
     m.time.every = 1;
     Ok(m)
 }
@@ -160,18 +159,7 @@ fn rod_model(n: usize) -> Result<Model, Error> {
 fn rod_rows(repeats: usize, progress: &dyn Fn(&str)) -> Result<Vec<Row>, Error> {
     let base = rod_model(144)?;
     let rod = base.rod.expect("a rod");
-    let c = base.contact.as_ref().expect("a contact");
-    let lc = rod.length / rod.wave_speed;
-    let rho = rod.e / (rod.wave_speed * rod.wave_speed);
-    let p = HertzDashpot {
-        mass: c.impactor.mass,
-        v0: base.v0[c.impactor.dof],
-        stiffness: c.stiffness,
-        exponent: c.exponent,
-        impedance: rho * rod.wave_speed * rod.area,
-    };
-    let tr = p.integrate(2.0 * lc, lc / 2.0e5);
-    let ev = HertzDashpot::events(&tr).expect("contact ends");
+    let (tr, ev, lc) = crate::verify::semi_infinite(&base)?;
     let reference = Reference {
         t: tr.time.clone(),
         f: tr.force.clone(),
@@ -186,11 +174,7 @@ fn rod_rows(repeats: usize, progress: &dyn Fn(&str)) -> Result<Vec<Row>, Error> 
             .filter(|e| matches!(e, crate::model::Element::Rod { .. }))
             .count();
         let eid = n / 2;
-        let Some(j) = run
-            .history_columns
-            .iter()
-            .position(|h| h.split(' ').next() == Some(&format!("strain_{eid}")))
-        else {
+        let Some(j) = run.column(&format!("strain_{eid}")) else {
             return f64::NAN;
         };
         let xc = (eid as f64 - 0.5) * rod.length / n as f64;

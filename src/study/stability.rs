@@ -90,22 +90,27 @@ fn color(err: f64) -> RGBColor {
     RGBColor((40.0 + 215.0 * r) as u8, (40.0 + 180.0 * g) as u8, 60)
 }
 
+/// The map: one panel per scheme.
+struct Map<'a> {
+    cells: &'a [Cell],
+    dt0: f64,
+}
+
+impl crate::report::plot::Figure for Map<'_> {
+    fn size(&self) -> (u32, u32) {
+        (1400, 560)
+    }
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, plotters::coord::Shift>) -> Result<(), String>
+    where
+        DB::ErrorType: 'static,
+    {
+        draw(self.cells, self.dt0, root)
+    }
+}
+
 /// Draws the map (one panel per scheme) as PNG and SVG.
 pub fn figure(cells: &[Cell], dt0: f64, stem: &Path) -> Result<Vec<PathBuf>, String> {
-    crate::report::plot::register_font();
-    let png = stem.with_extension("png");
-    let svg = stem.with_extension("svg");
-    {
-        let root = BitMapBackend::new(&png, (1400, 560)).into_drawing_area();
-        draw(cells, dt0, &root)?;
-        root.present().map_err(|e| e.to_string())?;
-    }
-    {
-        let root = SVGBackend::new(&svg, (1400, 560)).into_drawing_area();
-        draw(cells, dt0, &root)?;
-        root.present().map_err(|e| e.to_string())?;
-    }
-    Ok(vec![png, svg])
+    crate::report::plot::write_figure(&Map { cells, dt0 }, stem)
 }
 
 fn draw<DB: DrawingBackend>(

@@ -243,10 +243,10 @@ pub fn run_case(case: &Case) -> Result<(Run, Vec<CheckResult>), Error> {
 }
 
 fn num(v: &serde_json::Value, key: &str) -> f64 {
-    key.split('.').fold(v, |v, k| &v[k]).as_f64().unwrap_or(f64::NAN)
+    crate::run::summary_value(v, key).unwrap_or(f64::NAN)
 }
 
-/// Parameters of the semi-infinite rod (or infinite plate) model from the case's model.
+/// The impactor and Hertz law of a model, on a dashpot of the given impedance.
 fn dashpot(model: &Model, impedance: f64) -> Result<HertzDashpot, Error> {
     let c = model
         .contact
@@ -261,6 +261,7 @@ fn dashpot(model: &Model, impedance: f64) -> Result<HertzDashpot, Error> {
     })
 }
 
+/// Wave speed C, length L, axial stiffness EA and impedance ρCA of a rod target.
 fn rod_params(model: &Model) -> Result<(f64, f64, f64, f64), Error> {
     let r = model
         .rod
@@ -269,7 +270,9 @@ fn rod_params(model: &Model) -> Result<(f64, f64, f64, f64), Error> {
     Ok((r.wave_speed, r.length, r.e * r.area, rho * r.wave_speed * r.area))
 }
 
-fn semi_infinite(model: &Model) -> Result<(analytic::Trace, analytic::Events, f64), Error> {
+/// The model's ball on a semi-infinite rod, integrated over 2L/C (RK4, h = L/C/2e5):
+/// its trace, its events and L/C.
+pub fn semi_infinite(model: &Model) -> Result<(analytic::Trace, analytic::Events, f64), Error> {
     let (c, l, _, z) = rod_params(model)?;
     let p = dashpot(model, z)?;
     let lc = l / c;
@@ -279,10 +282,26 @@ fn semi_infinite(model: &Model) -> Result<(analytic::Trace, analytic::Events, f6
     Ok((tr, ev, lc))
 }
 
-fn column(run: &Run, name: &str) -> Result<usize, Error> {
-    run.history_columns
+/// The model's impactor on the infinite plate (Zener/Olsson impedance 8√(ρh D*) of
+/// its first shell section), and that impedance.
+pub fn infinite_plate(model: &Model) -> Result<(HertzDashpot, f64), Error> {
+    let s = model
+        .elements
         .iter()
-        .position(|c| c.split(' ').next() == Some(name))
+        .find_map(|e| match e {
+            Element::Quad4 { section, .. } => Some(section.clone()),
+            _ => None,
+        })
+        .ok_or_else(|| Error::Usage("infinite_plate needs a plate".into()))?;
+    let d = s
+        .d()
+        .ok_or_else(|| Error::Usage("infinite_plate needs bending stiffness".into()))?;
+    let z = analytic::plate_impedance(s.mass_per_area, d[(0, 0)], d[(1, 1)], d[(0, 1)], d[(2, 2)]);
+    Ok((dashpot(model, z)?, z))
+}
+
+fn column(run: &Run, name: &str) -> Result<usize, Error> {
+    run.column(name)
         .ok_or_else(|| Error::Usage(format!("the run has no history column {name}")))
 }
 
@@ -489,19 +508,7 @@ pub fn check(case: &Case, model: &Model, run: &Run, spec: &CheckSpec) -> Result<
             )
         }
         CheckSpec::InfinitePlate { until_s, max } => {
-            let s = model
-                .elements
-                .iter()
-                .find_map(|e| match e {
-                    Element::Quad4 { section, .. } => Some(section.clone()),
-                    _ => None,
-                })
-                .ok_or_else(|| Error::Usage("infinite_plate needs a plate".into()))?;
-            let d = s
-                .d()
-                .ok_or_else(|| Error::Usage("infinite_plate needs bending stiffness".into()))?;
-            let z = analytic::plate_impedance(s.mass_per_area, d[(0, 0)], d[(1, 1)], d[(0, 1)], d[(2, 2)]);
-            let p = dashpot(model, z)?;
+            let (p, z) = infinite_plate(model)?;
             let tr = p.integrate(*until_s, until_s / 2.0e4);
             let peak = tr.force.iter().fold(0.0f64, |a, &f| a.max(f));
             let sr = &run.series;
