@@ -76,7 +76,7 @@ steps = 50
 [[check]]
 kind = "gold"
 file = "missing.csv"
-default = { rel = 1e-6 }
+tol = { rel = 1e-6, floor = 1e-9 }
 "#,
     );
     let o = impactlab(&[
@@ -110,7 +110,7 @@ modify = {{ velocity_scale = 1.00001 }}
 [[check]]
 kind = "gold"
 file = "{}"
-default = {{ rel = 1e-7, abs = 1e-12 }}
+tol = {{ rel = 1e-7, floor = 1e-9 }}
 "#,
             gold.display()
         ),
@@ -207,5 +207,56 @@ fn verify_case_snapshots() {
             serde_json::to_string_pretty(&rounded(&s)).unwrap()
         );
         insta::assert_snapshot!(format!("{}__ledger", case.name), ledger);
+    }
+}
+
+/// Goal: the gold comparison passes round-off and fails a real change, for every
+/// column of both gold files. Round-off: every value moved by ±1e-12 of its column's
+/// (tensor's) peak, alternating in sign, the size a reordered expression in the solver
+/// leaves (reordering `4/Δt·Mv` as `4·Mv/Δt` in newmark.rs moves the rod's history by
+/// 2.9e-4 and the plate's by 6.9e-4 of the tolerance). Change: one column scaled by
+/// 1 + 1e-6 fails, for every column but the shear components that are zero up to
+/// round-off (below 1e-8 of their tensor's peak; they carry no signal to gate).
+#[test]
+fn gold_tolerance_passes_round_off_and_fails_a_change_of_any_column() {
+    use impactlab::verify::gold::{compare, read, tensor_peaks, GoldTol};
+    let tol = GoldTol { rel: 1e-7, floor: 1e-9 };
+    for file in [
+        "reference-data/gold/rod-history.csv",
+        "reference-data/gold/plate-history.csv",
+    ] {
+        let path = root().join(file);
+        let (header, rows) = read(&path).unwrap();
+        let peaks = tensor_peaks(&header, &rows);
+        assert!(compare(&path, &header, &rows, &tol).passed, "{file} against itself");
+        let noisy: Vec<Vec<f64>> = rows
+            .iter()
+            .enumerate()
+            .map(|(i, r)| {
+                let sign = if (i + r.len()) % 2 == 0 { 1.0 } else { -1.0 };
+                r.iter().zip(&peaks).map(|(x, p)| x + sign * 1e-12 * p).collect()
+            })
+            .collect();
+        let out = compare(&path, &header, &noisy, &tol);
+        assert!(out.passed, "{file} with round-off: {}", out.detail);
+        let mut round_off_only = Vec::new();
+        for (j, name) in header.iter().enumerate() {
+            let own = rows.iter().map(|r| r[j].abs()).fold(0.0, f64::max);
+            if own < 1e-8 * peaks[j] {
+                round_off_only.push(name.clone());
+                continue;
+            }
+            let mut moved = rows.clone();
+            moved.iter_mut().for_each(|r| r[j] *= 1.0 + 1e-6);
+            let out = compare(&path, &header, &moved, &tol);
+            assert!(!out.passed, "{file}: a 1e-6 change of {name} passed");
+            assert!(out.detail.contains(&format!("column {name} ")), "{}", out.detail);
+        }
+        assert!(
+            round_off_only
+                .iter()
+                .all(|n| n.ends_with("_xy") && file.contains("plate")),
+            "{file}: {round_off_only:?}"
+        );
     }
 }

@@ -1,12 +1,38 @@
 //! Gold-file comparison in the style of MOOSE's CSVDiff: a stored CSV of a reference
-//! run against the current history, column by column, each value accepted when
-//! |a − b| ≤ abs or |a − b| ≤ rel·|gold|. A missing gold file, a missing column or a
-//! different number of rows fails. The report names the first column and time that
-//! differ and the worst relative difference.
+//! run against the current history, column by column. A value passes when
+//!
+//!   |a − b| ≤ max(rel·|b|, floor·peak),   peak = max |column| in the gold file,
+//!
+//! so each column's absolute floor scales with its own size: round-off of a
+//! reordered expression (relative to the column's peak, not to a value near one of
+//! its zero crossings) passes, while a relative change of the column fails. The
+//! components of one stress or strain tensor (`…_xx`, `…_yy`, `…_xy` of one element
+//! and fibre) share one peak, the largest of the three: their round-off scales with
+//! the tensor, so a component that is zero up to round-off (the shear at the centre
+//! of a symmetric plate, 1e-9 of the normal strains) is compared at the tensor's
+//! round-off, not at its own noise. A missing
+//! gold file, a missing column or a different number of rows fails. The report names
+//! the first column and time that differ and the worst difference.
 
-use super::Tol;
-use std::collections::BTreeMap;
+use serde::{Deserialize, Serialize};
 use std::path::Path;
+
+/// Tolerance of a gold comparison, the same for every column.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct GoldTol {
+    /// Relative to the gold value.
+    pub rel: f64,
+    /// Absolute floor, as a fraction of the column's peak |value| in the gold file.
+    pub floor: f64,
+}
+
+impl GoldTol {
+    /// The tolerance in words, for tables.
+    pub fn text(&self) -> String {
+        format!("rel {:.1e}, floor {:.1e}·peak", self.rel, self.floor)
+    }
+}
 
 pub struct GoldOutcome {
     pub passed: bool,
@@ -42,13 +68,7 @@ pub fn read(path: &Path) -> Result<(Vec<String>, Vec<Vec<f64>>), String> {
 }
 
 /// Compares a history with its gold file.
-pub fn compare(
-    path: &Path,
-    columns: &[String],
-    history: &[Vec<f64>],
-    default: &Tol,
-    per_column: &BTreeMap<String, Tol>,
-) -> GoldOutcome {
+pub fn compare(path: &Path, columns: &[String], history: &[Vec<f64>], tol: &GoldTol) -> GoldOutcome {
     let (gh, grows) = match read(path) {
         Ok(g) => g,
         Err(e) => return fail(format!("missing or unreadable gold file: {e}")),
@@ -57,6 +77,7 @@ pub fn compare(
         return fail(format!("{} rows, gold has {}", history.len(), grows.len()));
     }
     let names: Vec<&str> = columns.iter().map(|c| c.split(' ').next().unwrap_or("")).collect();
+    let peaks = tensor_peaks(&gh, &grows);
     let mut worst = 0.0f64;
     let mut first: Option<String> = None;
     let mut worst_at = String::new();
@@ -64,10 +85,10 @@ pub fn compare(
         let Some(j) = names.iter().position(|n| n == name) else {
             return fail(format!("column {name} of the gold file is not in the run's history"));
         };
-        let tol = per_column.get(name).unwrap_or(default);
+        let peak = peaks[gj];
         for (row, grow) in history.iter().zip(&grows) {
             let (a, b) = (row[j], grow[gj]);
-            let allowed = tol.abs.max(tol.rel * b.abs());
+            let allowed = (tol.floor * peak).max(tol.rel * b.abs());
             let ratio = if allowed > 0.0 {
                 (a - b).abs() / allowed
             } else if a == b {
@@ -99,4 +120,31 @@ pub fn compare(
             ),
         },
     }
+}
+
+/// The tensor a column belongs to: its name without a trailing in-plane component.
+fn tensor_of(name: &str) -> &str {
+    ["_xx", "_yy", "_xy"]
+        .iter()
+        .find_map(|c| name.strip_suffix(c))
+        .unwrap_or(name)
+}
+
+/// The peak |value| of each column, taken over its whole tensor (see the module doc).
+pub fn tensor_peaks(header: &[String], rows: &[Vec<f64>]) -> Vec<f64> {
+    let own: Vec<f64> = (0..header.len())
+        .map(|j| rows.iter().map(|r| r[j].abs()).fold(0.0, f64::max))
+        .collect();
+    header
+        .iter()
+        .map(|h| {
+            let t = tensor_of(h);
+            header
+                .iter()
+                .zip(&own)
+                .filter(|(o, _)| tensor_of(o) == t)
+                .map(|(_, p)| *p)
+                .fold(0.0, f64::max)
+        })
+        .collect()
 }

@@ -139,13 +139,9 @@ pub enum CheckSpec {
         quantity: String,
         max: f64,
     },
-    /// The run's history against a stored gold CSV, per column.
-    Gold {
-        file: PathBuf,
-        default: Tol,
-        #[serde(default)]
-        columns: std::collections::BTreeMap<String, Tol>,
-    },
+    /// The run's history against a stored gold CSV, every column with the same
+    /// relative tolerance and a floor relative to the column's peak.
+    Gold { file: PathBuf, tol: gold::GoldTol },
 }
 
 /// The verdict of one check.
@@ -648,14 +644,14 @@ pub fn check(case: &Case, model: &Model, run: &Run, spec: &CheckSpec) -> Result<
                 ),
             )
         }
-        CheckSpec::Gold { file, default, columns } => {
+        CheckSpec::Gold { file, tol } => {
             let path = rel(case, file);
-            let out = gold::compare(&path, &run.history_columns, &run.history, default, columns);
+            let out = gold::compare(&path, &run.history_columns, &run.history, tol);
             res(
                 format!("gold {}", file.display()),
                 out.worst,
                 0.0,
-                default.text(),
+                tol.text(),
                 out.passed,
                 out.detail,
             )
