@@ -235,9 +235,13 @@ fn execute(cli: Cli) -> Result<u8, Error> {
             }
             let mut r = run::run_model(&model, &opts)?;
             if let Some(s) = &scene {
-                r.summary["effects"] = impactlab::scene::effects(s, &r.summary);
-                r.summary["contact_stiffness_source"] =
-                    serde_json::json!(impactlab::scene::contact_stiffness(s).map(|k| k.1).unwrap_or_default());
+                let m = &r.summary;
+                r.summary.effects = Some(impactlab::scene::effects(
+                    s,
+                    m.model.inert_dofs_skipped,
+                    m.run.steps_done,
+                ));
+                r.summary.contact_stiffness_source = impactlab::scene::contact_stiffness(s).map(|k| k.1).ok();
             }
             let dir = out.unwrap_or_else(|| PathBuf::from("out").join(&model.name));
             output::write_dir_atomically(&dir, &output::run_files(&model, &r)).map_err(|source| Error::Io {

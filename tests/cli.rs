@@ -11,6 +11,29 @@ fn impactlab(args: &[&str]) -> std::process::Output {
         .expect("binary runs")
 }
 
+/// Goal: times are printed in the deck's own time unit and every printed value
+/// carries its unit. Model: the rod deck relabelled `$ Units: mm, kN, ms` (the same
+/// numbers: impactlab never converts, so the contact lasts 7.442e-5 ms).
+#[test]
+fn printed_summary_keeps_the_decks_units() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(deck("rod.bdf")).unwrap();
+    assert!(text.contains("$ Units: in, lbf, s."));
+    let p = dir.path().join("rod-ms.bdf");
+    std::fs::write(&p, text.replace("$ Units: in, lbf, s.", "$ Units: mm, kN, ms")).unwrap();
+    let out = dir.path().join("o");
+    let o = impactlab(&["run", p.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("contact:  0.0000e0 ms..7.4420e-5 ms"), "{stdout}");
+    assert!(!stdout.contains(" us") && !stdout.contains("µs"), "{stdout}");
+    assert!(stdout.contains("v0 6.2100e1 mm/ms"), "{stdout}");
+    assert!(stdout.contains("peak force 2.1990e2 kN"), "{stdout}");
+    assert!(stdout.contains("initial 1.8486e-1 kN*mm"), "{stdout}");
+    let history = std::fs::read_to_string(out.join("history.csv")).unwrap();
+    assert!(history.starts_with("time [ms],contact_force [kN]"), "{history:.80}");
+}
+
 #[test]
 fn run_writes_history_energy_and_summary() {
     let dir = tempfile::tempdir().unwrap();
@@ -19,19 +42,20 @@ fn run_writes_history_energy_and_summary() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(stdout.contains("contact ends 0.413"), "{stdout}");
-    let s: serde_json::Value = serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
+    let bytes = std::fs::read(out.join("summary.json")).unwrap();
+    let s: serde_json::Value = serde_json::from_slice(&bytes).unwrap();
     for key in [
-        "/contact/intervals_s",
+        "/contact/intervals",
         "/contact/peak_force",
-        "/contact/peak_force_time_s",
+        "/contact/peak_force_time",
         "/impactor/initial_velocity",
-        "/impactor/velocity_zero_time_s",
+        "/impactor/velocity_zero_time",
         "/impactor/rebound_velocity",
         "/energy/initial",
         "/energy/transferred_fraction",
         "/energy/max_relative_error",
         "/run/scheme",
-        "/run/dt_s",
+        "/run/dt",
         "/run/steps",
         "/run/wall_s",
         "/rod/contact_end_tcl",
@@ -39,6 +63,19 @@ fn run_writes_history_energy_and_summary() {
     ] {
         assert!(s.pointer(key).is_some_and(|v| !v.is_null()), "summary lacks {key}");
     }
+    // The file reads back as the typed summary, with its provenance and units.
+    let typed: impactlab::run::Summary = serde_json::from_slice(&bytes).unwrap();
+    assert_eq!(typed.schema_version, 2);
+    assert_eq!(typed.impactlab_version, env!("CARGO_PKG_VERSION"));
+    use sha2::Digest;
+    let digest = sha2::Sha256::digest(std::fs::read(deck("rod.bdf")).unwrap());
+    let hex: String = digest.iter().map(|b| format!("{b:02x}")).collect();
+    assert_eq!(typed.deck_sha256, hex, "sha256sum of the deck");
+    let u = &typed.units;
+    assert_eq!(
+        [&u.length, &u.force, &u.time, &u.mass, &u.energy],
+        ["in", "lbf", "s", "lbf*s^2/in", "lbf*in"]
+    );
     let history = std::fs::read_to_string(out.join("history.csv")).unwrap();
     let header = history.lines().next().unwrap();
     for col in [

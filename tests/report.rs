@@ -28,11 +28,11 @@ fn rod_report_regenerates_and_matches_its_run() {
     let md = std::fs::read_to_string(dir.path().join("index.md")).unwrap();
     let s = &r.summary;
     for (label, v) in [
-        ("peak force", s["contact"]["peak_force"].as_f64().unwrap()),
-        ("contact ends (tC/L)", s["rod"]["contact_end_tcl"].as_f64().unwrap()),
+        ("peak force", s.contact.peak_force),
+        ("contact ends (tC/L)", s.rod.as_ref().unwrap().contact_end_tcl.unwrap()),
         (
             "impactor at rest (tC/L)",
-            s["rod"]["velocity_zero_time_tcl"].as_f64().unwrap(),
+            s.rod.as_ref().unwrap().velocity_zero_time_tcl.unwrap(),
         ),
     ] {
         assert!(

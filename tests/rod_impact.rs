@@ -39,10 +39,11 @@ fn rod_deck_has_147_active_dofs() {
 fn rod_contact_ends_at_041_and_impactor_stops_at_0224() {
     let r = run(&rod_model(), Scheme::Newmark, None, None);
     let s = &r.summary;
-    let end = f(&s["rod"]["contact_end_tcl"]);
-    let stop = f(&s["rod"]["velocity_zero_time_tcl"]);
-    let frac = f(&s["energy"]["transferred_fraction"]);
-    assert_eq!(s["contact"]["intervals_s"].as_array().unwrap().len(), 1);
+    let rod = s.rod.as_ref().unwrap();
+    let end = rod.contact_end_tcl.unwrap();
+    let stop = rod.velocity_zero_time_tcl.unwrap();
+    let frac = s.energy.transferred_fraction.unwrap();
+    assert_eq!(s.contact.intervals.len(), 1);
     assert!((end - 0.41340).abs() < 2e-3, "contact end {end}");
     assert!((stop - 0.22352).abs() < 2e-3, "impactor at rest {stop}");
     assert!((frac - 0.7911).abs() < 5e-3, "transferred {frac}");
@@ -116,7 +117,7 @@ fn rod_newmark_energy_error_is_second_order() {
         .iter()
         .map(|&dt| {
             let r = run(&m, Scheme::Newmark, Some(dt), Some((5e-4 / dt).round() as usize));
-            f(&r.summary["energy"]["max_relative_error"])
+            r.summary.energy.max_relative_error.unwrap()
         })
         .collect();
     for w in errs.windows(2) {
@@ -146,9 +147,9 @@ fn rod_momentum_is_conserved_to_round_off() {
     let m = rod_model();
     for scheme in [Scheme::Newmark, Scheme::Energy] {
         let r = run(&m, scheme, None, None);
-        let p0 = f(&r.summary["momentum"]["initial"]);
+        let p0 = r.summary.momentum.initial.unwrap();
         assert!((p0 - 9.587e-5 * 62.1).abs() < 1e-15);
-        let dp = f(&r.summary["momentum"]["max_abs_change"]);
+        let dp = r.summary.momentum.max_abs_change.unwrap();
         assert!(dp < 1e-10 * p0, "{scheme:?}: momentum change {dp}");
     }
 }
@@ -159,7 +160,7 @@ fn rod_momentum_is_conserved_to_round_off() {
 #[test]
 fn rod_nastran_and_newmark_agree_on_contact_duration() {
     let m = rod_model();
-    let d = |s: Scheme| f(&run(&m, s, None, None).summary["contact"]["duration_s"]);
+    let d = |s: Scheme| run(&m, s, None, None).summary.contact.duration.unwrap();
     let (a, b) = (d(Scheme::Newmark), d(Scheme::Nastran));
     assert!((a - b).abs() / a < 1e-4, "newmark {a} nastran {b}");
 }
@@ -173,7 +174,7 @@ fn rod_energy_scheme_conserves_energy_to_round_off() {
     let m = rod_model();
     for dt in [2e-7, 1.6e-6] {
         let r = run(&m, Scheme::Energy, Some(dt), Some((5e-4 / dt).round() as usize));
-        let e = f(&r.summary["energy"]["max_relative_error"]);
+        let e = r.summary.energy.max_relative_error.unwrap();
         assert!(e < 1e-10, "dt {dt}: {e}");
     }
 }

@@ -6,7 +6,7 @@
 
 mod common;
 
-use common::{deck, f, rod_model};
+use common::{deck, rod_model};
 use impactlab::integrate::{Scheme, SolveError};
 use impactlab::model::{Model, Modify};
 use impactlab::run::{run_model, Run, RunOptions};
@@ -46,12 +46,12 @@ fn sane(r: &Run, bound: f64) {
     for e in &r.energy {
         assert!(e.values().iter().all(|v| v.is_finite()));
     }
-    let max = f(&r.summary["energy"]["max_relative_error"]);
+    let max = r.summary.energy.max_relative_error.unwrap();
     assert!(max <= bound, "energy error {max:e} > {bound:e}");
     if matches!(r.scheme, Scheme::Newmark | Scheme::Energy) {
-        if let Some(last) = r.summary["contact"]["intervals_s"].as_array().and_then(|a| a.last()) {
-            if !r.summary["contact"]["open_at_end"].as_bool().unwrap() {
-                let end = f(&last[1]);
+        if let Some(last) = r.summary.contact.intervals.last() {
+            if !r.summary.contact.open_at_end {
+                let end = last[1];
                 let after: Vec<f64> = r
                     .energy
                     .iter()
@@ -74,7 +74,7 @@ fn semi_infinite_end(m: &Model) -> f64 {
 }
 
 fn contact_end(r: &Run) -> f64 {
-    f(&r.summary["contact"]["intervals_s"][0][1])
+    r.summary.contact.intervals[0][1]
 }
 
 /// Case 1: Impact velocity ×10 and ×100: a stiffer, shorter contact (T ∝ v^(-1/5)) and
@@ -153,9 +153,9 @@ fn contact_stiffness_1000x_and_0_001x() {
     let rod_mass = 2.5e-4 * 0.196 * 36.0;
     let mu = c.impactor.mass * rod_mass / (c.impactor.mass + rod_mass);
     let (_, fmax, dur) = rigid_target(mu, 62.1, c.stiffness);
-    let d = f(&r.summary["contact"]["duration_s"]);
+    let d = r.summary.contact.duration.unwrap();
     assert!((d / dur - 1.0).abs() < 0.02, "soft contact {d:e} vs rigid {dur:e}");
-    assert!((f(&r.summary["contact"]["peak_force"]) / fmax - 1.0).abs() < 0.05);
+    assert!((r.summary.contact.peak_force / fmax - 1.0).abs() < 0.05);
 }
 
 /// Case 4: Impactor mass ×1000 (long, quasi-static contact, many reflections during it)
@@ -230,7 +230,7 @@ fn long_run_1e5_steps() {
     for (scheme, bound) in [(Scheme::Newmark, 2e-5), (Scheme::Energy, 1e-10)] {
         let r = go(&m, scheme, 2e-7, 100_000).unwrap();
         sane(&r, bound);
-        let dp = f(&r.summary["momentum"]["max_abs_change"]) / f(&r.summary["momentum"]["initial"]);
+        let dp = r.summary.momentum.max_abs_change.unwrap() / r.summary.momentum.initial.unwrap();
         assert!(dp < 1e-9, "momentum {dp:e}");
     }
 }
@@ -243,11 +243,11 @@ fn plate_repeated_impacts_to_1_ms() {
     let m = impactlab::study::plate_model(25).unwrap();
     let r = go(&m, Scheme::Energy, 2e-7, 5000).unwrap();
     sane(&r, 1e-4); // the deck's non-conservative NOLIN3 remainder is booked, not lost
-    let iv = r.summary["contact"]["intervals_s"].as_array().unwrap();
+    let iv = &r.summary.contact.intervals;
     assert!(iv.len() >= 2, "{iv:?}");
     let mut last = -1.0;
     for i in iv {
-        let (a, b) = (f(&i[0]), f(&i[1]));
+        let (a, b) = (i[0], i[1]);
         assert!(a > last && b > a, "{iv:?}");
         last = b;
     }
@@ -281,8 +281,8 @@ fn plate_impact_next_to_the_clamped_edge() {
     let rc = go(&centre, Scheme::Energy, 1e-7, 3000).unwrap();
     let re = go(&edge, Scheme::Energy, 1e-7, 3000).unwrap();
     sane(&re, 1e-4);
-    assert!(f(&re.summary["contact"]["duration_s"]) < f(&rc.summary["contact"]["duration_s"]));
-    assert!(f(&re.summary["contact"]["peak_force"]) > f(&rc.summary["contact"]["peak_force"]));
+    assert!(re.summary.contact.duration.unwrap() < rc.summary.contact.duration.unwrap());
+    assert!(re.summary.contact.peak_force > rc.summary.contact.peak_force);
 }
 
 /// Case 10: Initial gap (contact starts at gap/v0) and initial overlap (the impactor
@@ -299,7 +299,7 @@ fn initial_gap_and_overlap() {
     );
     let r = go(&m, Scheme::Energy, 2e-7, 2500).unwrap();
     sane(&r, 1e-10);
-    let start = f(&r.summary["contact"]["intervals_s"][0][0]);
+    let start = r.summary.contact.intervals[0][0];
     assert!((start - gap / 62.1).abs() < 2e-7, "contact starts at {start:e}");
 
     let m = modified(
@@ -337,9 +337,9 @@ fn free_free_rod_drift_has_no_spurious_strain_energy() {
     // After contact: rod KE = ½ p²/M_rod (drift) + pulse KE; SE_t is the pulse's only.
     let last = r.energy.last().unwrap();
     let rod_mass = 2.5e-4 * 0.196 * 36.0;
-    let p_rod = 9.587e-5 * (62.1 - f(&r.summary["impactor"]["rebound_velocity"]));
+    let p_rod = 9.587e-5 * (62.1 - r.summary.impactor.rebound_velocity.unwrap());
     let drift = 0.5 * p_rod * p_rod / rod_mass;
-    let transferred = f(&r.summary["energy"]["initial"]) * f(&r.summary["energy"]["transferred_fraction"]);
+    let transferred = r.summary.energy.initial.unwrap() * r.summary.energy.transferred_fraction.unwrap();
     assert!(last.se_target < transferred - drift + 1e-9 * transferred);
     assert!(last.ke_target > drift);
 }

@@ -164,7 +164,8 @@ fn rounded(v: &serde_json::Value) -> serde_json::Value {
 }
 
 /// Snapshots: each case's summary (6 significant digits, timings and energy errors
-/// removed: they are machine- and round-off-dependent; the energy checks gate those)
+/// removed: they are machine- and round-off-dependent, the energy checks gate those;
+/// the version removed, so that a release does not rewrite every snapshot)
 /// and its ledger at eleven instants (energies to 6 significant digits and 1e-9 of U0
 /// absolute, so round-off-level values read 0).
 #[test]
@@ -175,7 +176,8 @@ fn verify_case_snapshots() {
         }
         let model = verify::case_model(&case).unwrap();
         let run = impactlab::run::run_model(&model, &verify::case_options(&case)).unwrap();
-        let mut s = run.summary.clone();
+        let mut s = serde_json::to_value(&run.summary).unwrap();
+        s.as_object_mut().unwrap().remove("impactlab_version");
         for k in ["wall_s", "factor_s", "solve_s", "assembly_s", "contact_iterations"] {
             s["run"].as_object_mut().unwrap().remove(k);
         }
@@ -259,4 +261,38 @@ fn gold_tolerance_passes_round_off_and_fails_a_change_of_any_column() {
             "{file}: {round_off_only:?}"
         );
     }
+}
+
+/// Goal: a `summary` check naming a key the summary does not have is an input error
+/// (exit 2) that names the case file and line, before anything runs; never a NaN.
+#[test]
+fn misspelt_summary_key_names_the_case_file_and_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = temp_case(
+        dir.path(),
+        r#"name = "typo"
+deck = "DECK"
+steps = 50
+[[check]]
+kind = "summary"
+key = "contact.peak_force_time_s"
+reference = 3e-5
+tol = { rel = 1e-3 }
+source = "a test"
+"#,
+    );
+    let o = impactlab(&[
+        "verify",
+        p.to_str().unwrap(),
+        "--out",
+        dir.path().join("o").to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains(&format!("{}:6:", p.display())), "{err}");
+    assert!(
+        err.contains("`contact.peak_force_time_s` is not a number of the summary"),
+        "{err}"
+    );
+    assert!(err.contains("contact.peak_force_time,"), "{err}");
 }

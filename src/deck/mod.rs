@@ -28,12 +28,32 @@ pub struct Units {
     pub time: String,
 }
 
+impl Units {
+    /// The name of a unit the deck does not declare.
+    pub const UNSPECIFIED: &'static str = "unspecified";
+
+    /// True when the deck declared its units.
+    pub fn declared(&self) -> bool {
+        self.time != Self::UNSPECIFIED
+    }
+
+    /// A scale and a label for printing times of the order of a contact: microseconds
+    /// when the deck's time unit is the second, the deck's own unit otherwise.
+    pub fn short_time(&self) -> (f64, String) {
+        if self.time == "s" {
+            (1e6, "µs".into())
+        } else {
+            (1.0, self.time.clone())
+        }
+    }
+}
+
 impl Default for Units {
     fn default() -> Self {
         Units {
-            length: "length".into(),
-            force: "force".into(),
-            time: "s".into(),
+            length: Self::UNSPECIFIED.into(),
+            force: Self::UNSPECIFIED.into(),
+            time: Self::UNSPECIFIED.into(),
         }
     }
 }
@@ -46,6 +66,9 @@ pub struct Deck {
     pub case: CaseControl,
     pub bulk: Bulk,
     pub units: Units,
+    /// SHA-256 (hex) of the deck's bytes followed by those of each INCLUDEd file in
+    /// the order read.
+    pub sha256: String,
     pub warnings: Vec<Diagnostic>,
 }
 
@@ -138,6 +161,7 @@ fn finish(
         case,
         bulk,
         units,
+        sha256: sections.sha256,
         warnings: diags.items,
     })
 }

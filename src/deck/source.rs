@@ -2,6 +2,7 @@
 //! case control and bulk data.
 
 use super::diag::{Diagnostic, Diagnostics, Pos};
+use sha2::{Digest, Sha256};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -31,29 +32,50 @@ pub struct Sections {
     pub bulk: Vec<SrcLine>,
     /// Unit system declared in a `$ Units: length, force, time` comment, if any.
     pub units: Option<(String, String, String)>,
+    /// SHA-256 (hex) of every byte read, the deck first, INCLUDEd files in order.
+    pub sha256: String,
 }
 
 /// Reads `path`, expands INCLUDEs (relative to the including file) and splits sections.
 pub fn read_sections(path: &Path, diags: &mut Diagnostics) -> Sections {
-    let mut lines = Vec::new();
-    let mut stack = Vec::new();
-    expand(path, None, &mut stack, &mut lines, diags);
-    split(lines, diags)
+    let mut read = Read::default();
+    expand(path, None, &mut read, diags);
+    let mut s = split(read.lines, diags);
+    s.sha256 = hex(read.hasher);
+    s
 }
 
 /// Reads deck text held in memory (used by tests and fuzzing); INCLUDEs are resolved
 /// relative to the working directory.
 pub fn sections_from_str(name: &str, text: &str, diags: &mut Diagnostics) -> Sections {
     let file: Arc<str> = Arc::from(name);
-    let mut lines = Vec::new();
-    let mut stack = vec![PathBuf::from(name)];
-    push_lines(file, text, Path::new("."), &mut stack, &mut lines, diags);
-    split(lines, diags)
+    let mut read = Read {
+        stack: vec![PathBuf::from(name)],
+        ..Default::default()
+    };
+    read.hasher.update(text.as_bytes());
+    push_lines(file, text, Path::new("."), &mut read, diags);
+    let mut s = split(read.lines, diags);
+    s.sha256 = hex(read.hasher);
+    s
 }
 
-fn expand(path: &Path, from: Option<Pos>, stack: &mut Vec<PathBuf>, out: &mut Vec<SrcLine>, diags: &mut Diagnostics) {
+/// What reading a deck and its INCLUDEs gathers.
+#[derive(Default)]
+struct Read {
+    /// The files being read, innermost last (to find INCLUDE cycles).
+    stack: Vec<PathBuf>,
+    lines: Vec<SrcLine>,
+    hasher: Sha256,
+}
+
+fn hex(h: Sha256) -> String {
+    h.finalize().iter().map(|b| format!("{b:02x}")).collect()
+}
+
+fn expand(path: &Path, from: Option<Pos>, read: &mut Read, diags: &mut Diagnostics) {
     let canon = path.canonicalize().unwrap_or_else(|_| path.to_path_buf());
-    if stack.contains(&canon) {
+    if read.stack.contains(&canon) {
         diags.push(
             Diagnostic::error(from, format!("INCLUDE cycle: '{}' includes itself", path.display())).card("INCLUDE"),
         );
@@ -71,22 +93,16 @@ fn expand(path: &Path, from: Option<Pos>, stack: &mut Vec<PathBuf>, out: &mut Ve
             return;
         }
     };
+    read.hasher.update(&bytes);
     let text = String::from_utf8_lossy(&bytes);
     let file: Arc<str> = Arc::from(path.display().to_string().as_str());
     let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
-    stack.push(canon);
-    push_lines(file, &text, &dir, stack, out, diags);
-    stack.pop();
+    read.stack.push(canon);
+    push_lines(file, &text, &dir, read, diags);
+    read.stack.pop();
 }
 
-fn push_lines(
-    file: Arc<str>,
-    text: &str,
-    dir: &Path,
-    stack: &mut Vec<PathBuf>,
-    out: &mut Vec<SrcLine>,
-    diags: &mut Diagnostics,
-) {
+fn push_lines(file: Arc<str>, text: &str, dir: &Path, read: &mut Read, diags: &mut Diagnostics) {
     for (i, raw) in text.lines().enumerate() {
         let line = SrcLine {
             file: file.clone(),
@@ -97,7 +113,7 @@ fn push_lines(
             match target {
                 Ok(name) => {
                     let p = dir.join(&name);
-                    expand(&p, Some(line.pos(1)), stack, out, diags);
+                    expand(&p, Some(line.pos(1)), read, diags);
                 }
                 Err(msg) => diags.push(
                     Diagnostic::error(Some(line.pos(1)), msg)
@@ -107,7 +123,7 @@ fn push_lines(
             }
             continue;
         }
-        out.push(line);
+        read.lines.push(line);
     }
 }
 

@@ -517,6 +517,7 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
         name: deck.name.clone(),
         title: case.title.clone(),
         units: deck.units.clone(),
+        deck_sha256: deck.sha256.clone(),
         dofs,
         dependent,
         elements,

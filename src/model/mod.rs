@@ -239,6 +239,8 @@ pub struct Model {
     pub name: String,
     pub title: String,
     pub units: Units,
+    /// SHA-256 of the deck the model was built from (see [`crate::deck::Deck::sha256`]).
+    pub deck_sha256: String,
     pub dofs: Vec<DofLabel>,
     pub dependent: Vec<DependentPoint>,
     pub elements: Vec<Element>,

@@ -118,33 +118,40 @@ pub fn run_files(model: &Model, run: &Run) -> Vec<(&'static str, Vec<u8>)> {
     ]
 }
 
-/// A short human summary of a run.
+/// A short human summary of a run. Every value carries the deck's unit; times of the
+/// order of a contact are printed in µs when the deck's time unit is the second.
 pub fn human_summary(model: &Model, run: &Run) -> String {
     let s = &run.summary;
-    let f = |v: &serde_json::Value| v.as_f64().map(|x| format!("{x:.4e}")).unwrap_or_else(|| "-".into());
-    let us = |v: &serde_json::Value| {
-        v.as_f64()
-            .map(|x| format!("{:.2} us", x * 1e6))
-            .unwrap_or_else(|| "-".into())
-    };
     let u = &model.units;
+    let (scale, tu) = u.short_time();
+    let num = |v: Option<f64>| v.map(|x| format!("{x:.4e}")).unwrap_or_else(|| "-".into());
+    let time = |v: Option<f64>| {
+        v.map(|x| match scale {
+            1.0 => format!("{x:.4e} {tu}"),
+            _ => format!("{:.2} {tu}", x * scale),
+        })
+        .unwrap_or_else(|| "-".into())
+    };
+    let tcl = |v: Option<f64>| v.map(|x| format!("{x:.4}")).unwrap_or_else(|| "-".into());
+    let velocity = format!("{}/{}", u.length, u.time);
     let mut out = String::new();
     out += &format!(
         "{}: {} DOF ({} solved), scheme {}, dt {:e} {}, {} steps, {:.3} s wall\n",
         model.name,
-        model.active_dofs(),
-        s["model"]["solved_dofs"],
+        s.model.active_dofs,
+        s.model.solved_dofs,
         run.scheme.name(),
         run.dt,
         u.time,
         run.stats.steps,
         run.stats.total_time.as_secs_f64()
     );
-    let c = &s["contact"];
-    let intervals: Vec<String> = c["intervals_s"]
-        .as_array()
-        .map(|a| a.iter().map(|i| format!("{}..{}", us(&i[0]), us(&i[1]))).collect())
-        .unwrap_or_default();
+    let intervals: Vec<String> = s
+        .contact
+        .intervals
+        .iter()
+        .map(|i| format!("{}..{}", time(Some(i[0])), time(Some(i[1]))))
+        .collect();
     out += &format!(
         "  contact:  {}\n",
         if intervals.is_empty() {
@@ -155,46 +162,32 @@ pub fn human_summary(model: &Model, run: &Run) -> String {
     );
     out += &format!(
         "  peak force {} {} at {}\n",
-        f(&c["peak_force"]),
+        num(Some(s.contact.peak_force)),
         u.force,
-        us(&c["peak_force_time_s"])
+        time(s.contact.peak_force_time)
     );
-    let i = &s["impactor"];
     out += &format!(
-        "  impactor: v0 {} , at rest at {}, rebound {} {}/{}\n",
-        f(&i["initial_velocity"]),
-        us(&i["velocity_zero_time_s"]),
-        f(&i["rebound_velocity"]),
-        u.length,
-        u.time
+        "  impactor: v0 {} {velocity}, at rest at {}, rebound {} {velocity}\n",
+        num(Some(s.impactor.initial_velocity)),
+        time(s.impactor.velocity_zero_time),
+        num(s.impactor.rebound_velocity),
     );
-    let e = &s["energy"];
     out += &format!(
-        "  energy:   initial {} {}*{}, transferred {}, max |error| {}\n",
-        f(&e["initial"]),
-        u.force,
-        u.length,
-        e["transferred_fraction"]
-            .as_f64()
+        "  energy:   initial {} {}, transferred {}, max |error| {}\n",
+        num(s.energy.initial),
+        s.units.energy,
+        s.energy
+            .transferred_fraction
             .map(|x| format!("{:.2} %", 100.0 * x))
             .unwrap_or("-".into()),
-        f(&e["max_relative_error"])
+        num(s.energy.max_relative_error)
     );
-    if let Some(r) = s.get("rod") {
+    if let Some(r) = &s.rod {
         out += &format!(
             "  rod (tC/L): contact ends {}, impactor at rest {}, peak force {}\n",
-            r["contact_end_tcl"]
-                .as_f64()
-                .map(|x| format!("{x:.4}"))
-                .unwrap_or("-".into()),
-            r["velocity_zero_time_tcl"]
-                .as_f64()
-                .map(|x| format!("{x:.4}"))
-                .unwrap_or("-".into()),
-            r["peak_force_time_tcl"]
-                .as_f64()
-                .map(|x| format!("{x:.4}"))
-                .unwrap_or("-".into()),
+            tcl(r.contact_end_tcl),
+            tcl(r.velocity_zero_time_tcl),
+            tcl(r.peak_force_time_tcl),
         );
     }
     out

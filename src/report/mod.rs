@@ -23,7 +23,7 @@ pub struct CaseReport {
     pub figures: Vec<PathBuf>,
     pub passed: usize,
     pub failed: usize,
-    pub summary: serde_json::Value,
+    pub summary: crate::run::Summary,
     /// The run's short human summary.
     pub human: String,
 }
@@ -96,8 +96,28 @@ pub fn report_case(case: &Case, dir: &Path) -> Result<CaseReport, Error> {
     })
 }
 
-fn us(t: &[f64]) -> Vec<f64> {
-    t.iter().map(|x| x * 1e6).collect()
+/// The time axis of a figure or table: the deck's time unit, in µs when it is the
+/// second ([`crate::deck::Units::short_time`]).
+struct TimeAxis {
+    scale: f64,
+    unit: String,
+}
+
+impl TimeAxis {
+    fn of(model: &Model) -> Self {
+        let (scale, unit) = model.units.short_time();
+        TimeAxis { scale, unit }
+    }
+    fn map(&self, t: &[f64]) -> Vec<f64> {
+        t.iter().map(|x| x * self.scale).collect()
+    }
+    fn label(&self) -> String {
+        format!("time [{}]", self.unit)
+    }
+    /// True when the deck's times are seconds, as the paper's published times are.
+    fn seconds(&self) -> bool {
+        self.unit == "µs"
+    }
 }
 
 fn energy_lines(e: &[EnergyRow], x: impl Fn(f64) -> f64) -> Vec<Line> {
@@ -118,7 +138,13 @@ fn rod_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<Vec
     let u = &model.units;
     let mut out = Vec::new();
     let s = &run.series;
-    let end = run.summary["rod"]["contact_end_tcl"].as_f64().unwrap_or(f64::NAN);
+    let ax = TimeAxis::of(model);
+    let end = run
+        .summary
+        .rod
+        .as_ref()
+        .and_then(|r| r.contact_end_tcl)
+        .unwrap_or(f64::NAN);
     let t_end = 1.2 * end * lc;
     let (tf, ff): (Vec<f64>, Vec<f64>) = s
         .time
@@ -138,14 +164,14 @@ fn rod_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<Vec
     out.extend(plot::line_chart(
         &Chart {
             title: "Impact force history (paper Fig. 2)".into(),
-            x_label: "time [µs]".into(),
+            x_label: ax.label(),
             y_label: format!("contact force [{}]", u.force),
             footer: footer.into(),
             lines: vec![
-                Line::new("impactlab (FE rod)", us(&tf), ff, 0),
-                Line::new("ball on a semi-infinite rod (analytic)", us(&ta), fa, 1).dashed(),
+                Line::new("impactlab (FE rod)", ax.map(&tf), ff, 0),
+                Line::new("ball on a semi-infinite rod (analytic)", ax.map(&ta), fa, 1).dashed(),
             ],
-            vlines: vec![(end * lc * 1e6, format!("contact ends, tC/L = {end:.4}"))],
+            vlines: vec![(end * lc * ax.scale, format!("contact ends, tC/L = {end:.4}"))],
             headroom: 0.25,
             ..Default::default()
         },
@@ -222,8 +248,11 @@ fn rod_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<Vec
         )
         .dashed(),
     );
-    let vz = run.summary["rod"]["velocity_zero_time_tcl"]
-        .as_f64()
+    let vz = run
+        .summary
+        .rod
+        .as_ref()
+        .and_then(|r| r.velocity_zero_time_tcl)
         .unwrap_or(f64::NAN);
     out.extend(plot::line_chart(
         &Chart {
@@ -251,7 +280,8 @@ fn plate_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<V
     let mut out = Vec::new();
     let s = &run.series;
     let (p, _) = verify::infinite_plate(model).map_err(|e| e.to_string())?;
-    let end = run.summary["contact"]["intervals_s"][0][1].as_f64().unwrap_or(250e-6);
+    let ax = TimeAxis::of(model);
+    let end = run.summary.contact.intervals.first().map_or(250e-6, |i| i[1]);
     let tr = p.integrate(80e-6, 1e-9);
     let (ta, fa): (Vec<f64>, Vec<f64>) = tr
         .time
@@ -270,23 +300,28 @@ fn plate_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<V
     out.extend(plot::line_chart(
         &Chart {
             title: "Impact force history (paper Fig. 6)".into(),
-            x_label: "time [µs]".into(),
+            x_label: ax.label(),
             y_label: format!("contact force [{}]", u.force),
             footer: footer.into(),
             lines: vec![
-                Line::new("impactlab (FE plate)", us(&tf), ff, 0),
+                Line::new("impactlab (FE plate)", ax.map(&tf), ff, 0),
                 Line::new(
                     "infinite plate, Zener/Olsson (valid before edge reflections)",
-                    us(&ta),
+                    ax.map(&ta),
                     fa,
                     1,
                 )
                 .dashed(),
             ],
-            vlines: vec![
-                (204.0, "measured contact time, 204 µs".into()),
-                (175.0, "paper: secondary impact, 175 µs".into()),
-            ],
+            // The paper's times are seconds: marked only on a deck in seconds.
+            vlines: if ax.seconds() {
+                vec![
+                    (204.0, "measured contact time, 204 µs".into()),
+                    (175.0, "paper: secondary impact, 175 µs".into()),
+                ]
+            } else {
+                Vec::new()
+            },
             headroom: 0.3,
             ..Default::default()
         },
@@ -304,7 +339,7 @@ fn plate_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<V
         .snapshots
         .iter()
         .map(|(t, uu)| Contour {
-            title: format!("t = {:.0} µs", t * 1e6),
+            title: format!("t = {:.0} {}", t * ax.scale, ax.unit),
             unit: u.length.clone(),
             cells: model
                 .elements
@@ -353,7 +388,7 @@ fn plate_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<V
         .collect::<std::collections::BTreeSet<i64>>()
         .into_iter()
         .collect();
-    let t: Vec<f64> = run.history.iter().map(|r| r[0] * 1e6).collect();
+    let t: Vec<f64> = run.history.iter().map(|r| r[0] * ax.scale).collect();
     for (k, eid) in mesh_gages.iter().skip(1).take(2).enumerate() {
         let (fig, gage) = if k == 0 { ("Fig. 8", "A") } else { ("Fig. 9", "B") };
         let mut lines = Vec::new();
@@ -374,7 +409,7 @@ fn plate_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<V
         out.extend(plot::line_chart(
             &Chart {
                 title: format!("Strain at gage {gage}, element {eid} (paper {fig})"),
-                x_label: "time [µs]".into(),
+                x_label: ax.label(),
                 y_label: "strain [-]".into(),
                 footer: footer.into(),
                 lines,
@@ -383,17 +418,17 @@ fn plate_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<V
             &dir.join(format!("gage-{}", gage.to_lowercase())),
         )?);
     }
-    let mut lines = energy_lines(&run.energy, |t| t * 1e6);
+    let mut lines = energy_lines(&run.energy, |t| t * ax.scale);
     lines.push(Line::new(
         "external work (deck's non-conservative NOLIN3)",
-        us(&run.energy.iter().map(|r| r.time).collect::<Vec<_>>()),
+        ax.map(&run.energy.iter().map(|r| r.time).collect::<Vec<_>>()),
         run.energy.iter().map(|r| r.external_work).collect(),
         6,
     ));
     out.extend(plot::line_chart(
         &Chart {
             title: "Energy distribution, impactor and plate".into(),
-            x_label: "time [µs]".into(),
+            x_label: ax.label(),
             y_label: format!("energy [{}·{}]", u.force, u.length),
             footer: footer.into(),
             lines,
@@ -409,16 +444,16 @@ fn plate_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<V
 fn key_instants(run: &Run) -> Vec<(&'static str, usize)> {
     let s = &run.series;
     let nearest = |t: f64| s.time.iter().position(|&x| x >= t).unwrap_or(s.time.len() - 1);
-    let num = |k: &str| crate::run::summary_value(&run.summary, k);
+    let sm = &run.summary;
     let mut v = vec![("start", 0)];
-    if let Some(t) = num("contact.peak_force_time_s") {
+    if let Some(t) = sm.contact.peak_force_time {
         v.push(("peak force", nearest(t)));
     }
-    if let Some(t) = num("impactor.velocity_zero_time_s") {
+    if let Some(t) = sm.impactor.velocity_zero_time {
         v.push(("impactor at rest", nearest(t)));
     }
-    if let Some(t) = run.summary["contact"]["intervals_s"][0][1].as_f64() {
-        v.push(("separation", nearest(t)));
+    if let Some(i) = sm.contact.intervals.first() {
+        v.push(("separation", nearest(i[1])));
     }
     v.push(("end", s.time.len() - 1));
     v
@@ -427,7 +462,7 @@ fn key_instants(run: &Run) -> Vec<(&'static str, usize)> {
 fn markdown(case: &Case, model: &Model, run: &Run, checks: &[CheckResult], figures: &[PathBuf], wall: f64) -> String {
     let s = &run.summary;
     let u = &model.units;
-    let g = |k: &str| crate::run::summary_value(s, k);
+    let ax = TimeAxis::of(model);
     let mut m = String::new();
     let _ = writeln!(m, "# {} — {}\n", case.name, case.description);
     let _ = writeln!(m, "## What was run\n");
@@ -438,71 +473,64 @@ fn markdown(case: &Case, model: &Model, run: &Run, checks: &[CheckResult], figur
     let _ = writeln!(
         m,
         "| DOF | {} active, {} solved, {} inert skipped |",
-        s["model"]["active_dofs"], s["model"]["solved_dofs"], s["model"]["inert_dofs_skipped"]
+        s.model.active_dofs, s.model.solved_dofs, s.model.inert_dofs_skipped
     );
     let _ = writeln!(m, "| wall time | {wall:.2} s (this machine) |");
     let _ = writeln!(m, "| units | {}, {}, {} |\n", u.length, u.force, u.time);
     let _ = writeln!(m, "## Summary\n");
     let _ = writeln!(m, "| quantity | value |\n|---|---|");
-    let iv: Vec<String> = s["contact"]["intervals_s"]
-        .as_array()
-        .map(|a| {
-            a.iter()
-                .map(|i| {
-                    format!(
-                        "{}–{} µs",
-                        sig(i[0].as_f64().unwrap_or(0.0) * 1e6, 5),
-                        sig(i[1].as_f64().unwrap_or(0.0) * 1e6, 5)
-                    )
-                })
-                .collect()
-        })
-        .unwrap_or_default();
+    let iv: Vec<String> = s
+        .contact
+        .intervals
+        .iter()
+        .map(|i| format!("{}–{} {}", sig(i[0] * ax.scale, 5), sig(i[1] * ax.scale, 5), ax.unit))
+        .collect();
     let _ = writeln!(m, "| contact intervals | {} |", iv.join(", "));
     let row = |m: &mut String, name: &str, v: Option<f64>, unit: &str| {
         let _ = writeln!(m, "| {name} | {} {unit} |", v.map_or("—".into(), |x| sig(x, 6)));
     };
-    row(&mut m, "peak force", g("contact.peak_force"), &u.force);
+    row(&mut m, "peak force", Some(s.contact.peak_force), &u.force);
     row(
         &mut m,
         "peak force time",
-        g("contact.peak_force_time_s").map(|t| t * 1e6),
-        "µs",
+        s.contact.peak_force_time.map(|t| t * ax.scale),
+        &ax.unit,
     );
     row(
         &mut m,
         "impactor at rest",
-        g("impactor.velocity_zero_time_s").map(|t| t * 1e6),
-        "µs",
+        s.impactor.velocity_zero_time.map(|t| t * ax.scale),
+        &ax.unit,
     );
     row(
         &mut m,
         "rebound velocity",
-        g("impactor.rebound_velocity"),
+        s.impactor.rebound_velocity,
         &format!("{}/{}", u.length, u.time),
     );
     row(
         &mut m,
         "energy transferred to the target",
-        g("energy.transferred_fraction").map(|x| 100.0 * x),
+        s.energy.transferred_fraction.map(|x| 100.0 * x),
         "%",
     );
-    row(&mut m, "max relative energy error", g("energy.max_relative_error"), "");
-    if model.rod.is_some() {
-        row(&mut m, "contact ends (tC/L)", g("rod.contact_end_tcl"), "");
-        row(&mut m, "impactor at rest (tC/L)", g("rod.velocity_zero_time_tcl"), "");
+    row(&mut m, "max relative energy error", s.energy.max_relative_error, "");
+    if let Some(r) = &s.rod {
+        row(&mut m, "contact ends (tC/L)", r.contact_end_tcl, "");
+        row(&mut m, "impactor at rest (tC/L)", r.velocity_zero_time_tcl, "");
     }
     let _ = writeln!(m, "\n## Energy ledger at key instants\n");
     let _ = writeln!(
         m,
-        "| instant | t [µs] | KE_i | SE_i | KE_t | KE_t (Eq. 16) | SE_t | total | W_ext | error |\n|---|---|---|---|---|---|---|---|---|---|"
+        "| instant | t [{}] | KE_i | SE_i | KE_t | KE_t (Eq. 16) | SE_t | total | W_ext | error |\n|---|---|---|---|---|---|---|---|---|---|",
+        ax.unit
     );
     for (name, k) in key_instants(run) {
         let r = &run.energy[k];
         let _ = writeln!(
             m,
             "| {name} | {} | {} | {} | {} | {} | {} | {} | {} | {:.2e} |",
-            sig(r.time * 1e6, 5),
+            sig(r.time * ax.scale, 5),
             sig(r.ke_impactor, 5),
             sig(r.se_impactor, 5),
             sig(r.ke_target, 5),

@@ -12,8 +12,7 @@ use crate::error::Error;
 use crate::integrate::Scheme;
 use crate::model::Model;
 use crate::run::RunOptions;
-use serde::Deserialize;
-use serde_json::{json, Value};
+use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -475,40 +474,72 @@ pub fn load(path: &Path) -> Result<(Scene, Model, RunOptions, String), Error> {
     Ok((s, model, opts, deck))
 }
 
-/// `effects.simulated` and `effects.skipped` for the summary, from the scene and the
-/// finished run's summary.
-pub fn effects(s: &Scene, summary: &Value) -> Value {
-    let mut sim = vec![json!({"name": "transverse bending and the Hertz contact", "reason": "the impact itself"})];
+/// A scene's effects, each with the reason it is in or out (`effects` in the summary).
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct EffectReport {
+    pub simulated: Vec<Effect>,
+    pub skipped: Vec<Effect>,
+}
+
+/// One effect and why it is simulated or skipped.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Effect {
+    pub name: String,
+    pub reason: String,
+}
+
+impl Effect {
+    fn new(name: &str, reason: impl Into<String>) -> Self {
+        Effect {
+            name: name.into(),
+            reason: reason.into(),
+        }
+    }
+}
+
+/// The effects of a scene, given how many DOFs the run left out as inert and how
+/// many steps it did.
+pub fn effects(s: &Scene, inert_dofs: usize, steps_done: usize) -> EffectReport {
+    let mut sim = vec![Effect::new(
+        "transverse bending and the Hertz contact",
+        "the impact itself",
+    )];
     let mut skip = Vec::new();
-    let inert = summary["model"]["inert_dofs_skipped"].as_u64().unwrap_or(0);
     match (&s.target, s.effects.membrane) {
-        (Target::Plate { .. }, true) => sim.push(json!({"name": "membrane", "reason": "asked for"})),
-        (Target::Plate { .. }, false) => skip.push(json!({"name": "membrane", "reason": format!(
-            "not asked for; a transverse impact on a plate with no membrane-bending coupling leaves the in-plane DOFs at zero: {inert} DOFs not solved")})),
-        (Target::Rod { .. }, _) => sim.push(json!({"name": "axial waves", "reason": "the rod's response"})),
+        (Target::Plate { .. }, true) => sim.push(Effect::new("membrane", "asked for")),
+        (Target::Plate { .. }, false) => skip.push(Effect::new("membrane", format!(
+            "not asked for; a transverse impact on a plate with no membrane-bending coupling leaves the in-plane DOFs at zero: {inert_dofs} DOFs not solved"))),
+        (Target::Rod { .. }, _) => sim.push(Effect::new("axial waves", "the rod's response")),
     }
     if s.effects.ledger {
-        sim.push(json!({"name": "energy ledger", "reason": "asked for"}));
+        sim.push(Effect::new("energy ledger", "asked for"));
     } else {
-        skip.push(json!({"name": "energy ledger", "reason": "not asked for: not computed"}));
+        skip.push(Effect::new("energy ledger", "not asked for: not computed"));
     }
     for name in ["rotary inertia", "damping", "gravity"] {
-        skip.push(json!({"name": name, "reason": "not asked for"}));
+        skip.push(Effect::new(name, "not asked for"));
     }
-    if s.run.after_separation.is_some() {
-        sim.push(json!({"name": "stop after separation", "reason": format!(
-            "run ends {} {} after the impactor separates (steps done: {})",
-            s.run.after_separation.unwrap_or(0.0), s.units.time, summary["run"]["steps_done"])}));
+    if let Some(after) = s.run.after_separation {
+        sim.push(Effect::new(
+            "stop after separation",
+            format!(
+                "run ends {after} {} after the impactor separates (steps done: {steps_done})",
+                s.units.time
+            ),
+        ));
     }
-    json!({ "simulated": sim, "skipped": skip })
+    EffectReport {
+        simulated: sim,
+        skipped: skip,
+    }
 }
 
 /// What each optional effect costs: wall time (median of 3 runs) of the scene as
 /// configured, with the membrane DOFs solved, and without the ledger.
 pub fn effect_costs(model: &Model, opts: &RunOptions) -> Result<String, Error> {
-    let time = |o: &RunOptions| -> Result<(f64, Value), Error> {
+    let time = |o: &RunOptions| -> Result<(f64, crate::run::Summary), Error> {
         let mut w = Vec::new();
-        let mut last = Value::Null;
+        let mut last = crate::run::Summary::default();
         for _ in 0..3 {
             let t0 = std::time::Instant::now();
             let r = crate::run::run_model(model, o)?;
@@ -549,7 +580,7 @@ pub fn effect_costs(model: &Model, opts: &RunOptions) -> Result<String, Error> {
         let _ = writeln!(
             out,
             "| {name} | {} | {t:.3} | {} |",
-            s["model"]["solved_dofs"], s["contact"]["peak_force"]
+            s.model.solved_dofs, s.contact.peak_force
         );
     }
     Ok(out)

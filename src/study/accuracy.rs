@@ -86,12 +86,11 @@ fn force_l2(run: &Run, r: &Reference) -> f64 {
 }
 
 fn duration(run: &Run) -> f64 {
-    run.summary["contact"]["intervals_s"][0][1].as_f64().unwrap_or(f64::NAN)
-        - run.summary["contact"]["intervals_s"][0][0].as_f64().unwrap_or(f64::NAN)
+    run.summary.contact.duration.unwrap_or(f64::NAN)
 }
 
 fn peak(run: &Run) -> f64 {
-    run.summary["contact"]["peak_force"].as_f64().unwrap_or(f64::NAN)
+    run.summary.contact.peak_force
 }
 
 /// Runs once to warm up, then `repeats` times; the last run and the median wall time.
@@ -119,7 +118,7 @@ fn row(problem: &str, mesh: usize, run: &Run, wall: f64, r: &Reference, strain: 
         error_peak_force: (peak(run) / r.peak - 1.0).abs(),
         error_force_l2: force_l2(run, r),
         error_strain: strain,
-        energy_error: run.summary["energy"]["max_relative_error"].as_f64().unwrap_or(f64::NAN),
+        energy_error: run.summary.energy.max_relative_error.unwrap_or(f64::NAN),
         wall_s: wall,
         solves: run.stats.solves,
         factorizations: run.stats.factorizations,

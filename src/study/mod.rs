@@ -87,10 +87,10 @@ pub fn plate_mesh_study(ns: &[usize], opts: &RunOptions) -> Result<Vec<MeshRow>,
         let sec = secondary_peak(&run);
         rows.push(MeshRow {
             n,
-            solved_dofs: s["model"]["solved_dofs"].as_u64().unwrap_or(0),
-            contact_duration_s: s["contact"]["duration_s"].as_f64().unwrap_or(f64::NAN),
-            peak_force: s["contact"]["peak_force"].as_f64().unwrap_or(f64::NAN),
-            peak_force_time_s: s["contact"]["peak_force_time_s"].as_f64().unwrap_or(f64::NAN),
+            solved_dofs: s.model.solved_dofs as u64,
+            contact_duration_s: s.contact.duration.unwrap_or(f64::NAN),
+            peak_force: s.contact.peak_force,
+            peak_force_time_s: s.contact.peak_force_time.unwrap_or(f64::NAN),
             secondary_peak_force: sec.map(|e| e.value),
             secondary_peak_time_s: sec.map(|e| e.time_s),
             gage_a_element: a,
@@ -186,10 +186,10 @@ pub fn bench_plate(repeats: usize, steps: usize) -> Result<String, Error> {
         })?;
         let write = t1.elapsed().as_secs_f64();
         let s = &run.stats;
-        let assembly = run.summary["run"]["assembly_s"].as_f64().unwrap_or(0.0);
+        let assembly = run.summary.run.assembly_s;
         let total = s.total_time.as_secs_f64();
         let (factor, solve) = (s.factor_time.as_secs_f64(), s.solve_time.as_secs_f64());
-        solved = run.summary["model"]["solved_dofs"].as_u64().unwrap_or(0);
+        solved = run.summary.model.solved_dofs as u64;
         if rep > 0 {
             stages.push([
                 read,

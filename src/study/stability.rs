@@ -45,7 +45,7 @@ pub fn run_map(model: &Model, dt0: f64, t_end: f64, progress: &dyn Fn(&str)) -> 
                     ..Default::default()
                 };
                 let outcome = run_model(&m, &opts)
-                    .map(|r| r.summary["energy"]["max_relative_error"].as_f64().unwrap_or(f64::NAN))
+                    .map(|r| r.summary.energy.max_relative_error.unwrap_or(f64::NAN))
                     .map_err(|e| e.to_string());
                 cells.push(Cell {
                     scheme,

@@ -100,8 +100,7 @@ pub fn audit(base: &Path, cand: &Path) -> Result<Vec<Moved>, String> {
 
 /// The audit as text: what moved, largest first; unchanged quantities counted.
 pub fn audit_text(moved: &[Moved]) -> String {
-    let is_timing =
-        |m: &Moved| m.what.starts_with("summary run.") && m.what.ends_with("_s") && m.what != "summary run.dt_s";
+    let is_timing = |m: &Moved| m.what.starts_with("summary run.") && m.what.ends_with("_s");
     let mut v: Vec<&Moved> = moved.iter().filter(|m| m.relative > 0.0 && !is_timing(m)).collect();
     v.sort_by(|a, b| b.relative.total_cmp(&a.relative));
     let mut s = format!(

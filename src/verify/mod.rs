@@ -14,7 +14,7 @@ use crate::error::Error;
 use crate::integrate::Scheme;
 use crate::ledger::EnergyRow;
 use crate::model::{Element, Model, Modify};
-use crate::run::{run_model, Run, RunOptions};
+use crate::run::{run_model, Run, RunOptions, Summary};
 use analytic::HertzDashpot;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -107,7 +107,7 @@ pub enum CheckSpec {
     /// A quantity of the ball on a semi-infinite rod (analytic::HertzDashpot with
     /// c = ρCA): contact_end_tcl, velocity_zero_tcl, peak_force, peak_force_tcl,
     /// rebound_velocity, transferred_fraction.
-    SemiInfiniteRod { quantity: String, tol: Tol },
+    SemiInfiniteRod { quantity: RodQuantity, tol: Tol },
     /// Strain of `element` (centre at x from the struck end) against d'Alembert's
     /// −F(t − x/C)/EA with the semi-infinite-rod force, while t < until_tcl;
     /// max |difference| / peak strain ≤ max.
@@ -126,7 +126,7 @@ pub enum CheckSpec {
     /// Halving Δt: fit the order of `quantity` (energy_error: the error itself;
     /// contact_duration, peak_force: successive differences) over `runs` step sizes.
     DtConvergence {
-        quantity: String,
+        quantity: Quantity,
         runs: usize,
         expected_order: f64,
         tol: f64,
@@ -136,7 +136,7 @@ pub enum CheckSpec {
     /// than the change before.
     MeshConvergence {
         meshes: Vec<usize>,
-        quantity: String,
+        quantity: Quantity,
         max: f64,
     },
     /// The run's history against a stored gold CSV, every column with the same
@@ -166,6 +166,17 @@ pub fn read_case(path: &Path) -> Result<Case, Error> {
             "{}: give exactly one of `deck` and `plate_mesh`",
             path.display()
         )));
+    }
+    for spec in &case.checks {
+        if let CheckSpec::Summary { key, .. } = spec {
+            if let Err(e) = Summary::check_key(key) {
+                let line = text
+                    .lines()
+                    .position(|l| l.contains(&format!("\"{key}\"")))
+                    .map_or(String::new(), |i| format!(":{}", i + 1));
+                return Err(Error::Usage(format!("{}{line}: summary check: {e}", path.display())));
+            }
+        }
     }
     case.path = path.to_path_buf();
     Ok(case)
@@ -238,8 +249,69 @@ pub fn run_case(case: &Case) -> Result<(Run, Vec<CheckResult>), Error> {
     Ok((run, results))
 }
 
-fn num(v: &serde_json::Value, key: &str) -> f64 {
-    crate::run::summary_value(v, key).unwrap_or(f64::NAN)
+/// A quantity of a run's summary that convergence checks follow; NaN where the run
+/// has none (no contact, no ledger), which fails the check.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Quantity {
+    EnergyError,
+    ContactDuration,
+    PeakForce,
+    PeakForceTime,
+}
+
+impl Quantity {
+    /// The quantity's value in a summary.
+    pub fn of(self, s: &Summary) -> f64 {
+        match self {
+            Quantity::EnergyError => s.energy.max_relative_error,
+            Quantity::ContactDuration => s.contact.duration,
+            Quantity::PeakForce => Some(s.contact.peak_force),
+            Quantity::PeakForceTime => s.contact.peak_force_time,
+        }
+        .unwrap_or(f64::NAN)
+    }
+
+    /// The name a case file gives it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Quantity::EnergyError => "energy_error",
+            Quantity::ContactDuration => "contact_duration",
+            Quantity::PeakForce => "peak_force",
+            Quantity::PeakForceTime => "peak_force_time",
+        }
+    }
+}
+
+/// A quantity of the ball on a semi-infinite rod, for [`CheckSpec::SemiInfiniteRod`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RodQuantity {
+    ContactEndTcl,
+    VelocityZeroTcl,
+    PeakForce,
+    PeakForceTcl,
+    ReboundVelocity,
+    TransferredFraction,
+}
+
+impl RodQuantity {
+    /// The name a case file gives it.
+    pub fn name(self) -> &'static str {
+        match self {
+            RodQuantity::ContactEndTcl => "contact_end_tcl",
+            RodQuantity::VelocityZeroTcl => "velocity_zero_tcl",
+            RodQuantity::PeakForce => "peak_force",
+            RodQuantity::PeakForceTcl => "peak_force_tcl",
+            RodQuantity::ReboundVelocity => "rebound_velocity",
+            RodQuantity::TransferredFraction => "transferred_fraction",
+        }
+    }
+}
+
+/// An optional summary value, NaN where the run has none (which fails any check).
+fn or_nan(v: Option<f64>) -> f64 {
+    v.unwrap_or(f64::NAN)
 }
 
 /// The impactor and Hertz law of a model, on a dashpot of the given impedance.
@@ -395,7 +467,7 @@ pub fn check(case: &Case, model: &Model, run: &Run, spec: &CheckSpec) -> Result<
             min_fraction,
             max_fraction,
         } => {
-            let end = num(&run.summary, "contact.duration_s");
+            let end = or_nan(run.summary.contact.intervals.first().map(|i| i[1]));
             let plateau = e.iter().find(|r| r.time >= end).map_or(f64::NAN, |r| r.se_target);
             let (k, v) = argmax(e.iter().map(|r| {
                 if (tcl(r.time) - near_tcl).abs() <= *half_width {
@@ -438,7 +510,7 @@ pub fn check(case: &Case, model: &Model, run: &Run, spec: &CheckSpec) -> Result<
             tol,
             source,
         } => {
-            let v = num(&run.summary, key);
+            let v = or_nan(run.summary.number(key).map_err(|e| Error::Usage(e.to_string()))?);
             res(
                 key.clone(),
                 v,
@@ -451,25 +523,23 @@ pub fn check(case: &Case, model: &Model, run: &Run, spec: &CheckSpec) -> Result<
         CheckSpec::SemiInfiniteRod { quantity, tol } => {
             let (_, ev, lc) = semi_infinite(model)?;
             let s = &run.summary;
-            let (v, r) = match quantity.as_str() {
-                "contact_end_tcl" => (num(s, "rod.contact_end_tcl"), ev.contact_end / lc),
-                "velocity_zero_tcl" => (num(s, "rod.velocity_zero_time_tcl"), ev.velocity_zero / lc),
-                "peak_force" => (num(s, "contact.peak_force"), ev.peak_force),
-                "peak_force_tcl" => (num(s, "contact.peak_force_time_s") / lc, ev.peak_time / lc),
-                "rebound_velocity" => (num(s, "impactor.rebound_velocity"), ev.rebound_velocity),
-                "transferred_fraction" => (
-                    num(s, "energy.transferred_fraction"),
-                    1.0 - (ev.rebound_velocity / num(s, "impactor.initial_velocity")).powi(2),
+            let rod = s.rod.as_ref();
+            let (v, r) = match quantity {
+                RodQuantity::ContactEndTcl => (or_nan(rod.and_then(|r| r.contact_end_tcl)), ev.contact_end / lc),
+                RodQuantity::VelocityZeroTcl => (
+                    or_nan(rod.and_then(|r| r.velocity_zero_time_tcl)),
+                    ev.velocity_zero / lc,
                 ),
-                q => {
-                    return Err(Error::Usage(format!(
-                        "{}: unknown semi_infinite_rod quantity {q}",
-                        case.path.display()
-                    )))
-                }
+                RodQuantity::PeakForce => (s.contact.peak_force, ev.peak_force),
+                RodQuantity::PeakForceTcl => (or_nan(s.contact.peak_force_time) / lc, ev.peak_time / lc),
+                RodQuantity::ReboundVelocity => (or_nan(s.impactor.rebound_velocity), ev.rebound_velocity),
+                RodQuantity::TransferredFraction => (
+                    or_nan(s.energy.transferred_fraction),
+                    1.0 - (ev.rebound_velocity / s.impactor.initial_velocity).powi(2),
+                ),
             };
             res(
-                format!("semi_infinite_rod {quantity}"),
+                format!("semi_infinite_rod {}", quantity.name()),
                 v,
                 r,
                 tol.text(),
@@ -540,10 +610,7 @@ pub fn check(case: &Case, model: &Model, run: &Run, spec: &CheckSpec) -> Result<
                 .sum();
             let mu = c.impactor.mass * target / (c.impactor.mass + target);
             let (_, f, dur) = analytic::rigid_target(mu, model.v0[c.impactor.dof], c.stiffness);
-            let (vd, vf) = (
-                num(&run.summary, "contact.duration_s"),
-                num(&run.summary, "contact.peak_force"),
-            );
+            let (vd, vf) = (or_nan(run.summary.contact.duration), run.summary.contact.peak_force);
             let ok = tol.accepts(vd, dur) && tol.accepts(vf, f);
             res(
                 "rigid_target duration".into(),
@@ -574,21 +641,10 @@ pub fn check(case: &Case, model: &Model, run: &Run, spec: &CheckSpec) -> Result<
                     o.steps = Some((t_end / dt).round() as usize);
                     run_model(model, &o)?
                 };
-                let v = match quantity.as_str() {
-                    "energy_error" => num(&r.summary, "energy.max_relative_error"),
-                    "contact_duration" => num(&r.summary, "contact.duration_s"),
-                    "peak_force" => num(&r.summary, "contact.peak_force"),
-                    q => {
-                        return Err(Error::Usage(format!(
-                            "{}: unknown dt_convergence quantity {q}",
-                            case.path.display()
-                        )))
-                    }
-                };
-                values.push(v);
+                values.push(quantity.of(&r.summary));
                 dts.push(dt);
             }
-            let (xs, ys): (Vec<f64>, Vec<f64>) = if quantity == "energy_error" {
+            let (xs, ys): (Vec<f64>, Vec<f64>) = if *quantity == Quantity::EnergyError {
                 (
                     dts.iter().map(|d| d.ln()).collect(),
                     values.iter().map(|v| v.abs().ln()).collect(),
@@ -601,7 +657,7 @@ pub fn check(case: &Case, model: &Model, run: &Run, spec: &CheckSpec) -> Result<
             };
             let p = slope(&xs, &ys);
             res(
-                format!("dt_convergence {quantity}"),
+                format!("dt_convergence {}", quantity.name()),
                 p,
                 *expected_order,
                 format!("± {tol}"),
@@ -617,22 +673,13 @@ pub fn check(case: &Case, model: &Model, run: &Run, spec: &CheckSpec) -> Result<
             for &n in meshes {
                 let m = crate::study::plate_model(n)?;
                 let r = run_model(&m, &case_options(case))?;
-                values.push(match quantity.as_str() {
-                    "contact_duration" => num(&r.summary, "contact.duration_s"),
-                    "peak_force_time" => num(&r.summary, "contact.peak_force_time_s"),
-                    q => {
-                        return Err(Error::Usage(format!(
-                            "{}: unknown mesh_convergence quantity {q}",
-                            case.path.display()
-                        )))
-                    }
-                });
+                values.push(quantity.of(&r.summary));
             }
             let ch: Vec<f64> = values.windows(2).map(|w| ((w[1] - w[0]) / w[1]).abs()).collect();
             let last = *ch.last().unwrap_or(&f64::NAN);
             let decreasing = ch.windows(2).all(|w| w[1] < w[0]);
             res(
-                format!("mesh_convergence {quantity}"),
+                format!("mesh_convergence {}", quantity.name()),
                 last,
                 0.0,
                 format!("≤ {max:.1e}, decreasing"),

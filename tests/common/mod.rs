@@ -43,7 +43,3 @@ pub fn interp(t: &[f64], y: &[f64], x: f64) -> f64 {
     let w = (x - t[k - 1]) / (t[k] - t[k - 1]);
     y[k - 1] * (1.0 - w) + y[k] * w
 }
-
-pub fn f(v: &serde_json::Value) -> f64 {
-    v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
-}

@@ -1,12 +1,17 @@
 //! One run: model → assembled system → integrator → recorded history, ledger and
-//! summary. Plain data in, plain data out; writing files is [`crate::output`]'s job.
+//! typed [`Summary`]. Plain data in, plain data out; writing files is [`crate::output`]'s job.
 
 use crate::assembly::{assemble, System};
 use crate::integrate::{integrate, Observer, RunStats, Scheme, SolveError, StepState};
 use crate::ledger::{EnergyRow, Ledger};
 use crate::model::{drop_inert, Element, Model, Source};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use serde_json::{json, Value};
+pub use summary::{
+    ContactSummary, EnergySummary, ImpactorSummary, ModelSummary, MomentumSummary, RodSummary, RunSummary, Summary,
+    UnitSystem,
+};
+
+pub mod summary;
 
 /// How to run a model; `None` means "as the deck says".
 #[derive(Debug, Clone)]
@@ -66,7 +71,7 @@ pub struct Run {
     pub energy: Vec<EnergyRow>,
     pub history_columns: Vec<String>,
     pub history: Vec<Vec<f64>>,
-    pub summary: Value,
+    pub summary: Summary,
     /// The solved DOFs of the run (inert DOFs dropped), for reading snapshots.
     pub dofs: Vec<crate::model::DofLabel>,
     /// Displacement states at the requested snapshot times: (time, u over `dofs`).
@@ -147,11 +152,6 @@ impl Run {
         let j = self.column(name)?;
         Some(self.history.iter().map(|r| r[j]).collect())
     }
-}
-
-/// A number of a summary by its dotted path (`"contact.peak_force"`).
-pub fn summary_value(summary: &Value, key: &str) -> Option<f64> {
-    key.split('.').fold(summary, |v, k| &v[k]).as_f64()
 }
 
 /// Column names (with units) of `history.csv`, in the order of [`history_row`].
@@ -341,7 +341,7 @@ pub fn run_model(model: &Model, opts: &RunOptions) -> Result<Run, SolveError> {
         None => (model, &sys),
     };
     let mut run = run_system(model, sys, opts)?;
-    run.summary["run"]["assembly_s"] = json!(assembly_s);
+    run.summary.run.assembly_s = assembly_s;
     Ok(run)
 }
 
@@ -387,11 +387,11 @@ pub fn run_system(model: &Model, sys: &System, opts: &RunOptions) -> Result<Run,
         energy: rec.energy,
         history_columns: history_columns(model),
         history: rec.history,
-        summary: Value::Null,
+        summary: Summary::default(),
         dofs: model.dofs.clone(),
         snapshots: rec.snapshots,
     };
-    run.summary = summary(model, &run);
+    run.summary = summarize(model, &run, 0.0);
     Ok(run)
 }
 
@@ -427,7 +427,7 @@ pub fn contact_intervals(t: &[f64], alpha: &[f64]) -> (Vec<[f64; 2]>, bool) {
     (out, open)
 }
 
-fn summary(model: &Model, run: &Run) -> Value {
+fn summarize(model: &Model, run: &Run, assembly_s: f64) -> Summary {
     let s = &run.series;
     let (intervals, open) = contact_intervals(&s.time, &s.alpha);
     let (kmax, fmax) = s
@@ -445,74 +445,79 @@ fn summary(model: &Model, run: &Run) -> Value {
         s.impactor_v.last().copied()
     };
     // Without a ledger the energy and momentum entries are null, not zero.
-    let has = !run.energy.is_empty();
-    let max_err = has.then(|| run.energy.iter().map(|r| r.error.abs()).fold(0.0, f64::max));
-    let e0 = run.energy.first().map(|r| r.total);
-    let p0 = run.energy.first().map(|r| r.momentum);
-    let max_dp = p0.map(|p0| run.energy.iter().map(|r| (r.momentum - p0).abs()).fold(0.0, f64::max));
-    let mut v = json!({
-        "deck": model.name,
-        "title": model.title,
-        "units": { "length": model.units.length, "force": model.units.force, "time": model.units.time },
-        "model": {
-            "active_dofs": model.active_dofs(),
-            "solved_dofs": model.n(),
-            "inert_dofs_skipped": model.inert_dofs,
-            "elements": model.elements.len(),
-            "contact_stiffness": model.contact.as_ref().map(|c| c.stiffness),
-            "contact_exponent": model.contact.as_ref().map(|c| c.exponent),
-            "contact_conservative": model.contact.as_ref().map(|c| c.nonconservative.is_empty()),
-        },
-        "contact": {
-            "intervals_s": intervals,
-            "open_at_end": open,
-            "duration_s": intervals.first().map(|i| i[1] - i[0]),
-            "peak_force": fmax,
-            "peak_force_time_s": s.time.get(kmax),
-        },
-        "impactor": {
-            "mass": model.contact.as_ref().map(|c| c.impactor.mass),
-            "initial_velocity": v0,
-            "velocity_zero_time_s": vzero,
-            "rebound_velocity": rebound,
-        },
-        "energy": {
-            "initial": e0,
-            "final_total": run.energy.last().map(|r| r.total),
-            "external_work": run.energy.last().map(|r| r.external_work),
-            "transferred_fraction": rebound.map(|vr| 1.0 - (vr / v0).powi(2)),
-            "max_relative_error": max_err,
-            "final_relative_error": run.energy.last().map(|r| r.error),
-        },
-        "momentum": {
-            "initial": p0,
-            "max_abs_change": max_dp,
-        },
-        "run": {
-            "scheme": run.scheme.name(),
-            "dt_s": run.dt,
-            "steps": run.steps,
-            "steps_done": run.stats.steps,
-            "factorizations": run.stats.factorizations,
-            "solves": run.stats.solves,
-            "contact_iterations": run.stats.contact_iterations,
-            "factor_s": run.stats.factor_time.as_secs_f64(),
-            "solve_s": run.stats.solve_time.as_secs_f64(),
-            "wall_s": run.stats.total_time.as_secs_f64(),
-        },
-    });
-    if let Some(r) = &model.rod {
+    let e = &run.energy;
+    let p0 = e.first().map(|r| r.momentum);
+    let peak_force_time = s.time.get(kmax).copied();
+    let rod = model.rod.map(|r| {
         let tau = r.length / r.wave_speed;
         let scale = |x: Option<f64>| x.map(|x| x / tau);
-        v["rod"] = json!({
-            "wave_speed": r.wave_speed,
-            "length": r.length,
-            "transit_time_s": tau,
-            "contact_intervals_tcl": intervals.iter().map(|i| [i[0] / tau, i[1] / tau]).collect::<Vec<_>>(),
-            "contact_end_tcl": scale(intervals.first().map(|i| i[1])),
-            "peak_force_time_tcl": scale(s.time.get(kmax).copied()),
-            "velocity_zero_time_tcl": scale(vzero),
-        });
+        RodSummary {
+            wave_speed: r.wave_speed,
+            length: r.length,
+            transit_time: tau,
+            contact_intervals_tcl: intervals.iter().map(|i| [i[0] / tau, i[1] / tau]).collect(),
+            contact_end_tcl: scale(intervals.first().map(|i| i[1])),
+            peak_force_time_tcl: scale(peak_force_time),
+            velocity_zero_time_tcl: scale(vzero),
+        }
+    });
+    let contact = model.contact.as_ref();
+    Summary {
+        schema_version: summary::SCHEMA_VERSION,
+        impactlab_version: env!("CARGO_PKG_VERSION").to_string(),
+        deck: model.name.clone(),
+        deck_sha256: model.deck_sha256.clone(),
+        title: model.title.clone(),
+        units: UnitSystem::of(&model.units),
+        model: ModelSummary {
+            active_dofs: model.active_dofs(),
+            solved_dofs: model.n(),
+            inert_dofs_skipped: model.inert_dofs,
+            elements: model.elements.len(),
+            contact_stiffness: contact.map(|c| c.stiffness),
+            contact_exponent: contact.map(|c| c.exponent),
+            contact_conservative: contact.map(|c| c.nonconservative.is_empty()),
+        },
+        contact: ContactSummary {
+            duration: intervals.first().map(|i| i[1] - i[0]),
+            intervals,
+            open_at_end: open,
+            peak_force: fmax,
+            peak_force_time,
+        },
+        impactor: ImpactorSummary {
+            mass: contact.map(|c| c.impactor.mass),
+            initial_velocity: v0,
+            velocity_zero_time: vzero,
+            rebound_velocity: rebound,
+        },
+        energy: EnergySummary {
+            initial: e.first().map(|r| r.total),
+            final_total: e.last().map(|r| r.total),
+            external_work: e.last().map(|r| r.external_work),
+            transferred_fraction: rebound.map(|vr| 1.0 - (vr / v0).powi(2)),
+            max_relative_error: (!e.is_empty()).then(|| e.iter().map(|r| r.error.abs()).fold(0.0, f64::max)),
+            final_relative_error: e.last().map(|r| r.error),
+        },
+        momentum: MomentumSummary {
+            initial: p0,
+            max_abs_change: p0.map(|p0| e.iter().map(|r| (r.momentum - p0).abs()).fold(0.0, f64::max)),
+        },
+        run: RunSummary {
+            scheme: run.scheme,
+            dt: run.dt,
+            steps: run.steps,
+            steps_done: run.stats.steps,
+            factorizations: run.stats.factorizations,
+            solves: run.stats.solves,
+            contact_iterations: run.stats.contact_iterations,
+            factor_s: run.stats.factor_time.as_secs_f64(),
+            solve_s: run.stats.solve_time.as_secs_f64(),
+            assembly_s,
+            wall_s: run.stats.total_time.as_secs_f64(),
+        },
+        rod,
+        effects: None,
+        contact_stiffness_source: None,
     }
-    v
 }

@@ -1,0 +1,264 @@
+//! The typed summary of a run (`summary.json`, schema version 2).
+//!
+//! Values are in the deck's units, never converted: `units` says what they are.
+//! No key names a unit, except the wall-clock costs under `run` (`wall_s`,
+//! `factor_s`, `solve_s`, `assembly_s`), which are real seconds whatever the deck's
+//! units. A value that does not exist for a run (no contact, no ledger, no rebound) is
+//! `null`, never zero or NaN.
+
+use crate::deck::Units;
+use crate::integrate::Scheme;
+use serde::{Deserialize, Serialize};
+
+/// The `schema_version` this build writes.
+pub const SCHEMA_VERSION: u32 = 2;
+
+/// Everything `summary.json` holds.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct Summary {
+    pub schema_version: u32,
+    pub impactlab_version: String,
+    /// The deck's name (its file stem).
+    pub deck: String,
+    /// SHA-256 of the deck's bytes followed by those of each INCLUDEd file in the
+    /// order read: for a deck without INCLUDE, what `sha256sum DECK` prints.
+    pub deck_sha256: String,
+    pub title: String,
+    pub units: UnitSystem,
+    pub model: ModelSummary,
+    pub contact: ContactSummary,
+    pub impactor: ImpactorSummary,
+    pub energy: EnergySummary,
+    pub momentum: MomentumSummary,
+    pub run: RunSummary,
+    /// Times in units of the rod's transit time L/C, for a uniform rod target.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rod: Option<RodSummary>,
+    /// For a scene: which effects were simulated and which were not, and why.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub effects: Option<crate::scene::EffectReport>,
+    /// For a scene: where the Hertz K came from (given, Eq. 5 or Eq. 18).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub contact_stiffness_source: Option<String>,
+}
+
+/// The deck's unit system, as its `$ Units:` line declares it, or "unspecified".
+/// Mass and energy are the consistent units that follow (force·time²/length and
+/// force·length): labels, not conversions.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct UnitSystem {
+    pub length: String,
+    pub force: String,
+    pub time: String,
+    pub mass: String,
+    pub energy: String,
+}
+
+impl UnitSystem {
+    /// The summary's units from the deck's.
+    pub fn of(u: &Units) -> Self {
+        let declared = u.declared();
+        let derived = |s: String| if declared { s } else { Units::UNSPECIFIED.to_string() };
+        UnitSystem {
+            length: u.length.clone(),
+            force: u.force.clone(),
+            time: u.time.clone(),
+            mass: derived(format!("{}*{}^2/{}", u.force, u.time, u.length)),
+            energy: derived(format!("{}*{}", u.force, u.length)),
+        }
+    }
+}
+
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct ModelSummary {
+    /// Active DOFs as NASTRAN counts them (solved, inert and TF-defined points).
+    pub active_dofs: usize,
+    pub solved_dofs: usize,
+    pub inert_dofs_skipped: usize,
+    pub elements: usize,
+    pub contact_stiffness: Option<f64>,
+    pub contact_exponent: Option<f64>,
+    pub contact_conservative: Option<bool>,
+}
+
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct ContactSummary {
+    /// [start, end] of every interval with α > 0, interpolated between steps.
+    pub intervals: Vec<[f64; 2]>,
+    /// True when the last interval is still open at the end of the run.
+    pub open_at_end: bool,
+    /// Length of the first interval.
+    pub duration: Option<f64>,
+    pub peak_force: f64,
+    pub peak_force_time: Option<f64>,
+}
+
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct ImpactorSummary {
+    pub mass: Option<f64>,
+    pub initial_velocity: f64,
+    /// First time the impactor's velocity crosses zero.
+    pub velocity_zero_time: Option<f64>,
+    /// Velocity at the end of the run, once contact has ended.
+    pub rebound_velocity: Option<f64>,
+}
+
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct EnergySummary {
+    pub initial: Option<f64>,
+    pub final_total: Option<f64>,
+    pub external_work: Option<f64>,
+    /// 1 − (v_rebound/v0)²: the fraction of the impactor's energy left in the target.
+    pub transferred_fraction: Option<f64>,
+    pub max_relative_error: Option<f64>,
+    pub final_relative_error: Option<f64>,
+}
+
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct MomentumSummary {
+    pub initial: Option<f64>,
+    pub max_abs_change: Option<f64>,
+}
+
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct RunSummary {
+    pub scheme: Scheme,
+    pub dt: f64,
+    pub steps: usize,
+    pub steps_done: usize,
+    pub factorizations: usize,
+    pub solves: usize,
+    pub contact_iterations: usize,
+    /// Wall-clock seconds of the factorisation, the solves, the assembly and the run.
+    pub factor_s: f64,
+    pub solve_s: f64,
+    pub assembly_s: f64,
+    pub wall_s: f64,
+}
+
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct RodSummary {
+    pub wave_speed: f64,
+    pub length: f64,
+    /// L/C.
+    pub transit_time: f64,
+    pub contact_intervals_tcl: Vec<[f64; 2]>,
+    pub contact_end_tcl: Option<f64>,
+    pub peak_force_time_tcl: Option<f64>,
+    pub velocity_zero_time_tcl: Option<f64>,
+}
+
+/// A dotted key (`contact.peak_force`) that names no number of the summary.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("`{key}` is not a number of the summary (numbers: {known})")]
+pub struct UnknownKey {
+    pub key: String,
+    pub known: String,
+}
+
+impl Summary {
+    /// A summary with every optional part present, to list what keys exist.
+    fn template() -> Summary {
+        Summary {
+            rod: Some(RodSummary::default()),
+            ..Default::default()
+        }
+    }
+
+    /// The numeric keys of the summary, dotted (`contact.peak_force`).
+    pub fn numeric_keys() -> Vec<String> {
+        fn walk(prefix: &str, v: &serde_json::Value, out: &mut Vec<String>) {
+            if let serde_json::Value::Object(m) = v {
+                for (k, x) in m {
+                    let key = if prefix.is_empty() {
+                        k.clone()
+                    } else {
+                        format!("{prefix}.{k}")
+                    };
+                    match x {
+                        serde_json::Value::Object(_) => walk(&key, x, out),
+                        serde_json::Value::Number(_) | serde_json::Value::Null => out.push(key),
+                        _ => {}
+                    }
+                }
+            }
+        }
+        let mut out = Vec::new();
+        let v = serde_json::to_value(Summary::template()).expect("a summary is plain data");
+        walk("", &v, &mut out);
+        out.retain(|k| !matches!(k.as_str(), "effects" | "contact_stiffness_source"));
+        out
+    }
+
+    /// Checks that `key` names a number of the summary.
+    pub fn check_key(key: &str) -> Result<(), UnknownKey> {
+        let keys = Summary::numeric_keys();
+        if keys.iter().any(|k| k == key) {
+            Ok(())
+        } else {
+            Err(UnknownKey {
+                key: key.to_string(),
+                known: keys.join(", "),
+            })
+        }
+    }
+
+    /// The number under a dotted key: `Ok(None)` where the run has no such value
+    /// (null), an error where the key names no number of the summary.
+    pub fn number(&self, key: &str) -> Result<Option<f64>, UnknownKey> {
+        Summary::check_key(key)?;
+        let v = serde_json::to_value(self).expect("a summary is plain data");
+        Ok(key.split('.').fold(&v, |v, k| &v[k]).as_f64())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Goal: every key the schema documents is numeric and found; a misspelt one is an
+    /// error that lists the valid ones; a missing optional value reads as None.
+    #[test]
+    fn dotted_keys_are_checked_against_the_schema() {
+        let keys = Summary::numeric_keys();
+        for k in [
+            "contact.peak_force",
+            "contact.duration",
+            "impactor.velocity_zero_time",
+            "run.dt",
+            "run.wall_s",
+            "rod.contact_end_tcl",
+            "energy.transferred_fraction",
+        ] {
+            assert!(keys.iter().any(|x| x == k), "{k} in {keys:?}");
+        }
+        let e = Summary::check_key("contact.peak_force_time_s").unwrap_err();
+        assert!(e.to_string().contains("contact.peak_force_time,"), "{e}");
+        assert!(Summary::check_key("run.scheme").is_err());
+        let s = Summary {
+            contact: ContactSummary {
+                peak_force: 3.0,
+                ..Default::default()
+            },
+            ..Default::default()
+        };
+        assert_eq!(s.number("contact.peak_force").unwrap(), Some(3.0));
+        assert_eq!(s.number("contact.duration").unwrap(), None);
+        assert_eq!(s.number("rod.contact_end_tcl").unwrap(), None);
+    }
+
+    /// Goal: the mass and energy units follow from a declared system and are
+    /// "unspecified" when the deck declares none.
+    #[test]
+    fn derived_units_follow_the_declared_ones() {
+        let u = UnitSystem::of(&Units {
+            length: "in".into(),
+            force: "lbf".into(),
+            time: "s".into(),
+        });
+        assert_eq!((u.mass.as_str(), u.energy.as_str()), ("lbf*s^2/in", "lbf*in"));
+        let u = UnitSystem::of(&Units::default());
+        assert_eq!(u.time, "unspecified");
+        assert_eq!(u.mass, "unspecified");
+    }
+}
