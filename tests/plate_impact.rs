@@ -22,7 +22,11 @@ fn plate() -> &'static (Model, Run) {
 }
 
 fn column<'a>(r: &'a Run, name: &str) -> impl Iterator<Item = f64> + 'a {
-    let j = r.column(name).unwrap_or_else(|| panic!("no column {name}"));
+    let j = r
+        .history_names()
+        .iter()
+        .position(|c| c == name)
+        .unwrap_or_else(|| panic!("no column {name}"));
     r.history.iter().map(move |row| row[j])
 }
 

@@ -7,6 +7,7 @@
 mod common;
 use common::*;
 use impactlab::integrate::Scheme;
+use impactlab::run::Column;
 
 /// Goal: the deck builds the model the paper describes.
 /// Model: rod.bdf. Reference: the paper's text, "a total of 147 degrees of freedom"
@@ -86,11 +87,7 @@ fn rod_midpoint_strain_is_the_shifted_contact_force() {
     let (c, ea) = (2.0e5, 10.0e6 * 0.196);
     let peak = r.series.force.iter().cloned().fold(0.0, f64::max) / ea;
     for (eid, xc) in [(72, 17.875), (73, 18.125)] {
-        let col = r
-            .history_columns
-            .iter()
-            .position(|h| h.starts_with(&format!("strain_{eid} ")))
-            .unwrap();
+        let col = r.column(&Column::rod_strain(eid)).unwrap();
         let mut worst: f64 = 0.0;
         for h in r.history.iter().filter(|h| h[0] * c / 36.0 < 1.45) {
             let reference = -interp(&r.series.time, &r.series.force, h[0] - xc / c) / ea;

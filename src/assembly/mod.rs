@@ -1,8 +1,7 @@
 //! Assembly: element matrices scattered into global sparse matrices over the solved
 //! DOFs (constrained DOFs are simply dropped: homogeneous SPCs).
 
-use crate::elements::{mass, quad4, rod};
-use crate::model::{Element, Model};
+use crate::model::Model;
 use faer::sparse::{SparseColMat, Triplet};
 
 /// Global stiffness and mass as triplet lists (duplicates summed when compressed).
@@ -14,78 +13,23 @@ pub struct System {
     /// Compressed K and M, for products.
     pub k_csc: SparseColMat<usize, f64>,
     pub m_csc: SparseColMat<usize, f64>,
-    /// The shell elements' part of K (the ledger's strain energy of shells).
-    pub k_shell_csc: SparseColMat<usize, f64>,
     /// The diagonal of M when M is diagonal (lumped masses, no rotary inertia coupling).
     pub m_lumped: Option<Vec<f64>>,
 }
 
-fn scatter(out: &mut Vec<Triplet<usize, usize, f64>>, dofs: &[Option<usize>], local: impl Fn(usize, usize) -> f64) {
-    for (a, da) in dofs.iter().enumerate() {
-        let Some(i) = da else { continue };
-        for (b, db) in dofs.iter().enumerate() {
-            let Some(j) = db else { continue };
-            let v = local(a, b);
-            if v != 0.0 {
-                out.push(Triplet::new(*i, *j, v));
-            }
-        }
-    }
-}
-
-/// Assembles K and M of a model.
+/// Assembles K and M of a model over its solved DOFs, element by element through
+/// [`crate::elements::Element::scatter`]: no element kind is named here.
 pub fn assemble(model: &Model) -> System {
     let n = model.n();
     let mut k = Vec::new();
     let mut m = Vec::new();
-    let mut k_shell = Vec::new();
     for e in &model.elements {
-        match e {
-            Element::Quad4 { xy, section, dofs, .. } => {
-                if let Some(a) = section.a() {
-                    let ke = quad4::membrane_stiffness(xy, &a);
-                    let d: Vec<Option<usize>> = dofs.iter().flat_map(|g| [g[0], g[1]]).collect();
-                    scatter(&mut k_shell, &d, |i, j| ke[(i, j)]);
-                }
-                if let Some(dm) = section.d() {
-                    let ke = quad4::bending_stiffness(xy, &dm);
-                    let d: Vec<Option<usize>> = dofs.iter().flat_map(|g| [g[2], g[3], g[4]]).collect();
-                    scatter(&mut k_shell, &d, |i, j| ke[(i, j)]);
-                }
-                let mn = quad4::lumped_mass(xy, section.mass_per_area);
-                for (corner, mi) in dofs.iter().zip(mn) {
-                    for d in corner[..3].iter().flatten() {
-                        m.push(Triplet::new(*d, *d, mi));
-                    }
-                }
-            }
-            Element::Rod { x, section, dofs, .. } => {
-                let ke = rod::stiffness(x[0], x[1], section);
-                let all: Vec<Option<usize>> = dofs.iter().flatten().copied().collect();
-                scatter(&mut k, &all, |a, b| ke[(a, b)]);
-                let mn = rod::lumped_mass(x[0], x[1], section);
-                for end in dofs {
-                    for d in end[..3].iter().flatten() {
-                        m.push(Triplet::new(*d, *d, mn));
-                    }
-                }
-            }
-            Element::Mass {
-                mass: mm,
-                inertia,
-                dofs,
-                ..
-            } => {
-                for d in dofs[..3].iter().flatten() {
-                    m.push(Triplet::new(*d, *d, *mm));
-                }
-                let j = mass::inertia_matrix(*inertia);
-                scatter(&mut m, &dofs[3..], |a, b| j[a][b]);
-            }
-        }
+        e.scatter(&mut k, &mut m);
     }
-    let k_shell_csc = SparseColMat::try_new_from_triplets(n, n, &k_shell).expect("indices are in range");
-    k.extend_from_slice(&k_shell);
+    let triplets = |v: Vec<(usize, usize, f64)>| -> Vec<Triplet<usize, usize, f64>> {
+        v.into_iter().map(|(i, j, x)| Triplet::new(i, j, x)).collect()
+    };
+    let (k, m) = (triplets(k), triplets(m));
     let k_csc = SparseColMat::try_new_from_triplets(n, n, &k).expect("indices are in range");
     let m_csc = SparseColMat::try_new_from_triplets(n, n, &m).expect("indices are in range");
     let lumped = m.iter().all(|t| t.row == t.col || t.val == 0.0);
@@ -96,7 +40,6 @@ pub fn assemble(model: &Model) -> System {
         m,
         k_csc,
         m_csc,
-        k_shell_csc,
     };
     if lumped {
         sys.m_lumped = Some(sys.m_diag());

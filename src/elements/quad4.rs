@@ -16,7 +16,8 @@
 //!   no rotary inertia (NASTRAN's default lumped mass).
 //! - Recovery at the centre: fibre strain ε(z) = ε_m + z κ (z from the mid-plane).
 
-use nalgebra::{Matrix3, SMatrix, Vector3};
+use super::{Cell, Fibre, Kernel, LocalMatrix, Measure, Plane, Recovered};
+use nalgebra::{DMatrix, Matrix3, SMatrix, Vector3};
 
 pub type Xy = [[f64; 2]; 4];
 
@@ -207,6 +208,165 @@ pub fn lumped_mass(xy: &Xy, mass_per_area: f64) -> [f64; 4] {
         }
     }
     m
+}
+
+/// A PSHELL with its materials resolved.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ShellSection {
+    pub thickness: f64,
+    /// Membrane material matrix G(MID1) (stress/strain), if any.
+    pub g_membrane: Option<Matrix3<f64>>,
+    /// Bending material matrix G(MID2)·(12I/T³), if any: D = this · T³/12.
+    pub g_bending: Option<Matrix3<f64>>,
+    /// (ρ T + NSM), mass per unit area.
+    pub mass_per_area: f64,
+}
+
+impl ShellSection {
+    /// Membrane stiffness per unit length A = G(MID1)·T.
+    pub fn a(&self) -> Option<Matrix3<f64>> {
+        self.g_membrane.map(|g| g * self.thickness)
+    }
+
+    /// Bending stiffness D = G(MID2)·(12I/T³)·T³/12.
+    pub fn d(&self) -> Option<Matrix3<f64>> {
+        self.g_bending.map(|g| g * self.thickness.powi(3) / 12.0)
+    }
+}
+
+/// A CQUAD4 in the plane z = `z`, with its stiffness matrices computed once (the
+/// ledger books its strain energy every step).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Quad4 {
+    pub xy: Xy,
+    pub z: f64,
+    pub section: ShellSection,
+    k_membrane: Option<SMatrix<f64, 8, 8>>,
+    k_bending: Option<SMatrix<f64, 12, 12>>,
+}
+
+impl Quad4 {
+    pub fn new(xy: Xy, z: f64, section: ShellSection) -> Self {
+        Quad4 {
+            k_membrane: section.a().map(|a| membrane_stiffness(&xy, &a)),
+            k_bending: section.d().map(|d| bending_stiffness(&xy, &d)),
+            xy,
+            z,
+            section,
+        }
+    }
+}
+
+/// Local DOFs of the membrane (u, v of each corner) and of bending (w, θx, θy).
+fn membrane_dofs() -> Vec<(usize, usize)> {
+    (0..8).map(|k| (k / 2, k % 2)).collect()
+}
+fn bending_dofs() -> Vec<(usize, usize)> {
+    (0..12).map(|k| (k / 3, 2 + k % 3)).collect()
+}
+
+fn local<const N: usize>(at: Vec<(usize, usize)>, k: &SMatrix<f64, N, N>) -> LocalMatrix {
+    LocalMatrix {
+        at,
+        values: DMatrix::from_fn(N, N, |i, j| k[(i, j)]),
+    }
+}
+
+fn parts(ue: &[f64]) -> (SMatrix<f64, 8, 1>, SMatrix<f64, 12, 1>) {
+    let um = SMatrix::<f64, 8, 1>::from_fn(|k, _| ue[6 * (k / 2) + k % 2]);
+    let ub = SMatrix::<f64, 12, 1>::from_fn(|k, _| ue[6 * (k / 3) + 2 + k % 3]);
+    (um, ub)
+}
+
+const FIBRES: [Fibre; 2] = [Fibre::Z1, Fibre::Z2];
+const PLANE: [Plane; 3] = [Plane::Xx, Plane::Yy, Plane::Xy];
+
+impl Kernel for Quad4 {
+    fn card(&self) -> &'static str {
+        "CQUAD4"
+    }
+    fn stiffness(&self) -> Vec<LocalMatrix> {
+        let mut out = Vec::new();
+        if let Some(k) = &self.k_membrane {
+            out.push(local(membrane_dofs(), k));
+        }
+        if let Some(k) = &self.k_bending {
+            out.push(local(bending_dofs(), k));
+        }
+        out
+    }
+    fn mass(&self) -> Vec<LocalMatrix> {
+        let m = lumped_mass(&self.xy, self.section.mass_per_area);
+        vec![LocalMatrix::diagonal(
+            (0..4).flat_map(|g| (0..3).map(move |c| ((g, c), m[g]))),
+        )]
+    }
+    fn strain_energy(&self, ue: &[f64]) -> f64 {
+        let (um, ub) = parts(ue);
+        // The membrane is at rest under a transverse impact (its DOFs are not solved).
+        let membrane = self.k_membrane.filter(|_| um.iter().any(|&x| x != 0.0));
+        let m = membrane.map_or(0.0, |k| (um.transpose() * k * um)[0]);
+        let b = self.k_bending.map_or(0.0, |k| (ub.transpose() * k * ub)[0]);
+        0.5 * (m + b)
+    }
+    fn recovered(&self, stress: bool) -> Vec<Recovered> {
+        let measures: &[Measure] = if stress {
+            &[Measure::Stress, Measure::Strain]
+        } else {
+            &[Measure::Strain]
+        };
+        let mut v = Vec::new();
+        for &measure in measures {
+            for f in FIBRES {
+                for c in PLANE {
+                    v.push(Recovered {
+                        measure,
+                        at: Some((f, c)),
+                    });
+                }
+            }
+        }
+        v
+    }
+    fn recover(&self, ue: &[f64], stress: bool) -> Vec<f64> {
+        let (um, ub) = parts(ue);
+        let em = membrane_strain(&self.xy, &um);
+        let kappa = curvature(&self.xy, &ub);
+        let h = 0.5 * self.section.thickness;
+        let mut stresses = Vec::new();
+        let mut strains = Vec::new();
+        for z in [-h, h] {
+            let eps: Vector3<f64> = em + kappa * z;
+            strains.extend(eps.iter());
+            let sm = self.section.g_membrane.map(|g| g * em).unwrap_or_default();
+            let sb = self.section.g_bending.map(|g| g * kappa * z).unwrap_or_default();
+            stresses.extend((sm + sb).iter());
+        }
+        if stress {
+            stresses.extend(strains);
+            stresses
+        } else {
+            strains
+        }
+    }
+    fn eq16_mass(&self) -> Option<f64> {
+        Some(self.section.mass_per_area * area(&self.xy))
+    }
+    fn points(&self) -> Vec<[f64; 3]> {
+        self.xy.iter().map(|p| [p[0], p[1], self.z]).collect()
+    }
+    fn cell(&self) -> Option<Cell> {
+        Some(Cell::Quad)
+    }
+    fn clone_box(&self) -> Box<dyn Kernel> {
+        Box::new(self.clone())
+    }
+    fn as_any(&self) -> &dyn std::any::Any {
+        self
+    }
+    fn as_any_mut(&mut self) -> &mut dyn std::any::Any {
+        self
+    }
 }
 
 #[cfg(test)]

@@ -6,7 +6,8 @@
 //! translational DOFs (NASTRAN's default, no COUPMASS): (ρA + NSM)·L/2 per node.
 //! Recovery: axial strain (e·(u2 − u1))/L, constant over the element.
 
-use nalgebra::{SMatrix, Vector3};
+use super::{Cell, Kernel, LocalMatrix, Measure, Recovered};
+use nalgebra::{DMatrix, SMatrix, Vector3};
 
 /// Section and material of a rod.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -73,6 +74,81 @@ pub fn strain_energy(x1: [f64; 3], x2: [f64; 3], s: &RodSection, d1: [f64; 6], d
 pub fn axial_strain(x1: [f64; 3], x2: [f64; 3], u1: [f64; 3], u2: [f64; 3]) -> f64 {
     let (e, l) = axis(x1, x2);
     e.dot(&(Vector3::from(u2) - Vector3::from(u1))) / l
+}
+
+/// A CROD between two grids.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Rod {
+    pub x: [[f64; 3]; 2],
+    pub section: RodSection,
+}
+
+impl Rod {
+    /// Its length.
+    pub fn length(&self) -> f64 {
+        axis(self.x[0], self.x[1]).1
+    }
+}
+
+fn end(ue: &[f64], k: usize) -> [f64; 6] {
+    std::array::from_fn(|c| ue[6 * k + c])
+}
+
+impl Kernel for Rod {
+    fn card(&self) -> &'static str {
+        "CROD"
+    }
+    fn stiffness(&self) -> Vec<LocalMatrix> {
+        let k = stiffness(self.x[0], self.x[1], &self.section);
+        vec![LocalMatrix {
+            at: (0..12).map(|i| (i / 6, i % 6)).collect(),
+            values: DMatrix::from_fn(12, 12, |i, j| k[(i, j)]),
+        }]
+    }
+    fn mass(&self) -> Vec<LocalMatrix> {
+        let m = lumped_mass(self.x[0], self.x[1], &self.section);
+        vec![LocalMatrix::diagonal(
+            (0..2).flat_map(|g| (0..3).map(move |c| ((g, c), m))),
+        )]
+    }
+    fn strain_energy(&self, ue: &[f64]) -> f64 {
+        strain_energy(self.x[0], self.x[1], &self.section, end(ue, 0), end(ue, 1))
+    }
+    fn recovered(&self, stress: bool) -> Vec<Recovered> {
+        let axial = |measure| Recovered { measure, at: None };
+        if stress {
+            vec![axial(Measure::Stress), axial(Measure::Strain)]
+        } else {
+            vec![axial(Measure::Strain)]
+        }
+    }
+    fn recover(&self, ue: &[f64], stress: bool) -> Vec<f64> {
+        let t = |k: usize| -> [f64; 3] { std::array::from_fn(|c| ue[6 * k + c]) };
+        let eps = axial_strain(self.x[0], self.x[1], t(0), t(1));
+        if stress {
+            vec![self.section.e * eps, eps]
+        } else {
+            vec![eps]
+        }
+    }
+    fn eq16_mass(&self) -> Option<f64> {
+        Some(mass(self.x[0], self.x[1], &self.section))
+    }
+    fn points(&self) -> Vec<[f64; 3]> {
+        self.x.to_vec()
+    }
+    fn cell(&self) -> Option<Cell> {
+        Some(Cell::Line)
+    }
+    fn clone_box(&self) -> Box<dyn Kernel> {
+        Box::new(self.clone())
+    }
+    fn as_any(&self) -> &dyn std::any::Any {
+        self
+    }
+    fn as_any_mut(&mut self) -> &mut dyn std::any::Any {
+        self
+    }
 }
 
 #[cfg(test)]

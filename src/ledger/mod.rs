@@ -7,9 +7,11 @@
 //! - KE_t(Eq. 16) = Σ_e ½ m_e v̄_e², v̄_e the mean of the element's nodal velocities, as
 //!   the paper computes it for rods (applied to shells likewise, over four corners). It is not the model's kinetic energy: it drops the energy
 //!   of the velocity difference across each element, ½ m_e (Δv/2)²;
-//! - SE_t = ½ uᵀKu, summed element by element from relative displacements (for rods
-//!   exactly Eq. 17, Σ ½ k_j (δ_j − δ_{j+1})²), so that the rigid-body drift of a
-//!   free-free target adds no round-off;
+//! - SE_t = ½ uᵀKu, summed element by element through the element interface
+//!   ([`crate::elements::Element::strain_energy`]), so every element kind is in it by
+//!   construction; rods compute it from relative displacements (exactly Eq. 17,
+//!   Σ ½ k_j (δ_j − δ_{j+1})²), so that the rigid-body drift of a free-free target
+//!   adds no round-off;
 //! - U_t = KE_i + SE_i + KE_t + SE_t (Eq. 13);
 //! - W_ext: work of the loads that derive from no potential (the non-conservative
 //!   remainder of the NOLIN3 loads), accumulated with the scheme's own step load;
@@ -18,7 +20,7 @@
 
 use crate::assembly::System;
 use crate::integrate::StepState;
-use crate::model::{Element, Model};
+use crate::model::Model;
 
 /// One row of the ledger.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
@@ -71,8 +73,6 @@ pub struct Ledger<'a> {
     target: Vec<bool>,
     direction: Vec<bool>,
     mv: Vec<f64>,
-    ku: Vec<f64>,
-    has_shells: bool,
     u_prev: Vec<f64>,
     eq16: Eq16Elements,
     external_work: f64,
@@ -93,17 +93,11 @@ impl<'a> Ledger<'a> {
             target: model.target_mask(),
             direction: model.dofs.iter().map(|d| d.comp == comp).collect(),
             mv: vec![0.0; n],
-            ku: vec![0.0; n],
-            has_shells: model.elements.iter().any(|e| matches!(e, Element::Quad4 { .. })),
             u_prev: model.u0.clone(),
             eq16: eq16_elements(model),
             external_work: 0.0,
             initial: None,
         }
-    }
-
-    fn sys_shell_mul(&mut self, u: &[f64]) {
-        crate::assembly::mul(&self.sys.k_shell_csc, u, &mut self.ku);
     }
 
     /// Books a state; states must come in step order starting with step 0.
@@ -122,11 +116,7 @@ impl<'a> Ledger<'a> {
                 p += self.mv[i];
             }
         }
-        let mut se_t = strain_energy(m, s.u);
-        if self.has_shells {
-            self.sys_shell_mul(s.u);
-            se_t += 0.5 * s.u.iter().zip(&self.ku).map(|(a, b)| a * b).sum::<f64>();
-        }
+        let se_t = strain_energy(m, s.u);
         let se_i = m.contact.as_ref().map(|c| c.potential(s.alpha)).unwrap_or(0.0);
         if let Some(c) = &m.contact {
             if s.step > 0 {
@@ -159,24 +149,9 @@ impl<'a> Ledger<'a> {
     }
 }
 
-/// Strain energy of the rods, element by element (shells are added from K_shell).
+/// Strain energy ½uᵀKu of the target, element by element.
 pub fn strain_energy(model: &Model, u: &[f64]) -> f64 {
-    let at = |d: &[Option<usize>; 6]| -> [f64; 6] {
-        let mut out = [0.0; 6];
-        for (k, i) in d.iter().enumerate() {
-            if let Some(i) = i {
-                out[k] = u[*i];
-            }
-        }
-        out
-    };
-    let mut se = 0.0;
-    for e in &model.elements {
-        if let Element::Rod { x, section, dofs, .. } = e {
-            se += crate::elements::rod::strain_energy(x[0], x[1], section, at(&dofs[0]), at(&dofs[1]));
-        }
-    }
-    se
+    model.elements.iter().map(|e| e.strain_energy(u)).sum()
 }
 
 /// The element masses and corner translation DOFs the paper's Eq. 16 sums over.
@@ -184,22 +159,12 @@ pub type Eq16Elements = Vec<(f64, Vec<[Option<usize>; 3]>)>;
 
 /// Element masses and corners for [`ke_eq16`], computed once per model.
 pub fn eq16_elements(model: &Model) -> Eq16Elements {
-    let corners = |d: &[[Option<usize>; 6]]| d.iter().map(|c| [c[0], c[1], c[2]]).collect();
     model
         .elements
         .iter()
-        .filter_map(|e| match e {
-            Element::Rod { x, section, dofs, .. } => {
-                Some((crate::elements::rod::mass(x[0], x[1], section), corners(dofs)))
-            }
-            Element::Quad4 { xy, section, dofs, .. } => {
-                Some((section.mass_per_area * crate::elements::quad4::area(xy), corners(dofs)))
-            }
-            Element::Mass { .. } => None,
-        })
+        .filter_map(|e| Some((e.kernel.eq16_mass()?, e.translations())))
         .collect()
 }
-
 /// The paper's Eq. 16: element mass times the square of the mean nodal velocity.
 pub fn ke_eq16(elements: &Eq16Elements, v: &[f64]) -> f64 {
     let mut ke = 0.0;

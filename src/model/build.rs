@@ -3,6 +3,11 @@
 use super::*;
 use crate::deck::case::{OutputSet, Selection};
 use crate::deck::{Deck, Diagnostic};
+use crate::elements::{
+    mass::PointMass,
+    quad4::Quad4,
+    rod::{Rod, RodSection},
+};
 use nalgebra::Matrix3;
 use std::collections::{BTreeMap, HashMap};
 
@@ -306,20 +311,16 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
         for g in c.g {
             *on_element.entry(g).or_default() += 1;
         }
-        elements.push(Element::Rod {
-            eid: c.eid,
-            grids: c.g,
-            x,
-            section: RodSection {
-                e: m.e,
-                g: m.g,
-                area: p.a,
-                torsion: p.j,
-                rho: m.rho,
-                nsm: p.nsm,
-            },
-            dofs: [grid_dofs(c.g[0]), grid_dofs(c.g[1])],
-        });
+        let section = RodSection {
+            e: m.e,
+            g: m.g,
+            area: p.a,
+            torsion: p.j,
+            rho: m.rho,
+            nsm: p.nsm,
+        };
+        let dofs = c.g.iter().map(|&g| grid_dofs(g)).collect();
+        elements.push(Element::new(c.eid, c.g.to_vec(), dofs, Rod { x, section }));
     }
     let pshell: HashMap<i64, &crate::deck::cards::Pshell> = b.pshells.iter().map(|p| (p.pid, p)).collect();
     let mut sections: HashMap<i64, Option<ShellSection>> = HashMap::new();
@@ -374,26 +375,25 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
         for g in c.g {
             *on_element.entry(g).or_default() += 1;
         }
-        elements.push(Element::Quad4 {
-            eid: c.eid,
-            grids: c.g,
-            xy,
-            section,
-            dofs: c.g.map(&grid_dofs),
-        });
+        let dofs = c.g.iter().map(|&g| grid_dofs(g)).collect();
+        elements.push(Element::new(
+            c.eid,
+            c.g.to_vec(),
+            dofs,
+            Quad4::new(xy, xyz[0][2], section),
+        ));
     }
     for m in &b.conm2s {
         if !grids.contains_key(&m.g) {
             cx.err(m.at.error(format!("CONM2 {} references grid {}, which does not exist", m.eid, m.g)));
             continue;
         }
-        elements.push(Element::Mass {
-            eid: m.eid,
-            grid: m.g,
+        let point = PointMass {
+            x: grids[&m.g].x,
             mass: m.mass,
             inertia: m.inertia,
-            dofs: grid_dofs(m.g),
-        });
+        };
+        elements.push(Element::new(m.eid, vec![m.g], vec![grid_dofs(m.g)], point));
     }
 
     // Time control.
@@ -486,8 +486,8 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
     let elem_pos: HashMap<i64, usize> = elements
         .iter()
         .enumerate()
-        .filter(|(_, e)| !matches!(e, Element::Mass { .. }))
-        .map(|(i, e)| (e.eid(), i))
+        .filter(|(_, e)| e.kind::<PointMass>().is_none())
+        .map(|(i, e)| (e.eid, i))
         .collect();
     for key in ["STRESS", "STRAIN"] {
         let req = case.outputs.get(key);
@@ -652,10 +652,8 @@ fn build_contact(
     };
     let mass = elements
         .iter()
-        .filter_map(|e| match e {
-            Element::Mass { grid, mass, .. } if *grid == imp.label.point => Some(*mass),
-            _ => None,
-        })
+        .filter(|e| e.grids == [imp.label.point])
+        .filter_map(|e| e.kind::<PointMass>().map(|p| p.mass))
         .sum::<f64>();
     if mass <= 0.0 {
         cx.err(
@@ -711,11 +709,9 @@ fn build_contact(
     let imp_grid = imp.label.point;
     let imp_dofs = {
         let mut v = Vec::new();
-        for e in elements {
-            if let Element::Mass { grid, dofs, .. } = e {
-                if *grid == imp_grid {
-                    v.extend(dofs.iter().flatten().copied());
-                }
+        for e in elements.iter().filter(|e| e.grids == [imp_grid]) {
+            if e.kind::<PointMass>().is_some() {
+                v.extend(e.dofs.iter().flatten().flatten().copied());
             }
         }
         if !v.contains(&imp.dof) {
@@ -803,18 +799,12 @@ fn shell_section(
 
 /// A target made of CRODs of one section along one line: wave speed and length.
 fn rod_info(elements: &[Element]) -> Option<RodInfo> {
-    let rods: Vec<(&[[f64; 3]; 2], &RodSection)> = elements
-        .iter()
-        .filter_map(|e| match e {
-            Element::Rod { x, section, .. } => Some((x, section)),
-            _ => None,
-        })
-        .collect();
-    let (_, s0) = rods.first()?;
-    if rods.iter().any(|(_, s)| s != s0) || s0.rho <= 0.0 {
+    let rods: Vec<&Rod> = elements.iter().filter_map(|e| e.kind::<Rod>()).collect();
+    let s0 = &rods.first()?.section;
+    if rods.iter().any(|r| r.section != *s0) || s0.rho <= 0.0 {
         return None;
     }
-    let length: f64 = rods.iter().map(|(x, _)| crate::elements::rod::axis(x[0], x[1]).1).sum();
+    let length: f64 = rods.iter().map(|r| r.length()).sum();
     Some(RodInfo {
         wave_speed: (s0.e / s0.rho).sqrt(),
         length,

@@ -15,8 +15,8 @@ pub use modify::Modify;
 pub use reduce::drop_inert;
 
 use crate::deck::{CardRef, Units};
-use crate::elements::rod::RodSection;
-use nalgebra::Matrix3;
+pub use crate::elements::quad4::ShellSection;
+pub use crate::elements::Element;
 use std::fmt;
 
 /// A DOF of the deck: point id and component (1-6 for grids, 0 for scalar points).
@@ -50,68 +50,6 @@ pub struct DependentPoint {
     pub label: DofLabel,
     pub functional: Functional,
     pub at: CardRef,
-}
-
-// Elements are stored once per model; their size difference does not matter.
-#[allow(clippy::large_enum_variant)]
-#[derive(Debug, Clone)]
-pub enum Element {
-    Rod {
-        eid: i64,
-        grids: [i64; 2],
-        x: [[f64; 3]; 2],
-        section: RodSection,
-        /// Solved DOF index of T1..R3 of each end, None where constrained.
-        dofs: [[Option<usize>; 6]; 2],
-    },
-    /// CQUAD4 flat shell in the basic XY plane.
-    Quad4 {
-        eid: i64,
-        grids: [i64; 4],
-        xy: crate::elements::quad4::Xy,
-        section: ShellSection,
-        /// Solved DOF index of T1..R3 of each corner.
-        dofs: [[Option<usize>; 6]; 4],
-    },
-    Mass {
-        eid: i64,
-        grid: i64,
-        mass: f64,
-        inertia: [f64; 6],
-        dofs: [Option<usize>; 6],
-    },
-}
-
-impl Element {
-    pub fn eid(&self) -> i64 {
-        match self {
-            Element::Rod { eid, .. } | Element::Quad4 { eid, .. } | Element::Mass { eid, .. } => *eid,
-        }
-    }
-}
-
-/// A PSHELL with its materials resolved.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ShellSection {
-    pub thickness: f64,
-    /// Membrane material matrix G(MID1) (stress/strain), if any.
-    pub g_membrane: Option<Matrix3<f64>>,
-    /// Bending material matrix G(MID2)·(12I/T³), if any: D = this · T³/12.
-    pub g_bending: Option<Matrix3<f64>>,
-    /// (ρ T + NSM), mass per unit area.
-    pub mass_per_area: f64,
-}
-
-impl ShellSection {
-    /// Membrane stiffness per unit length A = G(MID1)·T.
-    pub fn a(&self) -> Option<Matrix3<f64>> {
-        self.g_membrane.map(|g| g * self.thickness)
-    }
-
-    /// Bending stiffness D = G(MID2)·(12I/T³)·T³/12.
-    pub fn d(&self) -> Option<Matrix3<f64>> {
-        self.g_bending.map(|g| g * self.thickness.powi(3) / 12.0)
-    }
 }
 
 /// One NOLIN3 load: P = S·x^A on a solved DOF.

@@ -1,7 +1,8 @@
 //! Variations of a model for verification and stability cases: scaled impact
 //! velocity, contact stiffness or impactor mass, and an initial gap or overlap.
 
-use super::{Element, Model};
+use super::Model;
+use crate::elements::mass::PointMass;
 use serde::Deserialize;
 
 /// What to change; every field defaults to "no change".
@@ -56,15 +57,10 @@ impl Modify {
         if let Some(s) = self.impactor_mass_scale {
             c.impactor.mass *= s;
             let grid = c.impactor.grid;
-            for e in &mut m.elements {
-                if let Element::Mass {
-                    grid: g, mass, inertia, ..
-                } = e
-                {
-                    if *g == grid {
-                        *mass *= s;
-                        inertia.iter_mut().for_each(|i| *i *= s);
-                    }
+            for e in m.elements.iter_mut().filter(|e| e.grids == [grid]) {
+                if let Some(p) = e.kind_mut::<PointMass>() {
+                    p.mass *= s;
+                    p.inertia.iter_mut().for_each(|i| *i *= s);
                 }
             }
         }

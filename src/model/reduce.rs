@@ -13,7 +13,7 @@
 //! Dropping a group is exact, not an approximation: the remaining equations are the
 //! same, and the dropped DOFs are reported as zero in every output.
 
-use super::{Element, Functional, Model, Source};
+use super::{Functional, Model, Source};
 use crate::assembly::System;
 
 struct UnionFind(Vec<usize>);
@@ -91,11 +91,7 @@ pub fn drop_inert(model: &Model, sys: &System) -> Option<Model> {
         d.functional = re_fun(&d.functional);
     }
     for e in &mut m.elements {
-        match e {
-            Element::Rod { dofs, .. } => dofs.iter_mut().flatten().for_each(|d| *d = re_opt(*d)),
-            Element::Quad4 { dofs, .. } => dofs.iter_mut().flatten().for_each(|d| *d = re_opt(*d)),
-            Element::Mass { dofs, .. } => dofs.iter_mut().for_each(|d| *d = re_opt(*d)),
-        }
+        e.dofs.iter_mut().flatten().for_each(|d| *d = re_opt(*d));
     }
     if let Some(c) = &mut m.contact {
         c.driver = re_fun(&c.driver);

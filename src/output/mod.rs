@@ -107,7 +107,7 @@ pub fn energy_columns(m: &Model) -> Vec<String> {
 
 /// The three output files of a run.
 pub fn run_files(model: &Model, run: &Run) -> Vec<(&'static str, Vec<u8>)> {
-    let history = csv_bytes(&run.history_columns, run.history.iter().cloned());
+    let history = csv_bytes(&run.history_header(), run.history.iter().cloned());
     let energy = csv_bytes(&energy_columns(model), run.energy.iter().map(|r| r.values().to_vec()));
     let mut summary = serde_json::to_vec_pretty(&run.summary).expect("json of plain values");
     summary.push(b'\n');

@@ -3,8 +3,9 @@
 //! element, plus a `.pvd` collection giving each file its time, so the wave can be
 //! animated.
 
-use crate::model::{DofLabel, Element, Model};
-use crate::run::{recovery, Run};
+use crate::elements::{Cell, Element, Fibre, Recovered};
+use crate::model::{DofLabel, Model};
+use crate::run::Run;
 use std::collections::HashMap;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -31,26 +32,19 @@ pub fn write_fields(model: &Model, run: &Run, dir: &Path) -> Result<Vec<PathBuf>
         }) as u64
     };
     for e in &model.elements {
-        match e {
-            Element::Rod { grids, x, .. } => {
-                for k in 0..2 {
-                    let p = add(grids[k], x[k], &mut points);
-                    conn.push(p);
-                }
-                types.push(CellType::Line);
-            }
-            Element::Quad4 { grids, xy, .. } => {
-                for k in 0..4 {
-                    let p = add(grids[k], [xy[k][0], xy[k][1], 0.0], &mut points);
-                    conn.push(p);
-                }
-                types.push(CellType::Quad);
-            }
-            Element::Mass { .. } => continue,
+        let Some(cell) = e.kernel.cell() else { continue };
+        for (g, x) in e.grids.iter().zip(e.kernel.points()) {
+            let p = add(*g, x, &mut points);
+            conn.push(p);
         }
+        types.push(match cell {
+            Cell::Line => CellType::Line,
+            Cell::Quad => CellType::Quad,
+        });
         offsets.push(conn.len() as u64);
         cells.push(e);
     }
+    let layout = strain_layout(&cells);
     let full: HashMap<DofLabel, usize> = model.dofs.iter().enumerate().map(|(i, l)| (*l, i)).collect();
     let mut written = Vec::new();
     let mut pvd = String::from(
@@ -73,25 +67,18 @@ pub fn write_fields(model: &Model, run: &Run, dir: &Path) -> Result<Vec<PathBuf>
             }
         }
         let mut cell_data = Vec::new();
-        let shells = cells.iter().all(|e| matches!(e, Element::Quad4 { .. }));
-        if shells {
-            for (name, off) in [("strain_bottom_z1", 0), ("strain_top_z2", 3)] {
-                let v: Vec<f64> = cells
-                    .iter()
-                    .flat_map(|e| {
-                        let r = recovery(e, &u, false);
-                        [r[off], r[off + 1], r[off + 2]]
-                    })
-                    .collect();
-                cell_data.push(Attribute::DataArray(vtkio::model::DataArray {
-                    name: format!("{name} (xx, yy, xy)"),
+        let strains: Vec<Vec<f64>> = cells.iter().map(|e| e.recover(&u, false)).collect();
+        for (name, columns) in &layout {
+            let v: Vec<f64> = strains.iter().flat_map(|r| columns.iter().map(|&j| r[j])).collect();
+            cell_data.push(if columns.len() == 1 {
+                Attribute::scalars(name.as_str(), 1).with_data(v)
+            } else {
+                Attribute::DataArray(vtkio::model::DataArray {
+                    name: name.clone(),
                     elem: ElementType::Vectors,
                     data: IOBuffer::F64(v),
-                }));
-            }
-        } else {
-            let v: Vec<f64> = cells.iter().map(|e| recovery(e, &u, false)[0]).collect();
-            cell_data.push(Attribute::scalars("axial_strain", 1).with_data(v));
+                })
+            });
         }
         let vtk = Vtk {
             version: Version::new((1, 0)),
@@ -130,6 +117,29 @@ pub fn write_fields(model: &Model, run: &Run, dir: &Path) -> Result<Vec<PathBuf>
     let refs: Vec<(&str, Vec<u8>)> = files.iter().map(|(n, b)| (n.as_str(), b.clone())).collect();
     crate::output::write_dir_atomically(dir, &refs).map_err(|e| format!("{}: {e}", dir.display()))?;
     Ok(written)
+}
+
+/// The strain arrays of the cells: a name and which recovered values it holds. Empty
+/// where the cells recover different values (a model mixing element kinds).
+fn strain_layout(cells: &[&Element]) -> Vec<(String, Vec<usize>)> {
+    let Some(first) = cells.first() else { return Vec::new() };
+    let rec: Vec<Recovered> = first.kernel.recovered(false);
+    if cells.iter().any(|e| e.kernel.recovered(false) != rec) {
+        return Vec::new();
+    }
+    let mut out: Vec<(String, Vec<usize>)> = Vec::new();
+    for (j, r) in rec.iter().enumerate() {
+        let name = match r.at {
+            None => "axial_strain".to_string(),
+            Some((Fibre::Z1, _)) => "strain_bottom_z1 (xx, yy, xy)".to_string(),
+            Some((Fibre::Z2, _)) => "strain_top_z2 (xx, yy, xy)".to_string(),
+        };
+        match out.iter_mut().find(|(n, _)| *n == name) {
+            Some((_, cols)) => cols.push(j),
+            None => out.push((name, vec![j])),
+        }
+    }
+    out
 }
 
 /// Snapshot times for `n` fields evenly spread over a run of `steps` steps of `dt`.

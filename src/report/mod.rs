@@ -6,9 +6,11 @@
 pub mod fields;
 pub mod plot;
 
+use crate::elements::{quad4::Quad4, rod::Rod, Fibre, Measure, Plane};
 use crate::error::Error;
 use crate::ledger::EnergyRow;
-use crate::model::{Element, Model};
+use crate::model::Model;
+use crate::run::Column;
 use crate::run::{run_model, Run};
 use crate::verify::{self, analytic, Case, CheckResult};
 use plot::{Chart, Contour, Line};
@@ -53,7 +55,7 @@ fn io(path: &Path) -> impl Fn(std::io::Error) -> Error + '_ {
 pub fn report_case(case: &Case, dir: &Path) -> Result<CaseReport, Error> {
     let model = verify::case_model(case)?;
     let mut opts = verify::case_options(case);
-    let plate = model.elements.iter().any(|e| matches!(e, Element::Quad4 { .. }));
+    let plate = model.elements.iter().any(|e| e.kind::<Quad4>().is_some());
     if plate {
         opts.snapshot_times = vec![20e-6, 60e-6, 120e-6];
     }
@@ -181,12 +183,10 @@ fn rod_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<Vec
     let mid = model
         .elements
         .iter()
-        .filter_map(|e| match e {
-            Element::Rod { eid, x, .. } => {
-                let xc = 0.5 * (x[0][0] + x[1][0]);
-                run.column_values(&format!("strain_{eid}")).map(|v| (*eid, xc, v))
-            }
-            _ => None,
+        .filter_map(|e| {
+            let x = e.kind::<Rod>()?.x;
+            let xc = 0.5 * (x[0][0] + x[1][0]);
+            run.column_values(&Column::rod_strain(e.eid)).map(|v| (e.eid, xc, v))
         })
         .min_by(|a, b| {
             (a.1 - rod.length / 2.0)
@@ -198,10 +198,7 @@ fn rod_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<Vec
         let x0 = model
             .elements
             .iter()
-            .find_map(|e| match e {
-                Element::Rod { x, .. } => Some(x[0][0].min(x[1][0])),
-                _ => None,
-            })
+            .find_map(|e| e.kind::<Rod>().map(|r| r.x[0][0].min(r.x[1][0])))
             .unwrap_or(0.0);
         let ea = rod.e * rod.area;
         let dal: Vec<f64> = t
@@ -344,24 +341,15 @@ fn plate_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<V
             cells: model
                 .elements
                 .iter()
-                .filter_map(|e| match e {
-                    Element::Quad4 { grids, xy, .. } => {
-                        let v: f64 = grids
-                            .iter()
-                            .map(|g| w_index.get(g).map_or(0.0, |&i| uu[i]))
-                            .sum::<f64>()
-                            / 4.0;
-                        Some((
-                            [
-                                (xy[0][0], xy[0][1]),
-                                (xy[1][0], xy[1][1]),
-                                (xy[2][0], xy[2][1]),
-                                (xy[3][0], xy[3][1]),
-                            ],
-                            v,
-                        ))
-                    }
-                    _ => None,
+                .filter_map(|e| {
+                    let xy = e.kind::<Quad4>()?.xy;
+                    let v: f64 = e
+                        .grids
+                        .iter()
+                        .map(|g| w_index.get(g).map_or(0.0, |&i| uu[i]))
+                        .sum::<f64>()
+                        / 4.0;
+                    Some((xy.map(|p| (p[0], p[1])), v))
                 })
                 .collect(),
         })
@@ -380,10 +368,9 @@ fn plate_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<V
     let mesh_gages: Vec<i64> = run
         .history_columns
         .iter()
-        .filter_map(|c| {
-            c.strip_prefix("strain_")
-                .and_then(|r| r.split('_').next())
-                .and_then(|e| e.parse().ok())
+        .filter_map(|c| match c {
+            Column::Element { eid, value } if value.measure == Measure::Strain => Some(*eid),
+            _ => None,
         })
         .collect::<std::collections::BTreeSet<i64>>()
         .into_iter()
@@ -392,18 +379,24 @@ fn plate_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<V
     for (k, eid) in mesh_gages.iter().skip(1).take(2).enumerate() {
         let (fig, gage) = if k == 0 { ("Fig. 8", "A") } else { ("Fig. 9", "B") };
         let mut lines = Vec::new();
-        for (i, (fibre, comp)) in [("z2", "xx"), ("z2", "yy"), ("z1", "xx"), ("z1", "yy")]
-            .iter()
-            .enumerate()
+        for (i, (fibre, comp)) in [
+            (Fibre::Z2, Plane::Xx),
+            (Fibre::Z2, Plane::Yy),
+            (Fibre::Z1, Plane::Xx),
+            (Fibre::Z1, Plane::Yy),
+        ]
+        .into_iter()
+        .enumerate()
         {
-            if let Some(v) = run.column_values(&format!("strain_{eid}_{fibre}_{comp}")) {
-                let side = if *fibre == "z2" {
+            if let Some(v) = run.column_values(&Column::shell_strain(*eid, fibre, comp)) {
+                let side = if fibre == Fibre::Z2 {
                     "back face +T/2"
                 } else {
                     "struck face −T/2"
                 };
-                let l = Line::new(format!("ε{comp}, {side}"), t.clone(), v, i);
-                lines.push(if *fibre == "z1" { l.dashed() } else { l });
+                let c = if comp == Plane::Xx { "xx" } else { "yy" };
+                let l = Line::new(format!("ε{c}, {side}"), t.clone(), v, i);
+                lines.push(if fibre == Fibre::Z1 { l.dashed() } else { l });
             }
         }
         out.extend(plot::line_chart(

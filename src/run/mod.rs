@@ -4,14 +4,17 @@
 use crate::assembly::{assemble, System};
 use crate::integrate::{integrate, Observer, RunStats, Scheme, SolveError, StepState};
 use crate::ledger::{EnergyRow, Ledger};
-use crate::model::{drop_inert, Element, Model, Source};
+use crate::model::{drop_inert, Model};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 pub use summary::{
     ContactSummary, EnergySummary, ImpactorSummary, ModelSummary, MomentumSummary, RodSummary, RunSummary, Summary,
     UnitSystem,
 };
 
+pub mod history;
 pub mod summary;
+
+pub use history::Column;
 
 /// How to run a model; `None` means "as the deck says".
 #[derive(Debug, Clone)]
@@ -69,7 +72,9 @@ pub struct Run {
     pub stats: RunStats,
     pub series: Series,
     pub energy: Vec<EnergyRow>,
-    pub history_columns: Vec<String>,
+    pub history_columns: Vec<Column>,
+    /// The deck's units, for the history's header.
+    pub units: crate::deck::Units,
     pub history: Vec<Vec<f64>>,
     pub summary: Summary,
     /// The solved DOFs of the run (inert DOFs dropped), for reading snapshots.
@@ -140,66 +145,62 @@ impl Observer for Recorder<'_> {
 }
 
 impl Run {
-    /// Index of the history column named `name` (its header without the unit).
-    pub fn column(&self, name: &str) -> Option<usize> {
-        self.history_columns
-            .iter()
-            .position(|c| c.split(' ').next() == Some(name))
+    /// Index of a history column.
+    pub fn column(&self, c: &Column) -> Option<usize> {
+        self.history_columns.iter().position(|x| x == c)
     }
 
-    /// The values of the history column named `name`.
-    pub fn column_values(&self, name: &str) -> Option<Vec<f64>> {
-        let j = self.column(name)?;
+    /// The header of `history.csv`: each column's name with its unit.
+    pub fn history_header(&self) -> Vec<String> {
+        self.history_columns.iter().map(|c| c.header(&self.units)).collect()
+    }
+
+    /// The names of the history's columns (headers without units).
+    pub fn history_names(&self) -> Vec<String> {
+        self.history_columns.iter().map(Column::name).collect()
+    }
+
+    /// The values of a history column.
+    pub fn column_values(&self, c: &Column) -> Option<Vec<f64>> {
+        let j = self.column(c)?;
         Some(self.history.iter().map(|r| r[j]).collect())
     }
 }
 
-/// Column names (with units) of `history.csv`, in the order of [`history_row`].
-pub fn history_columns(m: &Model) -> Vec<String> {
-    let u = &m.units;
-    let (l, f, t) = (&u.length, &u.force, &u.time);
+/// The columns of `history.csv`, in the order of [`history_row`].
+pub fn history_columns(m: &Model) -> Vec<Column> {
     let mut cols = vec![
-        format!("time [{t}]"),
-        format!("contact_force [{f}]"),
-        format!("indentation [{l}]"),
-        format!("impactor_disp [{l}]"),
-        format!("impactor_velo [{l}/{t}]"),
+        Column::Time,
+        Column::ContactForce,
+        Column::Indentation,
+        Column::ImpactorDisp,
+        Column::ImpactorVelo,
     ];
-    let unit = |comp: u8, rate: &str| -> String {
-        if (4..=6).contains(&comp) {
-            format!("rad{rate}")
-        } else {
-            format!("{l}{rate}")
-        }
-    };
-    let tag = |d: &crate::model::DofLabel| {
-        const C: [&str; 7] = ["", "T1", "T2", "T3", "R1", "R2", "R3"];
-        if d.comp == 0 {
-            format!("{}", d.point)
-        } else {
-            format!("{}_{}", d.point, C[d.comp as usize])
-        }
-    };
-    for (d, _) in &m.outputs.disp {
-        cols.push(format!("disp_{} [{}]", tag(d), unit(d.comp, "")));
-    }
-    for (d, _) in &m.outputs.velo {
-        cols.push(format!("velo_{} [{}]", tag(d), unit(d.comp, &format!("/{t}"))));
-    }
+    cols.extend(m.outputs.disp.iter().map(|(d, _)| Column::Disp(*d)));
+    cols.extend(m.outputs.velo.iter().map(|(d, _)| Column::Velo(*d)));
     if let Some(c) = &m.contact {
-        for &k in &m.outputs.nlload {
-            cols.push(format!("nlload_{} [{f}]", tag(&c.loads[k].label)));
-        }
+        cols.extend(m.outputs.nlload.iter().map(|&k| Column::NlLoad(c.loads[k].label)));
     }
-    for &e in &m.outputs.stress {
-        cols.extend(recovery_names(&m.elements[e], true, &format!("{f}/{l}^2")));
-    }
-    for &e in &m.outputs.strain {
-        if !m.outputs.stress.contains(&e) {
-            cols.extend(recovery_names(&m.elements[e], false, ""));
-        }
+    for (e, stress) in recovered_elements(m) {
+        let e = &m.elements[e];
+        cols.extend(
+            e.kernel
+                .recovered(stress)
+                .into_iter()
+                .map(|value| Column::Element { eid: e.eid, value }),
+        );
     }
     cols
+}
+
+/// The elements whose results are recorded, with whether their stresses are: STRESS
+/// requests (stress and strain), then STRAIN requests not already there.
+fn recovered_elements(m: &Model) -> impl Iterator<Item = (usize, bool)> + '_ {
+    let o = &m.outputs;
+    o.stress
+        .iter()
+        .map(|&e| (e, true))
+        .chain(o.strain.iter().filter(|e| !o.stress.contains(e)).map(|&e| (e, false)))
 }
 
 fn history_row(m: &Model, s: &StepState, force: f64) -> Vec<f64> {
@@ -215,104 +216,17 @@ fn history_row(m: &Model, s: &StepState, force: f64) -> Vec<f64> {
         row.push(m.value(*src, s.u));
     }
     for (_, src) in &m.outputs.velo {
-        row.push(match src {
-            Source::Dof(i) => s.v[*i],
-            Source::Dependent(j) => crate::model::apply(&m.dependent[*j].functional, s.v),
-            Source::Inert => 0.0,
-        });
+        row.push(m.value(*src, s.v));
     }
     if let Some(c) = &m.contact {
         for &k in &m.outputs.nlload {
             row.push(c.loads[k].scale * s.load_factor);
         }
     }
-    for &e in &m.outputs.stress {
-        row.extend(recovery(&m.elements[e], s.u, true));
-    }
-    for &e in &m.outputs.strain {
-        if !m.outputs.stress.contains(&e) {
-            row.extend(recovery(&m.elements[e], s.u, false));
-        }
+    for (e, stress) in recovered_elements(m) {
+        row.extend(m.elements[e].recover(s.u, stress));
     }
     row
-}
-
-const FIBRES: [&str; 2] = ["z1", "z2"];
-const PLANE: [&str; 3] = ["xx", "yy", "xy"];
-
-/// Column names of an element's recovered results: rods give axial stress and strain;
-/// shells give, at the fibres Z1 = −T/2 and Z2 = +T/2, stresses then strains
-/// (xx, yy, and engineering shear xy).
-fn recovery_names(e: &Element, with_stress: bool, stress_unit: &str) -> Vec<String> {
-    let eid = e.eid();
-    match e {
-        Element::Rod { .. } => {
-            let mut v = Vec::new();
-            if with_stress {
-                v.push(format!("stress_{eid} [{stress_unit}]"));
-            }
-            v.push(format!("strain_{eid} [-]"));
-            v
-        }
-        Element::Quad4 { .. } => {
-            let mut v = Vec::new();
-            let kinds: &[(&str, &str)] = if with_stress {
-                &[("stress", stress_unit), ("strain", "-")]
-            } else {
-                &[("strain", "-")]
-            };
-            for (kind, unit) in kinds {
-                for z in FIBRES {
-                    for c in PLANE {
-                        v.push(format!("{kind}_{eid}_{z}_{c} [{unit}]"));
-                    }
-                }
-            }
-            v
-        }
-        Element::Mass { .. } => Vec::new(),
-    }
-}
-
-/// An element's recovered results, in the order of [`recovery_names`].
-pub fn recovery(e: &Element, u: &[f64], with_stress: bool) -> Vec<f64> {
-    let get = |d: &Option<usize>| d.map(|i| u[i]).unwrap_or(0.0);
-    match e {
-        Element::Rod { x, section, dofs, .. } => {
-            let t = |end: usize| -> [f64; 3] { [get(&dofs[end][0]), get(&dofs[end][1]), get(&dofs[end][2])] };
-            let eps = crate::elements::rod::axial_strain(x[0], x[1], t(0), t(1));
-            if with_stress {
-                vec![section.e * eps, eps]
-            } else {
-                vec![eps]
-            }
-        }
-        Element::Quad4 { xy, section, dofs, .. } => {
-            use crate::elements::quad4;
-            use nalgebra::{SMatrix, Vector3};
-            let um = SMatrix::<f64, 8, 1>::from_fn(|k, _| get(&dofs[k / 2][k % 2]));
-            let ub = SMatrix::<f64, 12, 1>::from_fn(|k, _| get(&dofs[k / 3][2 + k % 3]));
-            let em = quad4::membrane_strain(xy, &um);
-            let kappa = quad4::curvature(xy, &ub);
-            let h = 0.5 * section.thickness;
-            let mut stresses = Vec::new();
-            let mut strains = Vec::new();
-            for z in [-h, h] {
-                let eps: Vector3<f64> = em + kappa * z;
-                strains.extend(eps.iter());
-                let sm = section.g_membrane.map(|g| g * em).unwrap_or_default();
-                let sb = section.g_bending.map(|g| g * kappa * z).unwrap_or_default();
-                stresses.extend((sm + sb).iter());
-            }
-            if with_stress {
-                stresses.extend(strains);
-                stresses
-            } else {
-                strains
-            }
-        }
-        Element::Mass { .. } => Vec::new(),
-    }
 }
 
 /// Runs a model: assembles it, drops its inert DOFs when asked, integrates.
@@ -386,6 +300,7 @@ pub fn run_system(model: &Model, sys: &System, opts: &RunOptions) -> Result<Run,
         series: rec.series,
         energy: rec.energy,
         history_columns: history_columns(model),
+        units: model.units.clone(),
         history: rec.history,
         summary: Summary::default(),
         dofs: model.dofs.clone(),

@@ -170,10 +170,10 @@ fn rod_rows(repeats: usize, progress: &dyn Fn(&str)) -> Result<Vec<Row>, Error> 
         let n = m
             .elements
             .iter()
-            .filter(|e| matches!(e, crate::model::Element::Rod { .. }))
+            .filter(|e| e.kind::<crate::elements::rod::Rod>().is_some())
             .count();
         let eid = n / 2;
-        let Some(j) = run.column(&format!("strain_{eid}")) else {
+        let Some(j) = run.column(&crate::run::Column::rod_strain(eid as i64)) else {
             return f64::NAN;
         };
         let xc = (eid as f64 - 0.5) * rod.length / n as f64;
@@ -269,7 +269,8 @@ fn plate_rows(repeats: usize, meshes: &[usize], progress: &dyn Fn(&str)) -> Resu
     let gage_a = |n: usize, run: &Run| -> f64 {
         let mesh = crate::mesh::PlateMesh::new(n).expect("odd n");
         let [a, _] = mesh.gage_elements();
-        history_extreme(run, &format!("strain_{a}_z2_yy")).map_or(f64::NAN, |e| e.value)
+        let c = crate::run::Column::shell_strain(a as i64, crate::elements::Fibre::Z2, crate::elements::Plane::Yy);
+        history_extreme(run, &c).map_or(f64::NAN, |e| e.value)
     };
     let m25 = plate_model(25)?;
     progress("plate reference: energy scheme, dt/16");

@@ -4,11 +4,12 @@
 //! reader and run like any deck, so the study exercises the same path a user does.
 
 use crate::deck::ReadOptions;
+use crate::elements::{Fibre, Plane};
 use crate::error::Error;
 use crate::integrate::Scheme;
 use crate::mesh::PlateMesh;
 use crate::model::Model;
-use crate::run::{run_model, Run, RunOptions};
+use crate::run::{run_model, Column, Run, RunOptions};
 use serde::Serialize;
 
 /// The paper's plate on an n×n mesh, built from the generated deck.
@@ -24,9 +25,9 @@ pub struct Extreme {
     pub time_s: f64,
 }
 
-/// Signed extreme of the history column `name`, if the run wrote it.
-pub fn history_extreme(run: &Run, name: &str) -> Option<Extreme> {
-    let j = run.column(name)?;
+/// Signed extreme of a history column, if the run wrote it.
+pub fn history_extreme(run: &Run, c: &Column) -> Option<Extreme> {
+    let j = run.column(c)?;
     run.history
         .iter()
         .map(|r| Extreme {
@@ -95,10 +96,10 @@ pub fn plate_mesh_study(ns: &[usize], opts: &RunOptions) -> Result<Vec<MeshRow>,
             secondary_peak_time_s: sec.map(|e| e.time_s),
             gage_a_element: a,
             gage_b_element: b,
-            gage_a_exx: history_extreme(&run, &format!("strain_{a}_z2_xx")),
-            gage_a_eyy: history_extreme(&run, &format!("strain_{a}_z2_yy")),
-            gage_b_exx: history_extreme(&run, &format!("strain_{b}_z2_xx")),
-            gage_b_eyy: history_extreme(&run, &format!("strain_{b}_z2_yy")),
+            gage_a_exx: history_extreme(&run, &Column::shell_strain(a as i64, Fibre::Z2, Plane::Xx)),
+            gage_a_eyy: history_extreme(&run, &Column::shell_strain(a as i64, Fibre::Z2, Plane::Yy)),
+            gage_b_exx: history_extreme(&run, &Column::shell_strain(b as i64, Fibre::Z2, Plane::Xx)),
+            gage_b_eyy: history_extreme(&run, &Column::shell_strain(b as i64, Fibre::Z2, Plane::Yy)),
             wall_s: run.stats.total_time.as_secs_f64(),
         });
     }

@@ -10,11 +10,12 @@ pub mod analytic;
 pub mod audit;
 pub mod gold;
 
+use crate::elements::quad4::Quad4;
 use crate::error::Error;
 use crate::integrate::Scheme;
 use crate::ledger::EnergyRow;
-use crate::model::{Element, Model, Modify};
-use crate::run::{run_model, Run, RunOptions, Summary};
+use crate::model::{Model, Modify};
+use crate::run::{run_model, Column, Run, RunOptions, Summary};
 use analytic::HertzDashpot;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -356,10 +357,7 @@ pub fn infinite_plate(model: &Model) -> Result<(HertzDashpot, f64), Error> {
     let s = model
         .elements
         .iter()
-        .find_map(|e| match e {
-            Element::Quad4 { section, .. } => Some(section.clone()),
-            _ => None,
-        })
+        .find_map(|e| e.kind::<Quad4>().map(|q| q.section.clone()))
         .ok_or_else(|| Error::Usage("infinite_plate needs a plate".into()))?;
     let d = s
         .d()
@@ -368,9 +366,9 @@ pub fn infinite_plate(model: &Model) -> Result<(HertzDashpot, f64), Error> {
     Ok((dashpot(model, z)?, z))
 }
 
-fn column(run: &Run, name: &str) -> Result<usize, Error> {
-    run.column(name)
-        .ok_or_else(|| Error::Usage(format!("the run has no history column {name}")))
+fn column(run: &Run, c: &Column) -> Result<usize, Error> {
+    run.column(c)
+        .ok_or_else(|| Error::Usage(format!("the run has no history column {}", c.name())))
 }
 
 /// Evaluates one check of a case on its run.
@@ -555,7 +553,7 @@ pub fn check(case: &Case, model: &Model, run: &Run, spec: &CheckSpec) -> Result<
         } => {
             let (tr, _, lc) = semi_infinite(model)?;
             let (c, _, ea, _) = rod_params(model)?;
-            let j = column(run, &format!("strain_{element}"))?;
+            let j = column(run, &Column::rod_strain(*element))?;
             let peak = tr.force.iter().fold(0.0f64, |a, &f| a.max(f)) / ea;
             let (k, v) = argmax(run.history.iter().map(|h| {
                 if h[0] / lc < *until_tcl {
@@ -693,7 +691,7 @@ pub fn check(case: &Case, model: &Model, run: &Run, spec: &CheckSpec) -> Result<
         }
         CheckSpec::Gold { file, tol } => {
             let path = rel(case, file);
-            let out = gold::compare(&path, &run.history_columns, &run.history, tol);
+            let out = gold::compare(&path, &run.history_names(), &run.history, tol);
             res(
                 format!("gold {}", file.display()),
                 out.worst,
@@ -856,7 +854,7 @@ pub fn bless(case: &Case, run: &Run) -> Result<Vec<PathBuf>, Error> {
     for spec in &case.checks {
         if let CheckSpec::Gold { file, .. } = spec {
             let path = rel(case, file);
-            let bytes = crate::output::csv_bytes(&run.history_columns, run.history.iter().cloned());
+            let bytes = crate::output::csv_bytes(&run.history_header(), run.history.iter().cloned());
             crate::output::write_file_atomically(&path, &bytes).map_err(|source| Error::Io {
                 path: path.display().to_string(),
                 source,

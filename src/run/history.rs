@@ -1,0 +1,133 @@
+//! The columns of `history.csv`: typed, turned into header text only when written.
+
+use crate::deck::Units;
+use crate::elements::{Fibre, Measure, Plane, Recovered};
+use crate::model::DofLabel;
+
+/// One column of a run's history.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Column {
+    Time,
+    /// Contact force magnitude K φ(α) (the force on the impactor).
+    ContactForce,
+    /// The indentation α.
+    Indentation,
+    ImpactorDisp,
+    ImpactorVelo,
+    /// Displacement of a DOF (DISP request).
+    Disp(DofLabel),
+    /// Velocity of a DOF (VELO request).
+    Velo(DofLabel),
+    /// A NOLIN3 load on a DOF (NLLOAD request).
+    NlLoad(DofLabel),
+    /// A recovered stress or strain of an element (STRESS/STRAIN requests).
+    Element {
+        eid: i64,
+        value: Recovered,
+    },
+}
+
+impl Column {
+    /// Axial strain of rod `eid`.
+    pub fn rod_strain(eid: i64) -> Self {
+        Column::Element {
+            eid,
+            value: Recovered {
+                measure: Measure::Strain,
+                at: None,
+            },
+        }
+    }
+
+    /// Strain of shell `eid` at a fibre, in-plane component.
+    pub fn shell_strain(eid: i64, fibre: Fibre, component: Plane) -> Self {
+        Column::Element {
+            eid,
+            value: Recovered {
+                measure: Measure::Strain,
+                at: Some((fibre, component)),
+            },
+        }
+    }
+
+    /// The column's name (the header without its unit): `disp_73_T1`, `strain_72`.
+    pub fn name(&self) -> String {
+        let tag = |d: &DofLabel| {
+            const C: [&str; 7] = ["", "T1", "T2", "T3", "R1", "R2", "R3"];
+            if d.comp == 0 {
+                format!("{}", d.point)
+            } else {
+                format!("{}_{}", d.point, C[d.comp as usize])
+            }
+        };
+        match self {
+            Column::Time => "time".into(),
+            Column::ContactForce => "contact_force".into(),
+            Column::Indentation => "indentation".into(),
+            Column::ImpactorDisp => "impactor_disp".into(),
+            Column::ImpactorVelo => "impactor_velo".into(),
+            Column::Disp(d) => format!("disp_{}", tag(d)),
+            Column::Velo(d) => format!("velo_{}", tag(d)),
+            Column::NlLoad(d) => format!("nlload_{}", tag(d)),
+            Column::Element { eid, value } => value.name(*eid),
+        }
+    }
+
+    /// The column's unit in the deck's unit system.
+    pub fn unit(&self, u: &Units) -> String {
+        let (l, f, t) = (&u.length, &u.force, &u.time);
+        let dof = |d: &DofLabel| {
+            if (4..=6).contains(&d.comp) {
+                "rad".to_string()
+            } else {
+                l.clone()
+            }
+        };
+        match self {
+            Column::Time => t.clone(),
+            Column::ContactForce | Column::NlLoad(_) => f.clone(),
+            Column::Indentation | Column::ImpactorDisp => l.clone(),
+            Column::ImpactorVelo => format!("{l}/{t}"),
+            Column::Disp(d) => dof(d),
+            Column::Velo(d) => format!("{}/{t}", dof(d)),
+            Column::Element { value, .. } => match value.measure {
+                Measure::Stress => format!("{f}/{l}^2"),
+                Measure::Strain => "-".into(),
+            },
+        }
+    }
+
+    /// The header text: `name [unit]`.
+    pub fn header(&self, u: &Units) -> String {
+        format!("{} [{}]", self.name(), self.unit(u))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Goal: headers carry the deck's units, rotations in rad, strains dimensionless.
+    #[test]
+    fn headers_carry_the_decks_units() {
+        let u = Units {
+            length: "mm".into(),
+            force: "kN".into(),
+            time: "ms".into(),
+        };
+        let d = |point, comp| DofLabel { point, comp };
+        assert_eq!(Column::Time.header(&u), "time [ms]");
+        assert_eq!(Column::Velo(d(73, 5)).header(&u), "velo_73_R2 [rad/ms]");
+        assert_eq!(Column::Disp(d(1001, 0)).header(&u), "disp_1001 [mm]");
+        assert_eq!(Column::NlLoad(d(999, 1)).header(&u), "nlload_999_T1 [kN]");
+        assert_eq!(Column::rod_strain(72).header(&u), "strain_72 [-]");
+        let stress = Column::Element {
+            eid: 3,
+            value: Recovered {
+                measure: Measure::Stress,
+                at: Some((Fibre::Z2, Plane::Xx)),
+            },
+        };
+        assert_eq!(stress.header(&u), "stress_3_z2_xx [kN/mm^2]");
+    }
+}
