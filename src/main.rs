@@ -40,9 +40,9 @@ enum Command {
         /// Output directory [default: out/<deck name>].
         #[arg(long)]
         out: Option<PathBuf>,
-        /// Time integration scheme.
-        #[arg(long, value_enum, default_value_t = Scheme::Newmark)]
-        scheme: Scheme,
+        /// Time integration scheme [default: newmark, or the scene's].
+        #[arg(long, value_parser = scheme_parser())]
+        scheme: Option<Scheme>,
         /// Time step in the deck's time unit [default: the deck's TSTEP].
         #[arg(long)]
         dt: Option<f64>,
@@ -173,6 +173,13 @@ fn main() -> ExitCode {
     }
 }
 
+/// `--scheme`: one of [`Scheme::ALL`] by name.
+fn scheme_parser() -> impl clap::builder::TypedValueParser<Value = Scheme> {
+    use clap::builder::TypedValueParser;
+    clap::builder::PossibleValuesParser::new(Scheme::ALL.map(Scheme::name))
+        .map(|name| Scheme::from_name(&name).expect("one of the listed names"))
+}
+
 fn execute(cli: Cli) -> Result<u8, Error> {
     match cli.command {
         Command::Run {
@@ -197,12 +204,15 @@ fn execute(cli: Cli) -> Result<u8, Error> {
             }
             let is_scene = path.extension().is_some_and(|e| e == "toml");
             let (model, opts, scene) = if is_scene {
+                if all_dofs || allow_unknown {
+                    return Err(Error::Usage(format!(
+                        "{}: --all-dofs and --allow-unknown apply to decks; a scene generates a deck with \
+                         no unknown cards and says itself which DOFs to solve (effects.membrane = true)",
+                        path.display()
+                    )));
+                }
                 let (s, model, mut o, _) = impactlab::scene::load(&path)?;
-                o.scheme = if scheme == Scheme::Newmark {
-                    s.run.scheme
-                } else {
-                    scheme
-                };
+                o.scheme = scheme.unwrap_or(s.run.scheme);
                 (model, o, Some(s))
             } else {
                 let (model, warnings) = impactlab::load_deck(&path, deck::ReadOptions { allow_unknown })?;
@@ -212,7 +222,7 @@ fn execute(cli: Cli) -> Result<u8, Error> {
                 (
                     model,
                     RunOptions {
-                        scheme,
+                        scheme: scheme.unwrap_or_default(),
                         skip_inert: !all_dofs,
                         ..Default::default()
                     },

@@ -159,3 +159,39 @@ fn unrepresentable_effects_are_errors() {
         assert!(err.contains("s.toml") && err.contains(says), "{err}");
     }
 }
+
+/// Goal: options on a scene either apply or are refused. `--scheme newmark` overrides
+/// a scene that asks for `energy` (the summary says which ran); `--all-dofs` and
+/// `--allow-unknown`, which a scene decides itself, are refused (exit 2) naming the
+/// scene and what to set instead.
+#[test]
+fn command_line_options_on_a_scene_apply_or_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = scene_text("rod.toml").replace("scheme = \"newmark\"", "scheme = \"energy\"");
+    assert!(text.contains("scheme = \"energy\""));
+    let p = write(dir.path(), "rod.toml", &text);
+    let scheme_of = |args: &[&str], out: &str| -> String {
+        let out = dir.path().join(out);
+        let mut all = vec!["run", p.to_str().unwrap(), "--out", out.to_str().unwrap()];
+        all.extend_from_slice(args);
+        let o = impactlab(&all);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let s: impactlab::run::Summary =
+            serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
+        s.run.scheme.name().to_string()
+    };
+    assert_eq!(scheme_of(&[], "a"), "energy");
+    assert_eq!(scheme_of(&["--scheme", "newmark"], "b"), "newmark");
+    for flag in ["--all-dofs", "--allow-unknown"] {
+        let o = impactlab(&[
+            "run",
+            p.to_str().unwrap(),
+            flag,
+            "--out",
+            dir.path().join("c").to_str().unwrap(),
+        ]);
+        assert_eq!(o.status.code(), Some(2), "{flag}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains("rod.toml") && err.contains("effects.membrane"), "{err}");
+    }
+}

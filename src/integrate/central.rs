@@ -12,9 +12,9 @@
 //! it is refused before the run starts, naming the critical step. Every solved DOF
 //! needs mass: a plate without rotary inertia is an error (use an implicit scheme).
 
-use super::{check_finite, contact_vectors, Observer, RunStats, SolveError, StepState};
+use super::{contact_vectors, Current, SolveError, StepCosts, Stepper};
 use crate::assembly::System;
-use crate::model::{apply, Model};
+use crate::model::{apply, Contact, Functional, Model};
 
 /// The critical step 2/ω_max from the Gershgorin bound, or the DOF without mass.
 pub fn critical_step(model: &Model, sys: &System) -> Result<f64, SolveError> {
@@ -42,73 +42,96 @@ pub fn critical_step(model: &Model, sys: &System) -> Result<f64, SolveError> {
     Ok(if lmax > 0.0 { 2.0 / lmax.sqrt() } else { f64::INFINITY })
 }
 
-pub fn run(model: &Model, sys: &System, dt: f64, steps: usize, obs: &mut dyn Observer) -> Result<RunStats, SolveError> {
-    let crit = critical_step(model, sys)?;
-    if dt > crit {
-        return Err(SolveError::Explicit {
-            reason: format!(
-                "dt = {dt:.4e} exceeds the critical step 2/omega_max = {crit:.4e} of central differences; \
-                 use dt <= {crit:.4e} or an implicit scheme"
-            ),
-        });
-    }
-    let n = model.n();
-    let m = sys.m_lumped.as_ref().expect("checked by critical_step");
-    let (g, c) = contact_vectors(model);
-    let ct = model.contact.as_ref();
-    let phi = |x: f64| ct.map(|c| c.law(x)).unwrap_or(0.0);
-    let mut stats = RunStats::default();
-    let mut u = model.u0.clone();
-    let mut v = model.v0.clone();
-    let mut a = vec![0.0; n];
-    let mut ku = vec![0.0; n];
-    let accel = |u: &[f64], phi_n: f64, ku: &mut Vec<f64>, a: &mut Vec<f64>| {
-        sys.k_mul(u, ku);
-        for i in 0..n {
-            a[i] = (g[i] * phi_n - ku[i]) / m[i];
+/// Velocity Verlet's state: u, v and the acceleration at the current step.
+pub struct Central<'a> {
+    sys: &'a System,
+    contact: Option<&'a Contact>,
+    dt: f64,
+    m: &'a [f64],
+    g: Vec<f64>,
+    c: Functional,
+    u: Vec<f64>,
+    v: Vec<f64>,
+    a: Vec<f64>,
+    ku: Vec<f64>,
+    alpha: f64,
+    phi_n: f64,
+    phi_prev: f64,
+}
+
+impl<'a> Central<'a> {
+    /// Refuses a step above the critical one (naming it); sets up the initial state.
+    pub fn new(model: &'a Model, sys: &'a System, dt: f64) -> Result<Self, SolveError> {
+        let crit = critical_step(model, sys)?;
+        if dt > crit {
+            return Err(SolveError::Explicit {
+                reason: format!(
+                    "dt = {dt:.4e} exceeds the critical step 2/omega_max = {crit:.4e} of central differences; \
+                     use dt <= {crit:.4e} or an implicit scheme"
+                ),
+            });
         }
-    };
-    let mut alpha = apply(&c, &u);
-    let mut phi_n = phi(alpha);
-    accel(&u, phi_n, &mut ku, &mut a);
-    check_finite(model, 0, 0.0, &u)?;
-    check_finite(model, 0, 0.0, &v)?;
-    let mut go = obs.observe(&StepState {
-        step: 0,
-        time: 0.0,
-        u: &u,
-        v: &v,
-        alpha,
-        load_factor: phi_n,
-        work_factor: phi_n,
-    })?;
-    let mut step = 0;
-    while go && step < steps {
-        step += 1;
-        let time = step as f64 * dt;
-        for i in 0..n {
-            v[i] += 0.5 * dt * a[i];
-            u[i] += dt * v[i];
-        }
-        let phi_prev = phi_n;
-        alpha = apply(&c, &u);
-        phi_n = phi(alpha);
-        accel(&u, phi_n, &mut ku, &mut a);
-        for i in 0..n {
-            v[i] += 0.5 * dt * a[i];
-        }
-        check_finite(model, step, time, &u)?;
-        check_finite(model, step, time, &v)?;
-        go = obs.observe(&StepState {
-            step,
-            time,
-            u: &u,
-            v: &v,
+        let n = model.n();
+        let (g, c) = contact_vectors(model);
+        let contact = model.contact.as_ref();
+        let alpha = apply(&c, &model.u0);
+        let phi_n = contact.map_or(0.0, |ct| ct.law(alpha));
+        let mut s = Central {
+            sys,
+            contact,
+            dt,
+            m: sys.m_lumped.as_deref().expect("checked by critical_step"),
+            g,
+            c,
+            u: model.u0.clone(),
+            v: model.v0.clone(),
+            a: vec![0.0; n],
+            ku: vec![0.0; n],
             alpha,
-            load_factor: phi_n,
-            work_factor: 0.5 * (phi_prev + phi_n),
-        })?;
+            phi_n,
+            phi_prev: phi_n,
+        };
+        s.accelerate();
+        Ok(s)
     }
-    stats.steps = step;
-    Ok(stats)
+
+    /// a = M⁻¹ (g φ − K u) at the current state.
+    fn accelerate(&mut self) {
+        self.sys.k_mul(&self.u, &mut self.ku);
+        for i in 0..self.u.len() {
+            self.a[i] = (self.g[i] * self.phi_n - self.ku[i]) / self.m[i];
+        }
+    }
+}
+
+impl Stepper for Central<'_> {
+    fn advance(&mut self, _step: usize, _time: f64) -> Result<(), SolveError> {
+        let (n, dt) = (self.u.len(), self.dt);
+        for i in 0..n {
+            self.v[i] += 0.5 * dt * self.a[i];
+            self.u[i] += dt * self.v[i];
+        }
+        self.phi_prev = self.phi_n;
+        self.alpha = apply(&self.c, &self.u);
+        self.phi_n = self.contact.map_or(0.0, |ct| ct.law(self.alpha));
+        self.accelerate();
+        for i in 0..n {
+            self.v[i] += 0.5 * dt * self.a[i];
+        }
+        Ok(())
+    }
+
+    fn current(&self) -> Current<'_> {
+        Current {
+            u: &self.u,
+            v: &self.v,
+            alpha: self.alpha,
+            load_factor: self.phi_n,
+            work_factor: 0.5 * (self.phi_prev + self.phi_n),
+        }
+    }
+
+    fn costs(&self) -> StepCosts {
+        StepCosts::default()
+    }
 }

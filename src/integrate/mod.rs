@@ -1,8 +1,12 @@
 //! Time integration of M ü + K u = Σ S_i φ(α) e_i, with the contact law φ(α) =
 //! max(α, 0)^A and α a linear functional of u.
 //!
-//! Every scheme factorises its constant effective matrix once. Implicit schemes solve
-//! the contact by condensation: u(n+1) = u* + z ψ, with z = A⁻¹ g precomputed, so each
+//! One driver loop ([`integrate`]) owns what every scheme shares: the initial state,
+//! the finite checks, the observer (which may stop the run), and the costs. A scheme
+//! is a [`Stepper`]: its parameters and its step. [`Scheme::ALL`] lists them.
+//!
+//! Every implicit scheme factorises its constant effective matrix once and solves the
+//! contact by condensation: u(n+1) = u* + z ψ, with z = A⁻¹ g precomputed, so each
 //! step is one sparse solve plus a scalar equation in α; the matrix is never refactored.
 //!
 //! Schemes (one file each):
@@ -12,29 +16,44 @@
 //!   gradient of the Hertz potential: conserves energy to round-off at any Δt.
 //! - [`Scheme::Nastran`]: COSMIC NASTRAN's three-point direct transient scheme
 //!   (β = 1/3) with the nonlinear load lagged (explicit), for auditing against NASTRAN.
+//! - [`Scheme::Central`]: explicit central differences (velocity Verlet), lumped mass,
+//!   conditionally stable.
 
 pub mod central;
 mod contact;
 pub mod linear;
-mod nastran;
-mod newmark;
+pub mod nastran;
+pub mod newmark;
+#[cfg(test)]
+mod scheme_tests;
+#[cfg(test)]
+mod test_models;
 
 use crate::assembly::System;
 use crate::model::Model;
 use std::time::Duration;
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum, serde::Serialize, serde::Deserialize)]
+/// The time schemes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Scheme {
+    /// Trapezoidal Newmark, end-point contact force ([`NewmarkParams::TRAPEZOIDAL`]).
     #[default]
     Newmark,
+    /// Trapezoidal Newmark, discrete-gradient contact force
+    /// ([`NewmarkParams::ENERGY_CONSERVING`]).
     Energy,
+    /// COSMIC NASTRAN's three-point scheme ([`ThreePointParams::NASTRAN`]).
     Nastran,
     /// Explicit central differences (velocity Verlet), conditionally stable.
     Central,
 }
 
 impl Scheme {
+    /// Every scheme, in the order studies list them.
+    pub const ALL: [Scheme; 4] = [Scheme::Newmark, Scheme::Energy, Scheme::Nastran, Scheme::Central];
+
+    /// The name on the command line and in outputs.
     pub fn name(self) -> &'static str {
         match self {
             Scheme::Newmark => "newmark",
@@ -43,7 +62,37 @@ impl Scheme {
             Scheme::Central => "central",
         }
     }
+
+    /// The scheme with this name.
+    pub fn from_name(name: &str) -> Option<Scheme> {
+        Scheme::ALL.into_iter().find(|s| s.name() == name)
+    }
+
+    /// True for the schemes that factorise a matrix and solve each step.
+    pub fn implicit(self) -> bool {
+        self != Scheme::Central
+    }
+
+    /// The scheme's stepper for a model, step size and system.
+    fn stepper<'a>(self, model: &'a Model, sys: &'a System, dt: f64) -> Result<Box<dyn Stepper + 'a>, SolveError> {
+        Ok(match self {
+            Scheme::Newmark => Box::new(Newmark::new(model, sys, dt, NewmarkParams::TRAPEZOIDAL)?),
+            Scheme::Energy => Box::new(Newmark::new(model, sys, dt, NewmarkParams::ENERGY_CONSERVING)?),
+            Scheme::Nastran => Box::new(ThreePoint::new(model, sys, dt, ThreePointParams::NASTRAN)?),
+            Scheme::Central => Box::new(Central::new(model, sys, dt)?),
+        })
+    }
 }
+
+impl std::fmt::Display for Scheme {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+pub use central::Central;
+pub use nastran::{ThreePoint, ThreePointParams};
+pub use newmark::{ContactForm, Newmark, NewmarkParams};
 
 /// Numerical failures. Each says where it happened.
 #[derive(Debug, Clone, thiserror::Error)]
@@ -110,8 +159,43 @@ fn secs<S: serde::Serializer>(d: &Duration, s: S) -> Result<S::Ok, S::Error> {
     s.serialize_f64(d.as_secs_f64())
 }
 
+/// The state a stepper holds after a step (or at the start).
+#[derive(Debug, Clone, Copy)]
+pub struct Current<'a> {
+    pub u: &'a [f64],
+    pub v: &'a [f64],
+    /// The indentation α.
+    pub alpha: f64,
+    /// Load factor acting at this state.
+    pub load_factor: f64,
+    /// Mean load factor the scheme applied over the step that ended here.
+    pub work_factor: f64,
+}
+
+/// What a scheme's step costs: linear algebra and the contact solve.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct StepCosts {
+    pub factorizations: usize,
+    pub solves: usize,
+    pub contact_iterations: usize,
+    pub factor_time: Duration,
+    pub solve_time: Duration,
+}
+
+/// A time scheme reduced to its step; [`integrate`] drives it.
+pub trait Stepper {
+    /// Advances from step `step − 1` to `step` (at `time`); the state is checked for
+    /// finite values by the driver.
+    fn advance(&mut self, step: usize, time: f64) -> Result<(), SolveError>;
+    /// The state after the last step (after construction: the initial state).
+    fn current(&self) -> Current<'_>;
+    /// What the run has cost so far.
+    fn costs(&self) -> StepCosts;
+}
+
 /// Integrates `steps` steps of size `dt` from the model's initial state, calling the
-/// observer with the initial state (step 0) and after every step.
+/// observer with the initial state (step 0) and after every step; the observer may
+/// stop the run early. Every state is checked for NaN and infinity first.
 pub fn integrate(
     model: &Model,
     sys: &System,
@@ -121,14 +205,40 @@ pub fn integrate(
     obs: &mut dyn Observer,
 ) -> Result<RunStats, SolveError> {
     let t0 = std::time::Instant::now();
-    let mut stats = match scheme {
-        Scheme::Newmark => newmark::run(model, sys, newmark::ContactForm::Endpoint, dt, steps, obs),
-        Scheme::Energy => newmark::run(model, sys, newmark::ContactForm::DiscreteGradient, dt, steps, obs),
-        Scheme::Nastran => nastran::run(model, sys, dt, steps, obs),
-        Scheme::Central => central::run(model, sys, dt, steps, obs),
-    }?;
+    let mut stepper = scheme.stepper(model, sys, dt)?;
+    let mut stats = RunStats::default();
+    let mut go = observe(model, 0, 0.0, stepper.current(), obs)?;
+    let mut step = 0;
+    while go && step < steps {
+        step += 1;
+        let time = step as f64 * dt;
+        stepper.advance(step, time)?;
+        stats.steps = step;
+        go = observe(model, step, time, stepper.current(), obs)?;
+    }
+    let c = stepper.costs();
+    stats.factorizations = c.factorizations;
+    stats.solves = c.solves;
+    stats.contact_iterations = c.contact_iterations;
+    stats.factor_time = c.factor_time;
+    stats.solve_time = c.solve_time;
     stats.total_time = t0.elapsed();
     Ok(stats)
+}
+
+/// Checks a state and shows it to the observer.
+fn observe(model: &Model, step: usize, time: f64, c: Current, obs: &mut dyn Observer) -> Result<bool, SolveError> {
+    check_finite(model, step, time, c.u)?;
+    check_finite(model, step, time, c.v)?;
+    obs.observe(&StepState {
+        step,
+        time,
+        u: c.u,
+        v: c.v,
+        alpha: c.alpha,
+        load_factor: c.load_factor,
+        work_factor: c.work_factor,
+    })
 }
 
 /// Checks a state vector for NaN/inf and names the first bad DOF.

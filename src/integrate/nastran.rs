@@ -1,8 +1,8 @@
 //! COSMIC NASTRAN's direct transient scheme (three-point Newmark, β = 1/3), as
 //! documented in the NASTRAN Theoretical Manual, with no damping (B = 0):
 //!
-//!   [M/Δt² + K/3] u(n+1) = (P(n+1) + P(n) + P(n−1))/3 + N(n)
-//!                          + [2M/Δt² − K/3] u(n) + [−M/Δt² − K/3] u(n−1)
+//!   [M/Δt² + βK] u(n+1) = βP(n+1) + (1 − 2β)P(n) + βP(n−1) + N(n)
+//!                         + [2M/Δt² − (1 − 2β)K] u(n) + [−M/Δt² − βK] u(n−1)
 //!
 //! The nonlinear load N(n) = g φ(α(n)) is explicit: evaluated from u(n) and acting
 //! over the step from n to n+1, so the contact force first appears at t = Δt.
@@ -12,72 +12,130 @@
 //! conditionally stable, which matters for very stiff contacts.
 
 use super::linear::Factor;
-use super::{check_finite, contact_vectors, Observer, RunStats, SolveError, StepState};
+use super::{check_finite, contact_vectors, Current, SolveError, StepCosts, Stepper};
 use crate::assembly::System;
-use crate::model::{apply, Model};
+use crate::model::{apply, Contact, Functional, Model};
 
-pub fn run(model: &Model, sys: &System, dt: f64, steps: usize, obs: &mut dyn Observer) -> Result<RunStats, SolveError> {
-    let n = model.n();
-    let mut stats = RunStats::default();
-    let a = sys.combine(1.0 / (dt * dt), 1.0 / 3.0);
-    let mut factor = Factor::new(&a, &model.dofs)?;
-    stats.factorizations = 1;
-    let (g, c) = contact_vectors(model);
-    let ct = model.contact.as_ref();
-    let phi = |x: f64| ct.map(|c| c.law(x)).unwrap_or(0.0);
+/// Parameters of the three-point scheme.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ThreePointParams {
+    /// Newmark's β; unconditionally stable for the linear part when β ≥ 1/4.
+    pub beta: f64,
+}
 
-    let mut u_prev: Vec<f64> = (0..n).map(|i| model.u0[i] - dt * model.v0[i]).collect();
-    let mut u = model.u0.clone();
-    let mut u_next = vec![0.0; n];
-    let mut v = vec![0.0; n];
-    let mut t1 = vec![0.0; n];
-    let mut t2 = vec![0.0; n];
-    let mut t3 = vec![0.0; n];
-    let mut phi_prev = phi(apply(&c, &u));
-    check_finite(model, 0, 0.0, &u)?;
-    check_finite(model, 0, 0.0, &model.v0)?;
-    for step in 0..=steps {
-        let time = step as f64 * dt;
-        let alpha = apply(&c, &u);
-        let phi_n = phi(alpha);
-        // rhs = N(n) + M(2u(n) − u(n−1))/Δt² − K(u(n) + u(n−1))/3
-        for i in 0..n {
-            t1[i] = (2.0 * u[i] - u_prev[i]) / (dt * dt);
-            t2[i] = (u[i] + u_prev[i]) / 3.0;
-        }
-        sys.m_mul(&t1, &mut t3);
-        sys.k_mul(&t2, &mut t1);
-        for i in 0..n {
-            u_next[i] = t3[i] - t1[i] + g[i] * phi_n;
-        }
-        factor.solve_in_place(&mut u_next);
-        check_finite(model, step + 1, time + dt, &u_next)?;
-        for i in 0..n {
-            v[i] = if step == 0 {
-                model.v0[i]
-            } else {
-                (u_next[i] - u_prev[i]) / (2.0 * dt)
-            };
-        }
-        let go = obs.observe(&StepState {
-            step,
-            time,
-            u: &u,
-            v: &v,
-            alpha,
-            load_factor: phi_n,
-            work_factor: 0.5 * (phi_prev + phi_n),
-        })?;
-        stats.steps = step;
-        if !go {
-            break;
-        }
-        phi_prev = phi_n;
-        std::mem::swap(&mut u_prev, &mut u);
-        std::mem::swap(&mut u, &mut u_next);
+impl ThreePointParams {
+    /// COSMIC NASTRAN's choice (scheme `nastran`).
+    pub const NASTRAN: ThreePointParams = ThreePointParams { beta: 1.0 / 3.0 };
+}
+
+/// The three-point scheme's state: u(n−1), u(n), u(n+1); state n is the current one.
+pub struct ThreePoint<'a> {
+    model: &'a Model,
+    sys: &'a System,
+    contact: Option<&'a Contact>,
+    dt: f64,
+    beta: f64,
+    factor: Factor,
+    g: Vec<f64>,
+    c: Functional,
+    u_prev: Vec<f64>,
+    u: Vec<f64>,
+    u_next: Vec<f64>,
+    v: Vec<f64>,
+    t1: Vec<f64>,
+    t2: Vec<f64>,
+    t3: Vec<f64>,
+    alpha: f64,
+    phi_n: f64,
+    phi_prev: f64,
+}
+
+impl<'a> ThreePoint<'a> {
+    /// Factorises M/Δt² + βK, starts from u(−1) = u(0) − Δt v(0) and solves for u(1).
+    pub fn new(model: &'a Model, sys: &'a System, dt: f64, params: ThreePointParams) -> Result<Self, SolveError> {
+        let n = model.n();
+        check_finite(model, 0, 0.0, &model.u0)?;
+        check_finite(model, 0, 0.0, &model.v0)?;
+        let a = sys.combine(1.0 / (dt * dt), params.beta);
+        let factor = Factor::new(&a, &model.dofs)?;
+        let (g, c) = contact_vectors(model);
+        let contact = model.contact.as_ref();
+        let u_prev: Vec<f64> = (0..n).map(|i| model.u0[i] - dt * model.v0[i]).collect();
+        let phi_prev = contact.map_or(0.0, |ct| ct.law(apply(&c, &model.u0)));
+        let mut s = ThreePoint {
+            model,
+            sys,
+            contact,
+            dt,
+            beta: params.beta,
+            factor,
+            g,
+            c,
+            u_prev,
+            u: model.u0.clone(),
+            u_next: vec![0.0; n],
+            v: model.v0.clone(),
+            t1: vec![0.0; n],
+            t2: vec![0.0; n],
+            t3: vec![0.0; n],
+            alpha: 0.0,
+            phi_n: 0.0,
+            phi_prev,
+        };
+        s.solve_next(0)?;
+        s.v.copy_from_slice(&model.v0);
+        Ok(s)
     }
-    stats.solves = factor.solves;
-    stats.factor_time = factor.factor_time;
-    stats.solve_time = factor.solve_time;
-    Ok(stats)
+
+    /// With u(n−1) and u(n) in place: α(n), φ(n) and u(n+1).
+    fn solve_next(&mut self, step: usize) -> Result<(), SolveError> {
+        let (n, dt, beta) = (self.u.len(), self.dt, self.beta);
+        self.alpha = apply(&self.c, &self.u);
+        self.phi_n = self.contact.map_or(0.0, |ct| ct.law(self.alpha));
+        // rhs = N(n) + M(2u(n) − u(n−1))/Δt² − K((1 − 2β)u(n) + βu(n−1))
+        for i in 0..n {
+            self.t1[i] = (2.0 * self.u[i] - self.u_prev[i]) / (dt * dt);
+            self.t2[i] = (1.0 - 2.0 * beta) * self.u[i] + beta * self.u_prev[i];
+        }
+        self.sys.m_mul(&self.t1, &mut self.t3);
+        self.sys.k_mul(&self.t2, &mut self.t1);
+        for i in 0..n {
+            self.u_next[i] = self.t3[i] - self.t1[i] + self.g[i] * self.phi_n;
+        }
+        self.factor.solve_in_place(&mut self.u_next);
+        check_finite(self.model, step + 1, (step + 1) as f64 * dt, &self.u_next)
+    }
+}
+
+impl Stepper for ThreePoint<'_> {
+    fn advance(&mut self, step: usize, _time: f64) -> Result<(), SolveError> {
+        self.phi_prev = self.phi_n;
+        std::mem::swap(&mut self.u_prev, &mut self.u);
+        std::mem::swap(&mut self.u, &mut self.u_next);
+        self.solve_next(step)?;
+        for i in 0..self.u.len() {
+            self.v[i] = (self.u_next[i] - self.u_prev[i]) / (2.0 * self.dt);
+        }
+        Ok(())
+    }
+
+    fn current(&self) -> Current<'_> {
+        Current {
+            u: &self.u,
+            v: &self.v,
+            alpha: self.alpha,
+            load_factor: self.phi_n,
+            work_factor: 0.5 * (self.phi_prev + self.phi_n),
+        }
+    }
+
+    fn costs(&self) -> StepCosts {
+        StepCosts {
+            factorizations: 1,
+            solves: self.factor.solves,
+            contact_iterations: 0,
+            factor_time: self.factor.factor_time,
+            solve_time: self.factor.solve_time,
+        }
+    }
 }

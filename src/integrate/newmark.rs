@@ -25,142 +25,196 @@
 
 use super::contact::{discrete_gradient, solve};
 use super::linear::Factor;
-use super::{check_finite, contact_vectors, Observer, RunStats, SolveError, StepState};
+use super::{contact_vectors, Current, SolveError, StepCosts, Stepper};
 use crate::assembly::System;
-use crate::model::{apply, Model};
+use crate::model::{apply, Contact, Functional, Model};
 
+/// How the contact load acts over a step.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ContactForm {
+    /// The mean of the end-of-step laws, (φ(α(n)) + φ(α(n+1)))/2.
     Endpoint,
+    /// The discrete gradient of the contact potential between α(n) and α(n+1).
     DiscreteGradient,
 }
 
-pub fn run(
-    model: &Model,
-    sys: &System,
+/// Parameters of the Newmark scheme. β = 1/4, γ = 1/2 (average acceleration, the
+/// trapezoidal rule) is the only pair: the increment form below needs no
+/// acceleration, which a singular lumped M (the plate's massless rotations) does not
+/// define.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct NewmarkParams {
+    pub contact: ContactForm,
+}
+
+impl NewmarkParams {
+    /// Scheme `newmark`: end-point contact force.
+    pub const TRAPEZOIDAL: NewmarkParams = NewmarkParams {
+        contact: ContactForm::Endpoint,
+    };
+    /// Scheme `energy`: discrete-gradient contact force, energy conserved to round-off.
+    pub const ENERGY_CONSERVING: NewmarkParams = NewmarkParams {
+        contact: ContactForm::DiscreteGradient,
+    };
+}
+
+/// The trapezoidal rule's state and workspace.
+pub struct Newmark<'a> {
+    sys: &'a System,
+    contact: Option<&'a Contact>,
     form: ContactForm,
     dt: f64,
-    steps: usize,
-    obs: &mut dyn Observer,
-) -> Result<RunStats, SolveError> {
-    let n = model.n();
-    let mut stats = RunStats::default();
-    let a = sys.combine(4.0 / (dt * dt), 1.0);
-    let mut factor = Factor::new(&a, &model.dofs)?;
-    stats.factorizations = 1;
-    let (g, c) = contact_vectors(model);
-    let has_contact = model.contact.is_some();
-    let mut z = g.clone();
-    let mut s = 0.0;
-    if has_contact {
-        factor.solve_in_place(&mut z);
-        s = apply(&c, &z);
-    }
-    let ct = model.contact.as_ref();
-    let phi = |x: f64| ct.map(|c| c.law(x)).unwrap_or(0.0);
-    let dphi = |x: f64| ct.map(|c| c.law_slope(x)).unwrap_or(0.0);
-    let w = |x: f64| ct.map(|c| c.law_integral(x)).unwrap_or(0.0);
+    factor: Factor,
+    g: Vec<f64>,
+    c: Functional,
+    /// z = A⁻¹ g and s = c·z (the contact's condensed compliance).
+    z: Vec<f64>,
+    s: f64,
+    u: Vec<f64>,
+    v: Vec<f64>,
+    du: Vec<f64>,
+    /// f = K u, kept by increments.
+    f: Vec<f64>,
+    kdu: Vec<f64>,
+    mv: Vec<f64>,
+    alpha: f64,
+    phi_n: f64,
+    work_factor: f64,
+    contact_iterations: usize,
+}
 
-    let mut u = model.u0.clone();
-    let mut v = model.v0.clone();
-    let mut du = vec![0.0; n];
-    let mut f = vec![0.0; n];
-    let mut kdu = vec![0.0; n];
-    let mut mv = vec![0.0; n];
-    sys.k_mul(&u, &mut f);
-    let mut alpha = apply(&c, &u);
-    let mut phi_n = phi(alpha);
-    check_finite(model, 0, 0.0, &u)?;
-    check_finite(model, 0, 0.0, &v)?;
-    let go = obs.observe(&StepState {
-        step: 0,
-        time: 0.0,
-        u: &u,
-        v: &v,
-        alpha,
-        load_factor: phi_n,
-        work_factor: phi_n,
-    })?;
-    if !go {
-        return Ok(stats);
-    }
-    for step in 1..=steps {
-        let time = step as f64 * dt;
-        // rhs = 4M v/Δt − 2f (+ g φ(n) for the endpoint form)
-        sys.m_mul(&v, &mut mv);
-        for i in 0..n {
-            du[i] = 4.0 / dt * mv[i] - 2.0 * f[i];
+impl<'a> Newmark<'a> {
+    /// Factorises A = 4M/Δt² + K and sets up the initial state.
+    pub fn new(model: &'a Model, sys: &'a System, dt: f64, params: NewmarkParams) -> Result<Self, SolveError> {
+        let n = model.n();
+        let a = sys.combine(4.0 / (dt * dt), 1.0);
+        let mut factor = Factor::new(&a, &model.dofs)?;
+        let (g, c) = contact_vectors(model);
+        let mut z = g.clone();
+        let mut s = 0.0;
+        if model.contact.is_some() {
+            factor.solve_in_place(&mut z);
+            s = apply(&c, &z);
         }
-        if form == ContactForm::Endpoint && phi_n != 0.0 {
+        let u = model.u0.clone();
+        let mut f = vec![0.0; n];
+        sys.k_mul(&u, &mut f);
+        let alpha = apply(&c, &u);
+        let contact = model.contact.as_ref();
+        let phi_n = contact.map_or(0.0, |ct| ct.law(alpha));
+        Ok(Newmark {
+            sys,
+            contact,
+            form: params.contact,
+            dt,
+            factor,
+            g,
+            c,
+            z,
+            s,
+            v: model.v0.clone(),
+            u,
+            du: vec![0.0; n],
+            f,
+            kdu: vec![0.0; n],
+            mv: vec![0.0; n],
+            alpha,
+            phi_n,
+            work_factor: phi_n,
+            contact_iterations: 0,
+        })
+    }
+
+    /// The load factor ψ over the step and the new indentation, from the indentation
+    /// α* of the contact-free predictor.
+    fn contact_step(&mut self, ct: &Contact, alpha_star: f64, step: usize, time: f64) -> Result<f64, SolveError> {
+        let phi = |x: f64| ct.law(x);
+        let dphi = |x: f64| ct.law_slope(x);
+        let w = |x: f64| ct.law_integral(x);
+        let a_prev = self.alpha;
+        let (root, its) = match self.form {
+            ContactForm::Endpoint => solve(alpha_star, self.s, |x| (phi(x), dphi(x))),
+            ContactForm::DiscreteGradient => solve(alpha_star, self.s, |x| {
+                let dg = 2.0 * discrete_gradient(a_prev, x, w, phi);
+                // Derivative of the secant slope, for Newton only (the bracket
+                // keeps the iteration convergent with any nonnegative slope).
+                let d = x - a_prev;
+                let slope = if d.abs() > 1e-12 * x.abs().max(a_prev.abs()) {
+                    2.0 * (phi(x) - dg / 2.0) / d
+                } else {
+                    dphi(x)
+                };
+                (dg, slope.max(0.0))
+            }),
+        }
+        .ok_or(SolveError::ContactSolve { step, time_s: time })?;
+        self.contact_iterations += its;
+        Ok(match self.form {
+            ContactForm::Endpoint => phi(root),
+            ContactForm::DiscreteGradient => 2.0 * discrete_gradient(a_prev, root, w, phi),
+        })
+    }
+}
+
+impl Stepper for Newmark<'_> {
+    fn advance(&mut self, step: usize, time: f64) -> Result<(), SolveError> {
+        let (n, dt) = (self.u.len(), self.dt);
+        // rhs = 4M v/Δt − 2f (+ g φ(n) for the endpoint form)
+        self.sys.m_mul(&self.v, &mut self.mv);
+        for i in 0..n {
+            self.du[i] = 4.0 / dt * self.mv[i] - 2.0 * self.f[i];
+        }
+        if self.form == ContactForm::Endpoint && self.phi_n != 0.0 {
             for i in 0..n {
-                du[i] += g[i] * phi_n;
+                self.du[i] += self.g[i] * self.phi_n;
             }
         }
-        factor.solve_in_place(&mut du);
+        self.factor.solve_in_place(&mut self.du);
         // Contact: α = α* + s ψ(α), α* the indentation of the contact-free predictor.
         let mut psi = 0.0;
-        let mut alpha_new = alpha + apply(&c, &du);
-        if has_contact {
-            let a_prev = alpha;
-            let (root, its) = match form {
-                ContactForm::Endpoint => solve(alpha_new, s, |x| (phi(x), dphi(x))),
-                ContactForm::DiscreteGradient => solve(alpha_new, s, |x| {
-                    let dg = 2.0 * discrete_gradient(a_prev, x, w, phi);
-                    // Derivative of the secant slope, for Newton only (the bracket
-                    // keeps the iteration convergent with any nonnegative slope).
-                    let d = x - a_prev;
-                    let slope = if d.abs() > 1e-12 * x.abs().max(a_prev.abs()) {
-                        2.0 * (phi(x) - dg / 2.0) / d
-                    } else {
-                        dphi(x)
-                    };
-                    (dg, slope.max(0.0))
-                }),
-            }
-            .ok_or(SolveError::ContactSolve { step, time_s: time })?;
-            stats.contact_iterations += its;
-            psi = match form {
-                ContactForm::Endpoint => phi(root),
-                ContactForm::DiscreteGradient => 2.0 * discrete_gradient(a_prev, root, w, phi),
-            };
+        if let Some(ct) = self.contact {
+            let alpha_star = self.alpha + apply(&self.c, &self.du);
+            psi = self.contact_step(ct, alpha_star, step, time)?;
             if psi != 0.0 {
                 for i in 0..n {
-                    du[i] += z[i] * psi;
+                    self.du[i] += self.z[i] * psi;
                 }
             }
         }
-        sys.k_mul(&du, &mut kdu);
+        self.sys.k_mul(&self.du, &mut self.kdu);
         for i in 0..n {
-            u[i] += du[i];
-            f[i] += kdu[i];
-            v[i] = 2.0 * du[i] / dt - v[i];
+            self.u[i] += self.du[i];
+            self.f[i] += self.kdu[i];
+            self.v[i] = 2.0 * self.du[i] / dt - self.v[i];
         }
-        check_finite(model, step, time, &u)?;
-        check_finite(model, step, time, &v)?;
-        alpha_new = apply(&c, &u);
-        let phi_new = phi(alpha_new);
-        let work_factor = match form {
-            ContactForm::Endpoint => 0.5 * (phi_n + phi_new),
+        let alpha = apply(&self.c, &self.u);
+        let phi_new = self.contact.map_or(0.0, |ct| ct.law(alpha));
+        self.work_factor = match self.form {
+            ContactForm::Endpoint => 0.5 * (self.phi_n + phi_new),
             ContactForm::DiscreteGradient => 0.5 * psi,
         };
-        alpha = alpha_new;
-        phi_n = phi_new;
-        stats.steps = step;
-        let go = obs.observe(&StepState {
-            step,
-            time,
-            u: &u,
-            v: &v,
-            alpha,
-            load_factor: phi_n,
-            work_factor,
-        })?;
-        if !go {
-            break;
+        self.alpha = alpha;
+        self.phi_n = phi_new;
+        Ok(())
+    }
+
+    fn current(&self) -> Current<'_> {
+        Current {
+            u: &self.u,
+            v: &self.v,
+            alpha: self.alpha,
+            load_factor: self.phi_n,
+            work_factor: self.work_factor,
         }
     }
-    stats.solves = factor.solves;
-    stats.factor_time = factor.factor_time;
-    stats.solve_time = factor.solve_time;
-    Ok(stats)
+
+    fn costs(&self) -> StepCosts {
+        StepCosts {
+            factorizations: 1,
+            solves: self.factor.solves,
+            contact_iterations: self.contact_iterations,
+            factor_time: self.factor.factor_time,
+            solve_time: self.factor.solve_time,
+        }
+    }
 }

@@ -41,7 +41,6 @@ pub struct Row {
     pub note: String,
 }
 
-pub const SCHEMES: [Scheme; 4] = [Scheme::Newmark, Scheme::Energy, Scheme::Nastran, Scheme::Central];
 /// Δt factors relative to the paper's step.
 pub const DT_FACTORS: [f64; 7] = [8.0, 4.0, 2.0, 1.0, 0.5, 0.25, 0.125];
 
@@ -207,7 +206,7 @@ fn rod_rows(repeats: usize, progress: &dyn Fn(&str)) -> Result<Vec<Row>, Error> 
     };
     let sys = crate::assembly::assemble(&base);
     let crit = crate::integrate::central::critical_step(&base, &sys).ok();
-    for scheme in SCHEMES {
+    for scheme in Scheme::ALL {
         for f in DT_FACTORS {
             let dt = dt0 * f;
             progress(&format!("rod {} dt {dt:.3e}", scheme.name()));
@@ -236,7 +235,7 @@ fn rod_rows(repeats: usize, progress: &dyn Fn(&str)) -> Result<Vec<Row>, Error> 
     }
     for n in [36, 72, 144, 288] {
         let m = rod_model(n)?;
-        for scheme in SCHEMES {
+        for scheme in Scheme::ALL {
             progress(&format!("rod mesh {n} {}", scheme.name()));
             let sys = crate::assembly::assemble(&m);
             let crit = crate::integrate::central::critical_step(&m, &sys).ok();
@@ -291,7 +290,7 @@ fn plate_rows(repeats: usize, meshes: &[usize], progress: &dyn Fn(&str)) -> Resu
         peak: peak(&rrun),
     };
     let ref_gage = gage_a(25, &rrun);
-    for scheme in SCHEMES {
+    for scheme in Scheme::ALL {
         for f in DT_FACTORS {
             let dt = dt0 * f;
             if scheme == Scheme::Central {
@@ -407,7 +406,7 @@ fn figures(rows: &[Row], dir: &Path) -> Result<Vec<PathBuf>, String> {
         for (slug, name, get) in MEASURES {
             let mut wp = Vec::new();
             let mut ed = Vec::new();
-            for (k, scheme) in SCHEMES.iter().enumerate() {
+            for (k, scheme) in Scheme::ALL.iter().enumerate() {
                 let rs: Vec<&Row> = rows
                     .iter()
                     .filter(|r| r.problem == problem && r.scheme == *scheme && r.note.is_empty() && !r.wall_s.is_nan())
@@ -512,7 +511,7 @@ fn cheapest_table(rows: &[Row]) -> String {
             s,
             "| scheme | measure | ≤ 1 % | ≤ 0.1 % | ≤ 0.01 % |\n|---|---|---|---|---|"
         );
-        for scheme in SCHEMES {
+        for scheme in Scheme::ALL {
             for (_, name, get) in MEASURES.iter().take(2) {
                 let cells: Vec<String> = [1e-2, 1e-3, 1e-4]
                     .iter()

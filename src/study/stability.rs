@@ -13,7 +13,6 @@ use std::path::{Path, PathBuf};
 
 pub const DT_FACTORS: [f64; 9] = [0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0];
 pub const VELOCITY_SCALES: [f64; 7] = [1e-4, 1e-3, 1e-2, 1e-1, 1.0, 10.0, 100.0];
-const SCHEMES: [Scheme; 4] = [Scheme::Newmark, Scheme::Energy, Scheme::Nastran, Scheme::Central];
 
 #[derive(Debug, Clone)]
 pub struct Cell {
@@ -27,7 +26,7 @@ pub struct Cell {
 /// Runs the grid on `model` (the rod) over `t_end` seconds.
 pub fn run_map(model: &Model, dt0: f64, t_end: f64, progress: &dyn Fn(&str)) -> Result<Vec<Cell>, Error> {
     let mut cells = Vec::new();
-    for scheme in SCHEMES {
+    for scheme in Scheme::ALL {
         progress(scheme.name());
         for v in VELOCITY_SCALES {
             let m = Modify {
@@ -145,7 +144,7 @@ where
         VELOCITY_SCALES[0].log10() - 0.5,
         VELOCITY_SCALES[VELOCITY_SCALES.len() - 1].log10() + 0.5,
     );
-    for (area, scheme) in body.split_evenly((1, SCHEMES.len())).iter().zip(SCHEMES) {
+    for (area, scheme) in body.split_evenly((1, Scheme::ALL.len())).iter().zip(Scheme::ALL) {
         let mut ch = ChartBuilder::on(area)
             .caption(scheme.name(), ("sans-serif", 18))
             .margin(8)
@@ -197,7 +196,7 @@ pub fn readme(cells: &[Cell]) -> String {
          `stability-map.csv`.\n\n![stability map](stability-map.png)\n\n| scheme | runs | refused or failed | \
          largest energy error | at Δt, velocity scale |\n|---|---|---|---|---|\n",
     );
-    for scheme in SCHEMES {
+    for scheme in Scheme::ALL {
         let mine: Vec<&Cell> = cells.iter().filter(|c| c.scheme == scheme).collect();
         let failed = mine.iter().filter(|c| c.outcome.is_err()).count();
         let worst = mine

@@ -1,0 +1,189 @@
+//! Named one-degree-of-freedom test models with exact solutions; every scheme is run
+//! on each of them alone, without the rest of the pipeline (as diffsol tests its
+//! solvers on its test models).
+//!
+//! - [`oscillator`]: a mass on a linear spring, u = (v0/ω) sin ωt.
+//! - [`hertz_wall`]: a mass striking a rigid wall through a Hertz spring F = Kα^1.5:
+//!   α_max = (5mv0²/4K)^(2/5), F_max = Kα_max^1.5, contact time
+//!   (4/5)·B(2/5, 1/2)·α_max/v0 = 2.9432752 α_max/v0, rebound at −v0 (restitution 1).
+
+use super::{integrate, Observer, Scheme, SolveError, StepState};
+use crate::assembly::assemble;
+use crate::deck::{cards::CardRef, diag::Pos, Units};
+use crate::elements::{mass::PointMass, rod::Rod, rod::RodSection, Element};
+use crate::model::{Contact, DofLabel, Impactor, Model, NonlinearLoad, OutputPlan, TimeControl};
+
+/// A model of one solved DOF (T1 of grid 2): `mass` there, a spring `spring` to a
+/// clamped grid 1 (none if 0), and, if `hertz` is given, a Hertz contact with a rigid
+/// wall at u = 0 (α = u).
+fn one_dof(mass: f64, spring: f64, v0: f64, hertz: Option<f64>) -> Model {
+    let label = DofLabel { point: 2, comp: 1 };
+    let free = [Some(0), None, None, None, None, None];
+    let mut elements = vec![Element::new(
+        2,
+        vec![2],
+        vec![free],
+        PointMass {
+            x: [1.0, 0.0, 0.0],
+            mass,
+            inertia: [0.0; 6],
+        },
+    )];
+    if spring > 0.0 {
+        let section = RodSection {
+            e: spring,
+            g: 0.0,
+            area: 1.0,
+            torsion: 0.0,
+            rho: 0.0,
+            nsm: 0.0,
+        };
+        let x = [[0.0; 3], [1.0, 0.0, 0.0]];
+        elements.push(Element::new(1, vec![1, 2], vec![[None; 6], free], Rod { x, section }));
+    }
+    let contact = hertz.map(|k| {
+        let at = CardRef {
+            name: "NOLIN3".into(),
+            pos: Pos {
+                file: "test model".into(),
+                line: 0,
+                column: 0,
+            },
+            source: String::new(),
+        };
+        Contact {
+            driver: vec![(0, 1.0)],
+            driver_label: label,
+            loads: vec![NonlinearLoad {
+                dof: 0,
+                label,
+                scale: -k,
+                at,
+            }],
+            exponent: 1.5,
+            stiffness: k,
+            impactor: Impactor {
+                grid: 2,
+                dof: 0,
+                mass,
+                dofs: vec![0],
+            },
+            nonconservative: Vec::new(),
+        }
+    });
+    Model {
+        name: "one-dof".into(),
+        title: String::new(),
+        units: Units::default(),
+        deck_sha256: String::new(),
+        dofs: vec![label],
+        dependent: Vec::new(),
+        elements,
+        contact,
+        u0: vec![0.0],
+        v0: vec![v0],
+        time: TimeControl {
+            dt: 1.0,
+            steps: 1,
+            every: 1,
+        },
+        outputs: OutputPlan::default(),
+        rod: None,
+        inert_dofs: 0,
+    }
+}
+
+/// Mass 2 on a spring of stiffness 8 (ω = 2), starting at u = 0 with v0 = 3.
+pub struct Oscillator {
+    pub model: Model,
+    pub mass: f64,
+    pub stiffness: f64,
+    pub omega: f64,
+    pub v0: f64,
+}
+
+pub fn oscillator() -> Oscillator {
+    let (mass, stiffness, v0) = (2.0, 8.0, 3.0);
+    Oscillator {
+        model: one_dof(mass, stiffness, v0, None),
+        mass,
+        stiffness,
+        omega: (stiffness / mass).sqrt(),
+        v0,
+    }
+}
+
+impl Oscillator {
+    /// The exact displacement and velocity.
+    pub fn exact(&self, t: f64) -> (f64, f64) {
+        let w = self.omega;
+        (self.v0 / w * (w * t).sin(), self.v0 * (w * t).cos())
+    }
+    pub fn period(&self) -> f64 {
+        2.0 * std::f64::consts::PI / self.omega
+    }
+    pub fn energy(&self, u: f64, v: f64) -> f64 {
+        0.5 * self.mass * v * v + 0.5 * self.stiffness * u * u
+    }
+}
+
+/// The paper's steel ball (m = 9.587e-5 lbf·s²/in, K = 6.24e6 lbf/in^1.5) at
+/// 62.1 in/s on a rigid wall.
+pub struct HertzWall {
+    pub model: Model,
+    pub mass: f64,
+    pub stiffness: f64,
+    pub v0: f64,
+}
+
+pub fn hertz_wall() -> HertzWall {
+    let (mass, stiffness, v0) = (9.587e-5, 6.24e6, 62.1);
+    HertzWall {
+        model: one_dof(mass, 0.0, v0, Some(stiffness)),
+        mass,
+        stiffness,
+        v0,
+    }
+}
+
+impl HertzWall {
+    pub fn alpha_max(&self) -> f64 {
+        (5.0 * self.mass * self.v0 * self.v0 / (4.0 * self.stiffness)).powf(0.4)
+    }
+    pub fn force_max(&self) -> f64 {
+        self.stiffness * self.alpha_max().powf(1.5)
+    }
+    pub fn contact_time(&self) -> f64 {
+        crate::verify::analytic::RIGID_DURATION_FACTOR * self.alpha_max() / self.v0
+    }
+}
+
+/// The states of a run: (time, u, v, α).
+#[derive(Default)]
+pub struct Record(pub Vec<(f64, f64, f64, f64)>);
+
+impl Observer for Record {
+    fn observe(&mut self, s: &StepState) -> Result<bool, SolveError> {
+        self.0.push((s.time, s.u[0], s.v[0], s.alpha));
+        Ok(true)
+    }
+}
+
+/// Runs `scheme` on a one-DOF model.
+pub fn run(model: &Model, scheme: Scheme, dt: f64, steps: usize) -> Record {
+    let sys = assemble(model);
+    let mut rec = Record::default();
+    integrate(model, &sys, scheme, dt, steps, &mut rec).expect("the test model runs");
+    rec
+}
+
+/// The least-squares slope of log(error) against log(dt).
+pub fn order(dts: &[f64], errors: &[f64]) -> f64 {
+    let x: Vec<f64> = dts.iter().map(|d| d.ln()).collect();
+    let y: Vec<f64> = errors.iter().map(|e| e.ln()).collect();
+    let n = x.len() as f64;
+    let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
+    let sxy: f64 = x.iter().zip(&y).map(|(a, b)| (a - mx) * (b - my)).sum();
+    let sxx: f64 = x.iter().map(|a| (a - mx) * (a - mx)).sum();
+    sxy / sxx
+}
