@@ -211,7 +211,8 @@ fn execute(cli: Cli) -> Result<u8, Error> {
                         path.display()
                     )));
                 }
-                let (s, model, mut o, _) = impactlab::scene::load(&path)?;
+                let (s, model, _) = impactlab::scene::load(&path)?;
+                let mut o = RunOptions::for_scene(&s);
                 o.scheme = scheme.unwrap_or(s.run.scheme);
                 (model, o, Some(s))
             } else {
@@ -271,7 +272,8 @@ fn execute(cli: Cli) -> Result<u8, Error> {
             Ok(0)
         }
         Command::Scene { scene, to_deck, costs } => {
-            let (s, model, opts, deck) = impactlab::scene::load(&scene)?;
+            let (s, model, deck) = impactlab::scene::load(&scene)?;
+            let opts = RunOptions::for_scene(&s);
             let (k, how) = impactlab::scene::contact_stiffness(&s).map_err(Error::Usage)?;
             sayln!("Hertz K = {k:.6e} ({how})");
             if let Some(p) = to_deck {
@@ -282,7 +284,7 @@ fn execute(cli: Cli) -> Result<u8, Error> {
                 sayln!("deck: {}", p.display());
             }
             if costs {
-                say!("{}", impactlab::scene::effect_costs(&model, &opts)?);
+                say!("{}", impactlab::study::scene_costs(&model, &opts)?);
             }
             Ok(0)
         }

@@ -57,7 +57,7 @@ fn rod_report_regenerates_and_matches_its_run() {
 fn field_files_parse_back() {
     use impactlab::report::fields::{field_times, read_back, write_fields};
     let dir = tempfile::tempdir().unwrap();
-    let m = impactlab::study::plate_model(13).unwrap();
+    let m = impactlab::mesh::plate_model(13).unwrap();
     let opts = impactlab::run::RunOptions {
         steps: Some(400),
         snapshot_times: field_times(1e-7, 400, 4),

@@ -7,6 +7,7 @@
 mod common;
 use common::*;
 use impactlab::integrate::Scheme;
+use impactlab::numerics::interp;
 use impactlab::run::Column;
 
 /// Goal: the deck builds the model the paper describes.
@@ -122,17 +123,9 @@ fn rod_newmark_energy_error_is_second_order() {
         assert!((ratio - 4.0).abs() < 0.3, "halving ratio {ratio} ({errs:?})");
     }
     let (x, y): (Vec<f64>, Vec<f64>) = dts.iter().zip(&errs).map(|(d, e)| (d.ln(), e.ln())).unzip();
-    let slope = fit_slope(&x, &y);
+    let slope = impactlab::numerics::slope(&x, &y);
     assert!((slope - 2.0).abs() < 0.05, "order {slope}");
     assert!(errs[1] < 2e-5, "at the paper's Δt: {}", errs[1]);
-}
-
-fn fit_slope(x: &[f64], y: &[f64]) -> f64 {
-    let n = x.len() as f64;
-    let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
-    let sxy: f64 = x.iter().zip(y).map(|(a, b)| (a - mx) * (b - my)).sum();
-    let sxx: f64 = x.iter().map(|a| (a - mx).powi(2)).sum();
-    sxy / sxx
 }
 
 /// Goal: the free-free rod conserves momentum. Model: rod.bdf, newmark and energy.

@@ -30,9 +30,10 @@ fn write(dir: &std::path::Path, name: &str, text: &str) -> std::path::PathBuf {
 /// and the rod scene reproduces the deck's run (same contact end, same peak force).
 #[test]
 fn rod_scene_is_the_papers_rod() {
-    let (s, model, opts, _) = impactlab::scene::load(&root().join("verification/scenes/rod.toml")).unwrap();
+    let (s, model, _) = impactlab::scene::load(&root().join("verification/scenes/rod.toml")).unwrap();
     let (k, _) = impactlab::scene::contact_stiffness(&s).unwrap();
     assert!((k / 6.24e6 - 1.0).abs() < 1e-3, "K = {k}");
+    let opts = impactlab::run::RunOptions::for_scene(&s);
     let r = run_model(&model, &opts).unwrap();
     let deck = common::run(&common::rod_model(), impactlab::integrate::Scheme::Newmark, None, None);
     let (a, b) = (
@@ -82,7 +83,8 @@ fn plate_scene_simulates_only_what_it_needs() {
         .replace("mesh = 49", "mesh = 13")
         .replace("gages = [3325, 4125]", "gages = []");
     let p = write(dir.path(), "plate13.toml", &text);
-    let (s, model, opts, _) = impactlab::scene::load(&p).unwrap();
+    let (s, model, _) = impactlab::scene::load(&p).unwrap();
+    let opts = impactlab::run::RunOptions::for_scene(&s);
     let skip = run_model(&model, &opts).unwrap();
     let all = run_model(
         &model,

@@ -10,7 +10,7 @@ use common::{deck, rod_model};
 use impactlab::integrate::{Scheme, SolveError};
 use impactlab::model::{Model, Modify};
 use impactlab::run::{run_model, Run, RunOptions};
-use impactlab::verify::analytic::rigid_target;
+use impactlab::physics::analytic::rigid_target;
 
 fn go(m: &Model, scheme: Scheme, dt: f64, steps: usize) -> Result<Run, SolveError> {
     run_model(
@@ -240,7 +240,7 @@ fn long_run_1e5_steps() {
 /// in order, disjoint, and the energy scheme conserves energy through all of them.
 #[test]
 fn plate_repeated_impacts_to_1_ms() {
-    let m = impactlab::study::plate_model(25).unwrap();
+    let m = impactlab::mesh::plate_model(25).unwrap();
     let r = go(&m, Scheme::Energy, 2e-7, 5000).unwrap();
     sane(&r, 1e-4); // the deck's non-conservative NOLIN3 remainder is booked, not lost
     let iv = &r.summary.contact.intervals;

@@ -1,6 +1,10 @@
 //! Assembly: element matrices scattered into global sparse matrices over the solved
 //! DOFs (constrained DOFs are simply dropped: homogeneous SPCs).
 
+mod reduce;
+
+pub use reduce::drop_inert;
+
 use crate::model::Model;
 use faer::sparse::{SparseColMat, Triplet};
 

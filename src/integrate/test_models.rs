@@ -154,7 +154,7 @@ impl HertzWall {
         self.stiffness * self.alpha_max().powf(1.5)
     }
     pub fn contact_time(&self) -> f64 {
-        crate::verify::analytic::RIGID_DURATION_FACTOR * self.alpha_max() / self.v0
+        crate::physics::analytic::RIGID_DURATION_FACTOR * self.alpha_max() / self.v0
     }
 }
 
@@ -177,13 +177,7 @@ pub fn run(model: &Model, scheme: Scheme, dt: f64, steps: usize) -> Record {
     rec
 }
 
-/// The least-squares slope of log(error) against log(dt).
+/// The observed order: least-squares slope of log(error) against log(dt).
 pub fn order(dts: &[f64], errors: &[f64]) -> f64 {
-    let x: Vec<f64> = dts.iter().map(|d| d.ln()).collect();
-    let y: Vec<f64> = errors.iter().map(|e| e.ln()).collect();
-    let n = x.len() as f64;
-    let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
-    let sxy: f64 = x.iter().zip(&y).map(|(a, b)| (a - mx) * (b - my)).sum();
-    let sxx: f64 = x.iter().map(|a| (a - mx) * (a - mx)).sum();
-    sxy / sxx
+    crate::numerics::order(dts, errors, 0.0, 2)
 }

@@ -8,11 +8,9 @@
 
 mod build;
 mod modify;
-mod reduce;
 
 pub use build::{build_model, ModelError};
 pub use modify::Modify;
-pub use reduce::drop_inert;
 
 use crate::deck::{CardRef, Units};
 pub use crate::elements::quad4::ShellSection;
@@ -145,7 +143,7 @@ pub struct TimeControl {
 pub enum Source {
     Dof(usize),
     Dependent(usize),
-    /// A DOF dropped as inert (see [`drop_inert`]): identically zero.
+    /// A DOF dropped as inert (see [`crate::assembly::drop_inert`]): identically zero.
     Inert,
 }
 

@@ -4,7 +4,7 @@
 //! analytic references; this module only draws and writes.
 
 pub mod fields;
-pub mod plot;
+
 
 use crate::elements::{quad4::Quad4, rod::Rod, Fibre, Measure, Plane};
 use crate::error::Error;
@@ -12,8 +12,9 @@ use crate::ledger::EnergyRow;
 use crate::model::Model;
 use crate::run::Column;
 use crate::run::{run_model, Run};
-use crate::verify::{self, analytic, Case, CheckResult};
-use plot::{Chart, Contour, Line};
+use crate::physics::analytic;
+use crate::verify::{self, Case, CheckResult};
+use crate::plot::{self, Chart, Contour, Line};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 

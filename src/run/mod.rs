@@ -1,10 +1,11 @@
 //! One run: model → assembled system → integrator → recorded history, ledger and
 //! typed [`Summary`]. Plain data in, plain data out; writing files is [`crate::output`]'s job.
 
-use crate::assembly::{assemble, System};
+use crate::assembly::{assemble, drop_inert, System};
 use crate::integrate::{integrate, Observer, RunStats, Scheme, SolveError, StepState};
 use crate::ledger::{EnergyRow, Ledger};
-use crate::model::{drop_inert, Model};
+use crate::model::Model;
+use crate::numerics::crossing;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 pub use summary::{
     ContactSummary, EnergySummary, ImpactorSummary, ModelSummary, MomentumSummary, RodSummary, RunSummary, Summary,
@@ -26,7 +27,7 @@ pub struct RunOptions {
     pub max_energy_error: Option<f64>,
     /// Show a progress bar on a terminal.
     pub progress: bool,
-    /// Solve only the live DOFs ([`crate::model::drop_inert`]); exact, so on by default.
+    /// Solve only the live DOFs ([`crate::assembly::drop_inert`]); exact, so on by default.
     pub skip_inert: bool,
     /// Times at which to keep the whole displacement state (the nearest step).
     pub snapshot_times: Vec<f64>,
@@ -34,6 +35,20 @@ pub struct RunOptions {
     pub ledger: bool,
     /// Stop this long after the first separation (contact ended), if given.
     pub stop_after_separation: Option<f64>,
+}
+
+impl RunOptions {
+    /// How a scene asks to be run: its scheme, the membrane DOFs solved only when it
+    /// asks for them, the ledger as it says, and its stop after separation.
+    pub fn for_scene(s: &crate::scene::Scene) -> Self {
+        RunOptions {
+            scheme: s.run.scheme,
+            skip_inert: !s.effects.membrane,
+            ledger: s.effects.ledger,
+            stop_after_separation: s.run.after_separation,
+            ..Default::default()
+        }
+    }
 }
 
 impl Default for RunOptions {
@@ -308,16 +323,6 @@ pub fn run_system(model: &Model, sys: &System, opts: &RunOptions) -> Result<Run,
     };
     run.summary = summarize(model, &run, 0.0);
     Ok(run)
-}
-
-/// Times where a sampled signal crosses zero, by linear interpolation between samples.
-fn crossing(t: &[f64], y: &[f64], k: usize) -> f64 {
-    // sign change between k-1 and k
-    let (y0, y1) = (y[k - 1], y[k]);
-    if y1 == y0 {
-        return t[k];
-    }
-    t[k - 1] + (t[k] - t[k - 1]) * (y0 / (y0 - y1))
 }
 
 /// Contact intervals [start, end] from the indentation: contact while α > 0.

@@ -9,9 +9,9 @@
 
 use crate::deck::number::format_real;
 use crate::error::Error;
+use crate::physics;
 use crate::integrate::Scheme;
 use crate::model::Model;
-use crate::run::RunOptions;
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
 use std::path::Path;
@@ -265,9 +265,9 @@ pub fn contact_stiffness(s: &Scene) -> Result<(f64, String), String> {
         .impactor
         .material
         .ok_or("contact.k = \"eq5\"/\"eq18\" needs impactor.material")?;
-    let ki = mi.e / (1.0 - mi.nu * mi.nu);
+    let ki = physics::plane_strain_modulus(mi.e, mi.nu);
     let (kt, eq) = match (which, &s.target) {
-        ("eq5", Target::Rod { material, .. }) => (material.e / (1.0 - material.nu * material.nu), "Eq. 5"),
+        ("eq5", Target::Rod { material, .. }) => (physics::plane_strain_modulus(material.e, material.nu), "Eq. 5"),
         ("eq18", Target::Plate { e33: Some(e33), .. }) => (*e33, "Eq. 18 (k_t = E33)"),
         ("eq18", Target::Plate { e33: None, .. }) => return Err("contact.k = \"eq18\" needs target.e33".into()),
         ("eq5", Target::Plate { .. }) => {
@@ -278,7 +278,7 @@ pub fn contact_stiffness(s: &Scene) -> Result<(f64, String), String> {
         }
         (w, _) => return Err(format!("contact.k must be a number, \"eq5\" or \"eq18\", not '{w}'")),
     };
-    let kk = 4.0 / 3.0 * r.sqrt() * ki * kt / (ki + kt);
+    let kk = physics::hertz_stiffness(r, ki, kt);
     Ok((
         kk,
         format!("{eq}: 4/3 √r k_i k_t/(k_i + k_t), r = {r}, k_i = {ki:.4e}, k_t = {kt:.4e}"),
@@ -298,7 +298,7 @@ pub fn time_step(s: &Scene, k: f64) -> Result<f64, String> {
         };
     }
     if s.run.dt.as_str() == Some("auto") {
-        let (_, _, t) = crate::verify::analytic::rigid_target(s.impactor.mass, s.impactor.velocity, k);
+        let (_, _, t) = physics::analytic::rigid_target(s.impactor.mass, s.impactor.velocity, k);
         return Ok(t / 400.0);
     }
     Err("run.dt must be a number or \"auto\"".into())
@@ -456,22 +456,14 @@ fn join<T: std::fmt::Display>(v: &[T]) -> String {
 }
 
 /// The scene's model (through its deck), its run options, and the computed K.
-pub fn load(path: &Path) -> Result<(Scene, Model, RunOptions, String), Error> {
+pub fn load(path: &Path) -> Result<(Scene, Model, String), Error> {
     let s = read(path)?;
     let deck = to_deck(&s).map_err(|e| bad(path, e))?;
     let name = path
         .file_stem()
         .map_or("scene".into(), |n| n.to_string_lossy().into_owned());
     let model = crate::model_from_text(&name, &deck)?;
-    let opts = RunOptions {
-        scheme: s.run.scheme,
-        // Membrane asked for: solve the in-plane DOFs even where nothing loads them.
-        skip_inert: !s.effects.membrane,
-        ledger: s.effects.ledger,
-        stop_after_separation: s.run.after_separation,
-        ..Default::default()
-    };
-    Ok((s, model, opts, deck))
+    Ok((s, model, deck))
 }
 
 /// A scene's effects, each with the reason it is in or out (`effects` in the summary).
@@ -534,54 +526,3 @@ pub fn effects(s: &Scene, inert_dofs: usize, steps_done: usize) -> EffectReport 
     }
 }
 
-/// What each optional effect costs: wall time (median of 3 runs) of the scene as
-/// configured, with the membrane DOFs solved, and without the ledger.
-pub fn effect_costs(model: &Model, opts: &RunOptions) -> Result<String, Error> {
-    let time = |o: &RunOptions| -> Result<(f64, crate::run::Summary), Error> {
-        let mut w = Vec::new();
-        let mut last = crate::run::Summary::default();
-        for _ in 0..3 {
-            let t0 = std::time::Instant::now();
-            let r = crate::run::run_model(model, o)?;
-            w.push(t0.elapsed().as_secs_f64());
-            last = r.summary;
-        }
-        Ok((crate::study::median(w), last))
-    };
-    let variants = [
-        (
-            "membrane DOFs skipped, ledger on",
-            RunOptions {
-                skip_inert: true,
-                ledger: true,
-                ..opts.clone()
-            },
-        ),
-        (
-            "membrane DOFs solved, ledger on",
-            RunOptions {
-                skip_inert: false,
-                ledger: true,
-                ..opts.clone()
-            },
-        ),
-        (
-            "membrane DOFs skipped, ledger off",
-            RunOptions {
-                skip_inert: true,
-                ledger: false,
-                ..opts.clone()
-            },
-        ),
-    ];
-    let mut out = String::from("| variant | solved DOF | wall [s] | peak force |\n|---|---|---|---|\n");
-    for (name, o) in variants {
-        let (t, s) = time(&o)?;
-        let _ = writeln!(
-            out,
-            "| {name} | {} | {t:.3} | {} |",
-            s.model.solved_dofs, s.contact.peak_force
-        );
-    }
-    Ok(out)
-}

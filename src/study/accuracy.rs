@@ -10,13 +10,15 @@
 //! rotations have no mass), and says so. Wall time is the median of repeats after one
 //! warm-up run.
 
-use super::{history_extreme, median, plate_model};
+use super::history_extreme;
+use crate::mesh::plate_model;
 use crate::error::Error;
 use crate::integrate::{Scheme, SolveError};
 use crate::model::Model;
-use crate::report::plot::{self, Chart, Line};
+use crate::plot::{self, Chart, Line};
 use crate::run::{run_model, Run, RunOptions};
-use crate::verify::analytic;
+use crate::numerics::{interp, median};
+use crate::physics::analytic;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -62,15 +64,6 @@ struct Reference {
     f: Vec<f64>,
     duration: f64,
     peak: f64,
-}
-
-fn interp(t: &[f64], y: &[f64], x: f64) -> f64 {
-    if x <= t[0] || x > *t.last().unwrap_or(&0.0) {
-        return 0.0;
-    }
-    let k = t.partition_point(|&s| s < x).max(1);
-    let w = (x - t[k - 1]) / (t[k] - t[k - 1]);
-    y[k - 1] * (1.0 - w) + y[k] * w
 }
 
 /// Relative L2 norm of F − F_ref over the reference's contact interval.
@@ -379,18 +372,9 @@ fn csv(rows: &[Row]) -> String {
     s
 }
 
-/// Least-squares slope of log y on log x over finite positive pairs.
+/// Least-squares slope of log y on log x over finite pairs above round-off (1e-13).
 fn fitted_order(x: &[f64], y: &[f64]) -> f64 {
-    let (lx, ly): (Vec<f64>, Vec<f64>) = x
-        .iter()
-        .zip(y)
-        .filter(|(a, b)| **a > 0.0 && **b > 1e-13 && b.is_finite())
-        .map(|(a, b)| (a.ln(), b.ln()))
-        .unzip();
-    if lx.len() < 3 {
-        return f64::NAN;
-    }
-    crate::verify::slope(&lx, &ly)
+    crate::numerics::order(x, y, 1e-13, 3)
 }
 
 type Measure = (&'static str, &'static str, fn(&Row) -> f64);

@@ -7,16 +7,11 @@ use crate::deck::ReadOptions;
 use crate::elements::{Fibre, Plane};
 use crate::error::Error;
 use crate::integrate::Scheme;
-use crate::mesh::PlateMesh;
-use crate::model::Model;
+use crate::mesh::{plate_model, PlateMesh};
+use crate::numerics::median;
 use crate::run::{run_model, Column, Run, RunOptions};
 use serde::Serialize;
-
-/// The paper's plate on an n×n mesh, built from the generated deck.
-pub fn plate_model(n: usize) -> Result<Model, Error> {
-    let text = crate::mesh::plate_deck(n).map_err(Error::Usage)?;
-    crate::model_from_text(&format!("plate-{n}x{n}"), &text)
-}
+use std::fmt::Write as _;
 
 /// Extreme (largest magnitude, signed) of a history column and its time.
 #[derive(Debug, Clone, Copy, Serialize, PartialEq)]
@@ -151,12 +146,6 @@ pub fn mesh_study_files(rows: &[MeshRow]) -> Vec<(&'static str, Vec<u8>)> {
     vec![("mesh-study.csv", csv.into_bytes()), ("mesh-study.json", json)]
 }
 
-/// Median of a sample (sorted copy).
-pub(crate) fn median(mut x: Vec<f64>) -> f64 {
-    x.sort_by(f64::total_cmp);
-    x[x.len() / 2]
-}
-
 /// Times the paper's 49×49 plate deck: one warm-up, then `repeats` timed runs; reports
 /// the median of each stage.
 pub fn bench_plate(repeats: usize, steps: usize) -> Result<String, Error> {
@@ -225,3 +214,55 @@ pub fn bench_plate(repeats: usize, steps: usize) -> Result<String, Error> {
 }
 pub mod accuracy;
 pub mod stability;
+
+/// What each optional effect costs: wall time (median of 3 runs) of the scene as
+/// configured, with the membrane DOFs solved, and without the ledger.
+pub fn scene_costs(model: &crate::model::Model, opts: &RunOptions) -> Result<String, Error> {
+    let time = |o: &RunOptions| -> Result<(f64, crate::run::Summary), Error> {
+        let mut w = Vec::new();
+        let mut last = crate::run::Summary::default();
+        for _ in 0..3 {
+            let t0 = std::time::Instant::now();
+            let r = run_model(model, o)?;
+            w.push(t0.elapsed().as_secs_f64());
+            last = r.summary;
+        }
+        Ok((median(w), last))
+    };
+    let variants = [
+        (
+            "membrane DOFs skipped, ledger on",
+            RunOptions {
+                skip_inert: true,
+                ledger: true,
+                ..opts.clone()
+            },
+        ),
+        (
+            "membrane DOFs solved, ledger on",
+            RunOptions {
+                skip_inert: false,
+                ledger: true,
+                ..opts.clone()
+            },
+        ),
+        (
+            "membrane DOFs skipped, ledger off",
+            RunOptions {
+                skip_inert: true,
+                ledger: false,
+                ..opts.clone()
+            },
+        ),
+    ];
+    let mut out = String::from("| variant | solved DOF | wall [s] | peak force |\n|---|---|---|---|\n");
+    for (name, o) in variants {
+        let (t, s) = time(&o)?;
+        let _ = writeln!(
+            out,
+            "| {name} | {} | {t:.3} | {} |",
+            s.model.solved_dofs, s.contact.peak_force
+        );
+    }
+    Ok(out)
+}

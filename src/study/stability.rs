@@ -95,7 +95,7 @@ struct Map<'a> {
     dt0: f64,
 }
 
-impl crate::report::plot::Figure for Map<'_> {
+impl crate::plot::Figure for Map<'_> {
     fn size(&self) -> (u32, u32) {
         (1400, 560)
     }
@@ -109,7 +109,7 @@ impl crate::report::plot::Figure for Map<'_> {
 
 /// Draws the map (one panel per scheme) as PNG and SVG.
 pub fn figure(cells: &[Cell], dt0: f64, stem: &Path) -> Result<Vec<PathBuf>, String> {
-    crate::report::plot::write_figure(&Map { cells, dt0 }, stem)
+    crate::plot::write_figure(&Map { cells, dt0 }, stem)
 }
 
 fn draw<DB: DrawingBackend>(

@@ -6,7 +6,6 @@
 //! measured, the reference it compared with, the tolerance, and the verdict. The
 //! analytic references live in [`analytic`] and share no code with the solver core.
 
-pub mod analytic;
 pub mod audit;
 pub mod gold;
 
@@ -16,7 +15,8 @@ use crate::integrate::Scheme;
 use crate::ledger::EnergyRow;
 use crate::model::{Model, Modify};
 use crate::run::{run_model, Column, Run, RunOptions, Summary};
-use analytic::HertzDashpot;
+use crate::numerics::{argmax, slope};
+use crate::physics::analytic::{self, HertzDashpot};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
@@ -220,7 +220,7 @@ fn rel(case: &Case, p: &Path) -> PathBuf {
 pub fn case_model(case: &Case) -> Result<Model, Error> {
     let mut m = match (&case.deck, case.plate_mesh) {
         (Some(d), _) => crate::load_deck(&rel(case, d), Default::default())?.0,
-        (None, Some(n)) => crate::study::plate_model(n)?,
+        (None, Some(n)) => crate::mesh::plate_model(n)?,
         _ => unreachable!("checked by read_case"),
     };
     if case.every_step {
@@ -669,7 +669,7 @@ pub fn check(case: &Case, model: &Model, run: &Run, spec: &CheckSpec) -> Result<
         CheckSpec::MeshConvergence { meshes, quantity, max } => {
             let mut values = Vec::new();
             for &n in meshes {
-                let m = crate::study::plate_model(n)?;
+                let m = crate::mesh::plate_model(n)?;
                 let r = run_model(&m, &case_options(case))?;
                 values.push(quantity.of(&r.summary));
             }
@@ -702,20 +702,6 @@ pub fn check(case: &Case, model: &Model, run: &Run, spec: &CheckSpec) -> Result<
             )
         }
     })
-}
-
-fn argmax(it: impl Iterator<Item = f64>) -> (usize, f64) {
-    it.enumerate()
-        .fold((0, f64::NEG_INFINITY), |a, (k, v)| if v > a.1 { (k, v) } else { a })
-}
-
-/// Least-squares slope of y against x.
-pub fn slope(x: &[f64], y: &[f64]) -> f64 {
-    let n = x.len() as f64;
-    let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
-    let sxy: f64 = x.iter().zip(y).map(|(a, b)| (a - mx) * (b - my)).sum();
-    let sxx: f64 = x.iter().map(|a| (a - mx) * (a - mx)).sum();
-    sxy / sxx
 }
 
 /// The verdicts of all cases.

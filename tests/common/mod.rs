@@ -34,12 +34,3 @@ pub fn run(model: &Model, scheme: Scheme, dt: Option<f64>, steps: Option<usize>)
     .expect("run succeeds")
 }
 
-/// Linear interpolation of a sampled signal (clamped to zero outside its range).
-pub fn interp(t: &[f64], y: &[f64], x: f64) -> f64 {
-    if x <= t[0] || x > *t.last().unwrap() {
-        return 0.0;
-    }
-    let k = t.partition_point(|&s| s < x);
-    let w = (x - t[k - 1]) / (t[k] - t[k - 1]);
-    y[k - 1] * (1.0 - w) + y[k] * w
-}

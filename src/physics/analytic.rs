@@ -115,12 +115,7 @@ impl HertzDashpot {
 
 /// Linear interpolation of a trace's force at time t (zero outside the trace).
 pub fn force_at(tr: &Trace, t: f64) -> f64 {
-    if t <= 0.0 || t > *tr.time.last().unwrap_or(&0.0) {
-        return 0.0;
-    }
-    let k = tr.time.partition_point(|&s| s < t).max(1);
-    let w = (t - tr.time[k - 1]) / (tr.time[k] - tr.time[k - 1]);
-    tr.force[k - 1] * (1.0 - w) + tr.force[k] * w
+    crate::numerics::interp(&tr.time, &tr.force, t)
 }
 
 /// d'Alembert: strain at distance x from the struck end of a rod (wave speed C,

@@ -13,8 +13,8 @@
 //! Dropping a group is exact, not an approximation: the remaining equations are the
 //! same, and the dropped DOFs are reported as zero in every output.
 
-use super::{Functional, Model, Source};
-use crate::assembly::System;
+use super::System;
+use crate::model::{Functional, Model, Source};
 
 struct UnionFind(Vec<usize>);
 
