@@ -12,6 +12,14 @@ pub enum Error {
     Model(#[from] ModelError),
     #[error("numerical failure: {0}")]
     Solve(#[from] SolveError),
+    #[error("{0}")]
+    Modify(#[from] crate::model::ModifyError),
+    #[error("{0}")]
+    Case(#[from] crate::verify::CaseError),
+    #[error("{0}")]
+    Check(#[from] crate::verify::CheckError),
+    #[error("{0}")]
+    Reference(#[from] crate::physics::references::ReferenceError),
     #[error("invalid option: {0}")]
     Usage(String),
     #[error("cannot write outputs to {path}: {source}")]
@@ -26,7 +34,14 @@ impl Error {
     /// 2 for bad input, 3 for numerical failure (1 is reserved for failed verification).
     pub fn exit_code(&self) -> i32 {
         match self {
-            Error::Deck(_) | Error::Model(_) | Error::Usage(_) | Error::Io { .. } => 2,
+            Error::Deck(_)
+            | Error::Model(_)
+            | Error::Modify(_)
+            | Error::Case(_)
+            | Error::Check(_)
+            | Error::Reference(_)
+            | Error::Usage(_)
+            | Error::Io { .. } => 2,
             Error::Solve(_) => 3,
         }
     }

@@ -14,6 +14,7 @@ pub mod mesh;
 pub mod model;
 pub mod numerics;
 pub mod output;
+pub mod paper;
 pub mod physics;
 pub mod plot;
 pub mod report;

@@ -13,7 +13,8 @@ use impactlab::verify::read_case;
 fn rod_report_regenerates_and_matches_its_run() {
     let case = read_case(&root().join("verification/rod.toml")).unwrap();
     let dir = tempfile::tempdir().unwrap();
-    let r = report_case(&case, dir.path()).unwrap();
+    let outcome = impactlab::study::cases::evaluate(&case).unwrap();
+    let r = report_case(&outcome, dir.path()).unwrap();
     assert_eq!(r.failed, 0);
     for stem in ["force", "strain", "energy"] {
         let png = std::fs::read(dir.path().join(format!("{stem}.png"))).unwrap();

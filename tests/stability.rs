@@ -9,8 +9,8 @@ mod common;
 use common::{deck, rod_model};
 use impactlab::integrate::{Scheme, SolveError};
 use impactlab::model::{Model, Modify};
-use impactlab::run::{run_model, Run, RunOptions};
 use impactlab::physics::analytic::rigid_target;
+use impactlab::run::{run_model, Run, RunOptions};
 
 fn go(m: &Model, scheme: Scheme, dt: f64, steps: usize) -> Result<Run, SolveError> {
     run_model(
@@ -70,7 +70,7 @@ fn sane(r: &Run, bound: f64) {
 /// Semi-infinite-rod contact end (s) for a rod model, the analytic reference while no
 /// reflection has returned (2L/C = 360 µs).
 fn semi_infinite_end(m: &Model) -> f64 {
-    impactlab::verify::semi_infinite(m).unwrap().1.contact_end
+    impactlab::physics::references::semi_infinite(m).unwrap().1.contact_end
 }
 
 fn contact_end(r: &Run) -> f64 {

@@ -116,7 +116,7 @@ tol = {{ rel = 1e-7, floor = 1e-9 }}
         ),
     );
     let case = verify::read_case(&p).unwrap();
-    let (_, r) = verify::run_case(&case).unwrap();
+    let r = impactlab::study::cases::evaluate(&case).unwrap().checks;
     assert!(!r[0].passed);
     assert!(r[0].detail.starts_with("first difference: column "), "{}", r[0].detail);
 }

@@ -10,7 +10,7 @@ mod build;
 mod modify;
 
 pub use build::{build_model, ModelError};
-pub use modify::Modify;
+pub use modify::{Modify, ModifyError};
 
 use crate::deck::{CardRef, Units};
 pub use crate::elements::quad4::ShellSection;

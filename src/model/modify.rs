@@ -5,6 +5,19 @@ use super::Model;
 use crate::elements::mass::PointMass;
 use serde::Deserialize;
 
+/// Why a modification cannot be made.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ModifyError {
+    #[error("the model has no contact to modify")]
+    NoContact,
+    #[error("{name} must be a positive number, not {value}")]
+    NotPositive { name: &'static str, value: f64 },
+    #[error("initial_gap must be finite, not {0}")]
+    Gap(f64),
+    #[error("the indentation does not depend on the impactor's DOF")]
+    Indentation,
+}
+
 /// What to change; every field defaults to "no change".
 #[derive(Debug, Clone, Default, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
@@ -25,13 +38,13 @@ impl Modify {
     }
 
     /// The modified model, or why it cannot be made.
-    pub fn apply(&self, model: &Model) -> Result<Model, String> {
+    pub fn apply(&self, model: &Model) -> Result<Model, ModifyError> {
         let mut m = model.clone();
         if self.is_empty() {
             return Ok(m);
         }
         let Some(c) = m.contact.as_mut() else {
-            return Err("the model has no contact to modify".into());
+            return Err(ModifyError::NoContact);
         };
         for (name, s) in [
             ("velocity_scale", self.velocity_scale),
@@ -40,7 +53,7 @@ impl Modify {
         ] {
             if let Some(s) = s {
                 if !(s.is_finite() && s > 0.0) {
-                    return Err(format!("{name} must be a positive number, not {s}"));
+                    return Err(ModifyError::NotPositive { name, value: s });
                 }
             }
         }
@@ -66,12 +79,12 @@ impl Modify {
         }
         if let Some(gap) = self.initial_gap {
             if !gap.is_finite() {
-                return Err(format!("initial_gap must be finite, not {gap}"));
+                return Err(ModifyError::Gap(gap));
             }
             let d = c.impactor.dof;
             let coef = c.driver.iter().find(|t| t.0 == d).map(|t| t.1).unwrap_or(0.0);
             if coef == 0.0 {
-                return Err("the indentation does not depend on the impactor's DOF".into());
+                return Err(ModifyError::Indentation);
             }
             let alpha0 = crate::model::apply(&c.driver, &m.u0);
             m.u0[d] += (-gap - alpha0) / coef;

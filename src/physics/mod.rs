@@ -3,6 +3,7 @@
 //! the ball on a semi-infinite rod, d'Alembert's strain, the infinite plate).
 
 pub mod analytic;
+pub mod references;
 
 /// Hertz contact stiffness of a sphere of radius `r` on a flat (the paper's Eq. 5,
 /// and Eq. 18 with k_t the target's transverse modulus E33):

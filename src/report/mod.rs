@@ -5,16 +5,14 @@
 
 pub mod fields;
 
-
 use crate::elements::{quad4::Quad4, rod::Rod, Fibre, Measure, Plane};
 use crate::error::Error;
 use crate::ledger::EnergyRow;
 use crate::model::Model;
-use crate::run::Column;
-use crate::run::{run_model, Run};
 use crate::physics::analytic;
-use crate::verify::{self, Case, CheckResult};
 use crate::plot::{self, Chart, Contour, Line};
+use crate::run::{Column, Run};
+use crate::verify::{Case, CaseOutcome, CheckResult};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -52,21 +50,17 @@ fn io(path: &Path) -> impl Fn(std::io::Error) -> Error + '_ {
     }
 }
 
-/// Runs a case and writes its report into `dir` (created; files replaced).
-pub fn report_case(case: &Case, dir: &Path) -> Result<CaseReport, Error> {
-    let model = verify::case_model(case)?;
-    let mut opts = verify::case_options(case);
+/// Writes the report of a case's outcome into `dir` (created; files replaced). Nothing
+/// is run: the figures and tables come from the outcome.
+pub fn report_case(outcome: &CaseOutcome, dir: &Path) -> Result<CaseReport, Error> {
+    let CaseOutcome {
+        case,
+        model,
+        run,
+        checks,
+        wall_s: wall,
+    } = outcome;
     let plate = model.elements.iter().any(|e| e.kind::<Quad4>().is_some());
-    if plate {
-        opts.snapshot_times = vec![20e-6, 60e-6, 120e-6];
-    }
-    let t0 = std::time::Instant::now();
-    let run = run_model(&model, &opts)?;
-    let wall = t0.elapsed().as_secs_f64();
-    let mut checks = Vec::new();
-    for spec in &case.checks {
-        checks.push(verify::check(case, &model, &run, spec)?);
-    }
     std::fs::create_dir_all(dir).map_err(io(dir))?;
     let footer = format!(
         "case {} · deck {} · scheme {} · dt {:e} s · {} steps",
@@ -77,14 +71,14 @@ pub fn report_case(case: &Case, dir: &Path) -> Result<CaseReport, Error> {
         run.steps
     );
     let figures = if model.rod.is_some() {
-        rod_figures(&model, &run, dir, &footer)
+        rod_figures(model, run, dir, &footer)
     } else if plate {
-        plate_figures(&model, &run, dir, &footer)
+        plate_figures(model, run, dir, &footer)
     } else {
         Ok(Vec::new())
     }
     .map_err(|e| Error::Usage(format!("drawing the figures of {}: {e}", case.name)))?;
-    let markdown = markdown(case, &model, &run, &checks, &figures, wall);
+    let markdown = markdown(case, model, run, checks, &figures, *wall);
     std::fs::write(dir.join("index.md"), &markdown).map_err(io(dir))?;
     std::fs::write(dir.join("index.html"), html(&case.name, &markdown)).map_err(io(dir))?;
     let failed = checks.iter().filter(|c| !c.passed).count();
@@ -95,7 +89,7 @@ pub fn report_case(case: &Case, dir: &Path) -> Result<CaseReport, Error> {
         passed: checks.len() - failed,
         failed,
         summary: run.summary.clone(),
-        human: crate::output::human_summary(&model, &run),
+        human: crate::output::human_summary(model, run),
     })
 }
 
@@ -137,7 +131,7 @@ fn energy_lines(e: &[EnergyRow], x: impl Fn(f64) -> f64) -> Vec<Line> {
 
 fn rod_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<Vec<PathBuf>, String> {
     let rod = model.rod.expect("a rod");
-    let (tr, _, lc) = verify::semi_infinite(model).map_err(|e| e.to_string())?;
+    let (tr, _, lc) = crate::physics::references::semi_infinite(model).map_err(|e| e.to_string())?;
     let u = &model.units;
     let mut out = Vec::new();
     let s = &run.series;
@@ -277,7 +271,7 @@ fn plate_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<V
     let u = &model.units;
     let mut out = Vec::new();
     let s = &run.series;
-    let (p, _) = verify::infinite_plate(model).map_err(|e| e.to_string())?;
+    let (p, _) = crate::physics::references::infinite_plate(model).map_err(|e| e.to_string())?;
     let ax = TimeAxis::of(model);
     let end = run.summary.contact.intervals.first().map_or(250e-6, |i| i[1]);
     let tr = p.integrate(80e-6, 1e-9);

@@ -6,7 +6,7 @@ use crate::integrate::{integrate, Observer, RunStats, Scheme, SolveError, StepSt
 use crate::ledger::{EnergyRow, Ledger};
 use crate::model::Model;
 use crate::numerics::crossing;
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use indicatif::ProgressBar;
 pub use summary::{
     ContactSummary, EnergySummary, ImpactorSummary, ModelSummary, MomentumSummary, RodSummary, RunSummary, Summary,
     UnitSystem,
@@ -25,8 +25,9 @@ pub struct RunOptions {
     pub steps: Option<usize>,
     /// Stop with an error when |energy error| exceeds this.
     pub max_energy_error: Option<f64>,
-    /// Show a progress bar on a terminal.
-    pub progress: bool,
+    /// A progress bar to advance, created and styled by the caller (the CLI); the run
+    /// sets its length to the step count and clears it at the end.
+    pub progress: Option<ProgressBar>,
     /// Solve only the live DOFs ([`crate::assembly::drop_inert`]); exact, so on by default.
     pub skip_inert: bool,
     /// Times at which to keep the whole displacement state (the nearest step).
@@ -58,7 +59,7 @@ impl Default for RunOptions {
             dt: None,
             steps: None,
             max_energy_error: None,
-            progress: false,
+            progress: None,
             skip_inert: true,
             snapshot_times: Vec::new(),
             ledger: true,
@@ -278,18 +279,9 @@ pub fn run_model(model: &Model, opts: &RunOptions) -> Result<Run, SolveError> {
 pub fn run_system(model: &Model, sys: &System, opts: &RunOptions) -> Result<Run, SolveError> {
     let dt = opts.dt.unwrap_or(model.time.dt);
     let steps = opts.steps.unwrap_or(model.time.steps);
-    let bar = if opts.progress {
-        let b = ProgressBar::with_draw_target(Some(steps as u64), ProgressDrawTarget::stderr());
-        b.set_style(
-            ProgressStyle::with_template("{spinner} {msg} [{bar:40}] {pos}/{len} steps ({eta})")
-                .expect("valid template")
-                .progress_chars("=> "),
-        );
-        b.set_message(format!("{} {}", model.name, opts.scheme.name()));
-        b
-    } else {
-        ProgressBar::hidden()
-    };
+    let bar = opts.progress.clone().unwrap_or_else(ProgressBar::hidden);
+    bar.set_length(steps as u64);
+    bar.set_position(0);
     let mut rec = Recorder {
         model,
         ledger: opts.ledger.then(|| Ledger::new(model, sys)),

@@ -9,9 +9,9 @@
 
 use crate::deck::number::format_real;
 use crate::error::Error;
-use crate::physics;
 use crate::integrate::Scheme;
 use crate::model::Model;
+use crate::physics;
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
 use std::path::Path;
@@ -525,4 +525,3 @@ pub fn effects(s: &Scene, inert_dofs: usize, steps_done: usize) -> EffectReport 
         skipped: skip,
     }
 }
-

@@ -11,14 +11,14 @@
 //! warm-up run.
 
 use super::history_extreme;
-use crate::mesh::plate_model;
 use crate::error::Error;
 use crate::integrate::{Scheme, SolveError};
+use crate::mesh::plate_model;
 use crate::model::Model;
-use crate::plot::{self, Chart, Line};
-use crate::run::{run_model, Run, RunOptions};
 use crate::numerics::{interp, median};
 use crate::physics::analytic;
+use crate::plot::{self, Chart, Line};
+use crate::run::{run_model, Run, RunOptions};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -150,7 +150,7 @@ fn rod_model(n: usize) -> Result<Model, Error> {
 fn rod_rows(repeats: usize, progress: &dyn Fn(&str)) -> Result<Vec<Row>, Error> {
     let base = rod_model(144)?;
     let rod = base.rod.expect("a rod");
-    let (tr, ev, lc) = crate::verify::semi_infinite(&base)?;
+    let (tr, ev, lc) = crate::physics::references::semi_infinite(&base)?;
     let reference = Reference {
         t: tr.time.clone(),
         f: tr.force.clone(),

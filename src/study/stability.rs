@@ -33,8 +33,7 @@ pub fn run_map(model: &Model, dt0: f64, t_end: f64, progress: &dyn Fn(&str)) -> 
                 velocity_scale: Some(v),
                 ..Default::default()
             }
-            .apply(model)
-            .map_err(Error::Usage)?;
+            .apply(model)?;
             for f in DT_FACTORS {
                 let dt = dt0 * f;
                 let opts = RunOptions {

@@ -33,4 +33,3 @@ pub fn run(model: &Model, scheme: Scheme, dt: Option<f64>, steps: Option<usize>)
     )
     .expect("run succeeds")
 }
-

@@ -1,0 +1,250 @@
+//! One function per subcommand: read the arguments, call the library, print, write
+//! files, and return the exit code (0 success, 1 verification failed); errors map to
+//! theirs in `main`. Progress bars are made here.
+
+use crate::{AuditArgs, BenchArgs, MeshKind, ReportArgs, RunArgs, SceneArgs, StudyKind, VerifyArgs};
+use impactlab::run::RunOptions;
+use impactlab::{deck, output, verify, Error};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use std::io::{IsTerminal, Write};
+use std::path::{Path, PathBuf};
+
+// Printing never panics: a closed pipe (`impactlab ... | head`) just ends the output.
+fn say(s: &str) {
+    let _ = write!(std::io::stdout(), "{s}");
+}
+fn sayln(s: &str) {
+    let _ = writeln!(std::io::stdout(), "{s}");
+}
+/// A line on standard error.
+pub fn say_err(s: &str) {
+    let _ = writeln!(std::io::stderr(), "{s}");
+}
+
+/// A progress bar on standard error when it is a terminal.
+fn progress(message: String) -> Option<ProgressBar> {
+    if !std::io::stderr().is_terminal() {
+        return None;
+    }
+    let b = ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr());
+    b.set_style(
+        ProgressStyle::with_template("{spinner} {msg} [{bar:40}] {pos}/{len} steps ({eta})")
+            .expect("valid template")
+            .progress_chars("=> "),
+    );
+    b.set_message(message);
+    Some(b)
+}
+
+fn io_error(path: &Path) -> impl Fn(std::io::Error) -> Error + '_ {
+    move |source| Error::Io {
+        path: path.display().to_string(),
+        source,
+    }
+}
+
+/// `impactlab run`: a deck or a scene, its outputs, its printed summary.
+pub fn run(a: RunArgs) -> Result<u8, Error> {
+    if let Some(dt) = a.dt {
+        if !(dt > 0.0 && dt.is_finite()) {
+            return Err(Error::Usage(format!("--dt must be a positive number, not {dt}")));
+        }
+    }
+    if a.steps == Some(0) {
+        return Err(Error::Usage("--steps must be positive".into()));
+    }
+    let is_scene = a.deck.extension().is_some_and(|e| e == "toml");
+    let (model, opts, scene) = if is_scene {
+        if a.all_dofs || a.allow_unknown {
+            return Err(Error::Usage(format!(
+                "{}: --all-dofs and --allow-unknown apply to decks; a scene generates a deck with \
+                 no unknown cards and says itself which DOFs to solve (effects.membrane = true)",
+                a.deck.display()
+            )));
+        }
+        let (s, model, _) = impactlab::scene::load(&a.deck)?;
+        let mut o = RunOptions::for_scene(&s);
+        o.scheme = a.scheme.unwrap_or(s.run.scheme);
+        (model, o, Some(s))
+    } else {
+        let read = deck::ReadOptions {
+            allow_unknown: a.allow_unknown,
+        };
+        let (model, warnings) = impactlab::load_deck(&a.deck, read)?;
+        for w in &warnings {
+            say_err(&w.to_string());
+        }
+        let o = RunOptions {
+            scheme: a.scheme.unwrap_or_default(),
+            skip_inert: !a.all_dofs,
+            ..Default::default()
+        };
+        (model, o, None)
+    };
+    let mut opts = RunOptions {
+        dt: a.dt.or(opts.dt),
+        steps: a.steps.or(opts.steps),
+        max_energy_error: a.max_energy_error,
+        progress: progress(format!("{} {}", model.name, opts.scheme)),
+        ..opts
+    };
+    if a.fields.is_some() {
+        opts.snapshot_times = impactlab::report::fields::field_times(
+            opts.dt.unwrap_or(model.time.dt),
+            opts.steps.unwrap_or(model.time.steps),
+            a.field_count,
+        );
+    }
+    let mut r = impactlab::run::run_model(&model, &opts)?;
+    if let Some(s) = &scene {
+        let m = &r.summary;
+        r.summary.effects = Some(impactlab::scene::effects(
+            s,
+            m.model.inert_dofs_skipped,
+            m.run.steps_done,
+        ));
+        r.summary.contact_stiffness_source = impactlab::scene::contact_stiffness(s).map(|k| k.1).ok();
+    }
+    let dir = a.out.unwrap_or_else(|| PathBuf::from("out").join(&model.name));
+    output::write_dir_atomically(&dir, &output::run_files(&model, &r)).map_err(io_error(&dir))?;
+    say(&output::human_summary(&model, &r));
+    sayln(&format!("  outputs:  {}", dir.display()));
+    if let Some(fdir) = a.fields {
+        let files = impactlab::report::fields::write_fields(&model, &r, &fdir).map_err(Error::Usage)?;
+        sayln(&format!(
+            "  fields:   {} VTU files and fields.pvd in {}",
+            files.len() - 1,
+            fdir.display()
+        ));
+    }
+    Ok(0)
+}
+
+/// `impactlab scene`: its K, its deck, what its effects cost.
+pub fn scene(a: SceneArgs) -> Result<u8, Error> {
+    let (s, model, deck) = impactlab::scene::load(&a.scene)?;
+    let (k, how) = impactlab::scene::contact_stiffness(&s).map_err(Error::Usage)?;
+    sayln(&format!("Hertz K = {k:.6e} ({how})"));
+    if let Some(p) = a.to_deck {
+        output::write_file_atomically(&p, deck.as_bytes()).map_err(io_error(&p))?;
+        sayln(&format!("deck: {}", p.display()));
+    }
+    if a.costs {
+        say(&impactlab::study::scene_costs(&model, &RunOptions::for_scene(&s))?);
+    }
+    Ok(0)
+}
+
+/// `impactlab mesh plate`: a generated deck.
+pub fn mesh(what: MeshKind) -> Result<u8, Error> {
+    let MeshKind::Plate { n, out } = what;
+    let text = impactlab::mesh::plate_deck(n).map_err(Error::Usage)?;
+    match out {
+        Some(p) => output::write_file_atomically(&p, text.as_bytes()).map_err(io_error(&p))?,
+        None => say(&text),
+    }
+    Ok(0)
+}
+
+/// `impactlab study mesh|stability|accuracy`.
+pub fn study(what: StudyKind) -> Result<u8, Error> {
+    match what {
+        StudyKind::Mesh { n, out } => {
+            let opts = impactlab::study::mesh_study_options(progress("plate mesh study".into()));
+            let rows = impactlab::study::plate_mesh_study(&n, &opts)?;
+            let files = impactlab::study::mesh_study_files(&rows);
+            output::write_dir_atomically(&out, &files).map_err(io_error(&out))?;
+            say(&String::from_utf8_lossy(&files[0].1));
+            sayln(&format!("outputs: {}", out.display()));
+        }
+        StudyKind::Stability { out } => {
+            use impactlab::study::stability;
+            let model = impactlab::paper::rod_model()?;
+            let cells = stability::run_map(&model, 2e-7, 500e-6, &|s| say_err(&format!("  {s}")))?;
+            std::fs::create_dir_all(&out).map_err(io_error(&out))?;
+            let csv = stability::csv(&cells);
+            output::write_file_atomically(&out.join("stability-map.csv"), csv.as_bytes()).map_err(io_error(&out))?;
+            stability::figure(&cells, 2e-7, &out.join("stability-map")).map_err(Error::Usage)?;
+            let readme = stability::readme(&cells);
+            output::write_file_atomically(&out.join("README.md"), readme.as_bytes()).map_err(io_error(&out))?;
+            let failed = cells.iter().filter(|c| c.outcome.is_err()).count();
+            sayln(&format!(
+                "{} runs, {} refused or failed; outputs: {}",
+                cells.len(),
+                failed,
+                out.display()
+            ));
+        }
+        StudyKind::Accuracy {
+            out,
+            repeats,
+            plate_meshes,
+        } => {
+            let rows = impactlab::study::accuracy::run_study(&out, repeats.max(1), &plate_meshes, &|s| {
+                say_err(&format!("  {s}"))
+            })?;
+            sayln(&format!("{} runs; outputs: {}", rows.len(), out.display()));
+        }
+    }
+    Ok(0)
+}
+
+/// `impactlab verify`: every case run once and judged; table, verify.json, junit.xml;
+/// exit 1 when a check fails or a case does not run.
+pub fn verify(a: VerifyArgs) -> Result<u8, Error> {
+    let cases = verify::load_cases(&a.cases)?;
+    let mut outcomes = impactlab::study::cases::evaluate_all(&cases, a.jobs);
+    if a.bless {
+        for (_, o) in outcomes.iter_mut() {
+            if let Ok(o) = o {
+                for p in verify::bless(o)? {
+                    sayln(&format!("wrote {}", p.display()));
+                }
+            }
+        }
+    }
+    let v = verify::Verdicts::of(&outcomes);
+    say(&verify::table(&v));
+    let files = [("verify.json", verify::json(&v)), ("junit.xml", verify::junit(&v))];
+    output::write_dir_atomically(&a.out, &files).map_err(io_error(&a.out))?;
+    sayln(&format!("outputs: {}", a.out.display()));
+    Ok(if v.passed() { 0 } else { 1 })
+}
+
+/// `impactlab report`: every case that runs a deck, run once, reported; an index.
+pub fn report(a: ReportArgs) -> Result<u8, Error> {
+    use impactlab::report;
+    let cases: Vec<verify::Case> = verify::load_cases(&a.cases)?
+        .into_iter()
+        .filter(|c| c.deck.is_some())
+        .collect();
+    for (_, outcome) in impactlab::study::cases::evaluate_all(&cases, 2) {
+        let outcome = outcome?;
+        let r = report::report_case(&outcome, &a.out.join(&outcome.case.name))?;
+        say(&r.human);
+        sayln(&format!(
+            "{}: {} checks passed, {} failed, {} figures",
+            r.name,
+            r.passed,
+            r.failed,
+            r.figures.len()
+        ));
+    }
+    let index = a.out.join("README.md");
+    output::write_file_atomically(&index, report::index(&a.out).as_bytes()).map_err(io_error(&index))?;
+    sayln(&format!("index: {}", index.display()));
+    Ok(0)
+}
+
+/// `impactlab audit`: what moved between two runs.
+pub fn audit(a: AuditArgs) -> Result<u8, Error> {
+    let moved = impactlab::verify::audit::audit(&a.baseline, &a.candidate).map_err(Error::Usage)?;
+    say(&impactlab::verify::audit::audit_text(&moved));
+    Ok(0)
+}
+
+/// `impactlab bench`: where the plate's time goes.
+pub fn bench(a: BenchArgs) -> Result<u8, Error> {
+    say(&impactlab::study::bench_plate(a.repeats.max(1), a.steps)?);
+    Ok(0)
+}

@@ -1,0 +1,77 @@
+//! The analytic references of a model's impact, from its plain numbers (impactor,
+//! Hertz law, rod or shell section): the ball on a semi-infinite rod and the impactor
+//! on an infinite plate. They read the model's data; they run no solver code.
+
+use super::analytic::{self, Events, HertzDashpot, Trace};
+use crate::elements::quad4::Quad4;
+use crate::model::Model;
+
+/// A reference that does not apply to a model.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ReferenceError {
+    #[error("the reference needs a model with a contact")]
+    NoContact,
+    #[error("the reference needs a uniform rod target")]
+    NoRod,
+    #[error("the infinite-plate reference needs a plate with bending stiffness")]
+    NoPlate,
+    #[error("semi-infinite rod: contact does not end before 2L/C")]
+    ContactDoesNotEnd,
+}
+
+/// The impactor and Hertz law of a model, on a dashpot of the given impedance.
+fn dashpot(model: &Model, impedance: f64) -> Result<HertzDashpot, ReferenceError> {
+    let c = model.contact.as_ref().ok_or(ReferenceError::NoContact)?;
+    Ok(HertzDashpot {
+        mass: c.impactor.mass,
+        v0: model.v0[c.impactor.dof].abs(),
+        stiffness: c.stiffness,
+        exponent: c.exponent,
+        impedance,
+    })
+}
+
+/// A uniform rod target: wave speed C, length L, axial stiffness EA, impedance ρCA.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RodParams {
+    pub wave_speed: f64,
+    pub length: f64,
+    pub ea: f64,
+    pub impedance: f64,
+}
+
+/// The rod target's parameters.
+pub fn rod_params(model: &Model) -> Result<RodParams, ReferenceError> {
+    let r = model.rod.ok_or(ReferenceError::NoRod)?;
+    let rho = r.e / (r.wave_speed * r.wave_speed);
+    Ok(RodParams {
+        wave_speed: r.wave_speed,
+        length: r.length,
+        ea: r.e * r.area,
+        impedance: rho * r.wave_speed * r.area,
+    })
+}
+
+/// The model's ball on a semi-infinite rod, integrated over 2L/C (RK4, h = L/C/2e5):
+/// its trace, its events and L/C.
+pub fn semi_infinite(model: &Model) -> Result<(Trace, Events, f64), ReferenceError> {
+    let r = rod_params(model)?;
+    let p = dashpot(model, r.impedance)?;
+    let lc = r.length / r.wave_speed;
+    let tr = p.integrate(2.0 * lc, lc / 2.0e5);
+    let ev = HertzDashpot::events(&tr).ok_or(ReferenceError::ContactDoesNotEnd)?;
+    Ok((tr, ev, lc))
+}
+
+/// The model's impactor on the infinite plate (Zener/Olsson impedance 8√(ρh D*) of
+/// its first shell section), and that impedance.
+pub fn infinite_plate(model: &Model) -> Result<(HertzDashpot, f64), ReferenceError> {
+    let s = model
+        .elements
+        .iter()
+        .find_map(|e| e.kind::<Quad4>().map(|q| q.section.clone()))
+        .ok_or(ReferenceError::NoPlate)?;
+    let d = s.d().ok_or(ReferenceError::NoPlate)?;
+    let z = analytic::plate_impedance(s.mass_per_area, d[(0, 0)], d[(1, 1)], d[(0, 1)], d[(2, 2)]);
+    Ok((dashpot(model, z)?, z))
+}

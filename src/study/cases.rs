@@ -1,0 +1,157 @@
+//! Running verification cases: each case's run, the checks that judge it
+//! ([`crate::verify::check`]) and those that need a family of runs (Δt and mesh
+//! convergence, here), in parallel over cases. The result is a [`CaseOutcome`] per
+//! case, which `verify` judges and `report` draws without running anything again.
+
+use crate::mesh::plate_model;
+use crate::model::Model;
+use crate::numerics::slope;
+use crate::run::{run_model, Run};
+use crate::verify::{case_model, case_options, check, Case, CaseOutcome, CheckResult, CheckSpec, Quantity};
+use std::time::Instant;
+
+/// Runs a case and evaluates all its checks, timing each check on its own (a
+/// convergence check's time includes its runs).
+pub fn evaluate(case: &Case) -> Result<CaseOutcome, crate::Error> {
+    let model = case_model(case)?;
+    let t0 = Instant::now();
+    let run = run_model(&model, &case_options(case))?;
+    let wall_s = t0.elapsed().as_secs_f64();
+    let mut checks = Vec::new();
+    for spec in &case.checks {
+        let t = Instant::now();
+        let mut r = match check(case, &model, &run, spec)? {
+            Some(r) => r,
+            None => convergence(case, &model, &run, spec)?,
+        };
+        r.time_s = t.elapsed().as_secs_f64();
+        checks.push(r);
+    }
+    Ok(CaseOutcome {
+        case: case.clone(),
+        model,
+        run,
+        checks,
+        wall_s,
+    })
+}
+
+/// Evaluates cases on up to `jobs` threads; outcomes in case order, each named.
+pub fn evaluate_all(cases: &[Case], jobs: usize) -> Vec<(String, Result<CaseOutcome, crate::Error>)> {
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    type Slot = std::sync::Mutex<Option<Result<CaseOutcome, crate::Error>>>;
+    let slots: Vec<Slot> = cases.iter().map(|_| std::sync::Mutex::new(None)).collect();
+    std::thread::scope(|s| {
+        for _ in 0..jobs.max(1).min(cases.len().max(1)) {
+            s.spawn(|| loop {
+                let i = next.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
+                if i >= cases.len() {
+                    break;
+                }
+                let r = evaluate(&cases[i]);
+                *slots[i].lock().expect("no poisoning") = Some(r);
+            });
+        }
+    });
+    cases
+        .iter()
+        .zip(slots)
+        .map(|(c, slot)| {
+            let r = slot.into_inner().expect("no poisoning").expect("every case was taken");
+            (c.name.clone(), r)
+        })
+        .collect()
+}
+
+/// The checks that need a family of runs.
+fn convergence(case: &Case, model: &Model, run: &Run, spec: &CheckSpec) -> Result<CheckResult, crate::Error> {
+    let result =
+        |check: String, value: f64, reference: f64, tolerance: String, passed: bool, detail: String| CheckResult {
+            case: case.name.clone(),
+            check,
+            value,
+            reference,
+            tolerance,
+            passed,
+            detail,
+            time_s: 0.0,
+        };
+    let list = |values: &[f64]| values.iter().map(|v| format!("{v:.6e}")).collect::<Vec<_>>().join(", ");
+    match spec {
+        CheckSpec::DtConvergence {
+            quantity,
+            runs,
+            expected_order,
+            tol,
+        } => {
+            let (dts, values) = dt_family(case, model, run, *quantity, *runs)?;
+            let p = fitted_order(*quantity, &dts, &values);
+            Ok(result(
+                format!("dt_convergence {}", quantity.name()),
+                p,
+                *expected_order,
+                format!("± {tol}"),
+                (p - expected_order).abs() <= *tol,
+                format!("values {}", list(&values)),
+            ))
+        }
+        CheckSpec::MeshConvergence { meshes, quantity, max } => {
+            let mut values = Vec::new();
+            for &n in meshes {
+                let r = run_model(&plate_model(n)?, &case_options(case))?;
+                values.push(quantity.of(&r.summary));
+            }
+            let ch: Vec<f64> = values.windows(2).map(|w| ((w[1] - w[0]) / w[1]).abs()).collect();
+            let last = *ch.last().unwrap_or(&f64::NAN);
+            let decreasing = ch.windows(2).all(|w| w[1] < w[0]);
+            Ok(result(
+                format!("mesh_convergence {}", quantity.name()),
+                last,
+                0.0,
+                format!("≤ {max:.1e}, decreasing"),
+                last <= *max && decreasing,
+                format!("meshes {meshes:?}: {}", list(&values)),
+            ))
+        }
+        _ => unreachable!("crate::verify::check judges every other kind"),
+    }
+}
+
+/// The case's run and `runs − 1` more, halving Δt over the same time span: the step
+/// sizes and the quantity of each.
+fn dt_family(
+    case: &Case,
+    model: &Model,
+    run: &Run,
+    quantity: Quantity,
+    runs: usize,
+) -> Result<(Vec<f64>, Vec<f64>), crate::Error> {
+    let (dt0, t_end) = (run.dt, run.dt * run.steps as f64);
+    let (mut dts, mut values) = (vec![dt0], vec![quantity.of(&run.summary)]);
+    for i in 1..runs.max(3) {
+        let dt = dt0 / 2f64.powi(i as i32);
+        let mut o = case_options(case);
+        o.dt = Some(dt);
+        o.steps = Some((t_end / dt).round() as usize);
+        values.push(quantity.of(&run_model(model, &o)?.summary));
+        dts.push(dt);
+    }
+    Ok((dts, values))
+}
+
+/// The observed order: of the quantity itself for an error (energy error), of the
+/// successive differences for a converging value.
+fn fitted_order(quantity: Quantity, dts: &[f64], values: &[f64]) -> f64 {
+    let (xs, ys): (Vec<f64>, Vec<f64>) = if quantity == Quantity::EnergyError {
+        (
+            dts.iter().map(|d| d.ln()).collect(),
+            values.iter().map(|v| v.abs().ln()).collect(),
+        )
+    } else {
+        (
+            dts[1..].iter().map(|d| d.ln()).collect(),
+            values.windows(2).map(|w| (w[0] - w[1]).abs().ln()).collect(),
+        )
+    };
+    slope(&xs, &ys)
+}

@@ -1,0 +1,326 @@
+//! Verification cases (`verification/*.toml`): what to run and which checks to
+//! apply, read and validated with file and line.
+
+use super::gold::GoldTol;
+use crate::integrate::Scheme;
+use crate::model::{Model, Modify};
+use crate::run::{RunOptions, Summary};
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+
+/// A case file that cannot be used.
+#[derive(Debug, thiserror::Error)]
+pub enum CaseError {
+    #[error("{path}: {source}")]
+    Read {
+        path: String,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error("{path}: no such case file")]
+    Missing { path: String },
+    #[error("{path}{}: {message}", line.map_or(String::new(), |l| format!(":{l}")))]
+    Invalid {
+        path: String,
+        line: Option<usize>,
+        message: String,
+    },
+    #[error("{0}")]
+    Load(Box<crate::Error>),
+    #[error("{0}")]
+    Modify(#[from] crate::model::ModifyError),
+}
+
+impl From<crate::Error> for CaseError {
+    fn from(e: crate::Error) -> Self {
+        CaseError::Load(Box::new(e))
+    }
+}
+
+/// One verification case, as written in `verification/<name>.toml`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Case {
+    pub name: String,
+    #[serde(default)]
+    pub description: String,
+    /// A deck, relative to the case file.
+    pub deck: Option<PathBuf>,
+    /// Or the paper's plate on a generated n×n mesh.
+    pub plate_mesh: Option<usize>,
+    #[serde(default = "default_scheme")]
+    pub scheme: Scheme,
+    pub dt: Option<f64>,
+    pub steps: Option<usize>,
+    /// Output every step (for strain checks), instead of the deck's TSTEP rate.
+    #[serde(default)]
+    pub every_step: bool,
+    #[serde(default)]
+    pub modify: Modify,
+    /// Times (deck units) at which the run keeps the whole displacement field, for
+    /// the report's field figures.
+    #[serde(default)]
+    pub snapshots: Vec<f64>,
+    #[serde(rename = "check", default)]
+    pub checks: Vec<CheckSpec>,
+    /// The file the case was read from (set by [`read_case`]).
+    #[serde(skip)]
+    pub path: PathBuf,
+}
+
+fn default_scheme() -> Scheme {
+    Scheme::Newmark
+}
+
+/// A tolerance on a value: relative to the reference, or absolute.
+#[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Tol {
+    #[serde(default)]
+    pub rel: f64,
+    #[serde(default)]
+    pub abs: f64,
+}
+
+impl Tol {
+    /// True when `value` is within the tolerance of `reference`.
+    pub fn accepts(&self, value: f64, reference: f64) -> bool {
+        let d = (value - reference).abs();
+        d <= self.abs || d <= self.rel * reference.abs()
+    }
+    /// The tolerance in words, for tables.
+    pub fn text(&self) -> String {
+        match (self.rel > 0.0, self.abs > 0.0) {
+            (true, true) => format!("rel {:.1e} or abs {:.1e}", self.rel, self.abs),
+            (true, false) => format!("rel {:.1e}", self.rel),
+            _ => format!("abs {:.1e}", self.abs),
+        }
+    }
+}
+
+/// The checks a case can ask for.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+pub enum CheckSpec {
+    /// max |U_t − U_0 − W_ext| / U_0 ≤ max.
+    EnergyBalance { max: f64 },
+    /// max |p − p_0| / |m v0| ≤ max along the impact direction (free targets).
+    Momentum { max: f64 },
+    /// F ≥ 0 always, F > 0 exactly when α > 0, and SE_i > 0 exactly when α > 0.
+    ContactComplementarity,
+    /// max |KE_t − SE_t| / U_0 over from_tcl..to_tcl (a travelling rod pulse) ≤ max.
+    KineticEqualsStrain { from_tcl: f64, to_tcl: f64, max: f64 },
+    /// The minimum of SE_t within ±half_width of near_tcl: its time within the window
+    /// and its depth (fraction of SE_t at the end of contact) in [min_fraction, max_fraction].
+    StrainEnergyDip {
+        near_tcl: f64,
+        half_width: f64,
+        min_fraction: f64,
+        max_fraction: f64,
+    },
+    /// The paper's Eq. 16 KE_t against ½vᵀMv after contact: the relative deficit
+    /// (½vᵀMv − Eq16)/½vᵀMv lies in [min, max].
+    Eq16Deficit { after_tcl: f64, min: f64, max: f64 },
+    /// A summary value against a number, with its source.
+    Summary {
+        key: String,
+        reference: f64,
+        tol: Tol,
+        source: String,
+    },
+    /// A quantity of the ball on a semi-infinite rod (analytic::HertzDashpot with
+    /// c = ρCA): contact_end_tcl, velocity_zero_tcl, peak_force, peak_force_tcl,
+    /// rebound_velocity, transferred_fraction.
+    SemiInfiniteRod { quantity: RodQuantity, tol: Tol },
+    /// Strain of `element` (centre at x from the struck end) against d'Alembert's
+    /// −F(t − x/C)/EA with the semi-infinite-rod force, while t < until_tcl;
+    /// max |difference| / peak strain ≤ max.
+    DalembertStrain {
+        element: i64,
+        x: f64,
+        until_tcl: f64,
+        max: f64,
+    },
+    /// Contact force against the infinite orthotropic plate (Zener/Olsson) over
+    /// 0..until_s: max |difference| / analytic peak ≤ max.
+    InfinitePlate { until_s: f64, max: f64 },
+    /// Contact duration and peak force against the rigid-target closed form with the
+    /// reduced mass of impactor and target.
+    RigidTarget { tol: Tol },
+    /// Halving Δt: fit the order of `quantity` (energy_error: the error itself;
+    /// contact_duration, peak_force: successive differences) over `runs` step sizes.
+    DtConvergence {
+        quantity: Quantity,
+        runs: usize,
+        expected_order: f64,
+        tol: f64,
+    },
+    /// Plate mesh refinement: `quantity` (contact_duration, peak_force_time) on each
+    /// mesh; the change between the last two meshes, relative, ≤ max and smaller
+    /// than the change before.
+    MeshConvergence {
+        meshes: Vec<usize>,
+        quantity: Quantity,
+        max: f64,
+    },
+    /// The run's history against a stored gold CSV, every column with the same
+    /// relative tolerance and a floor relative to the column's peak.
+    Gold { file: PathBuf, tol: GoldTol },
+}
+
+/// Reads and validates a case file.
+pub fn read_case(path: &Path) -> Result<Case, CaseError> {
+    let file = || path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|source| CaseError::Read { path: file(), source })?;
+    let mut case: Case = toml::from_str(&text).map_err(|e| CaseError::Invalid {
+        path: file(),
+        line: e.span().map(|s| text[..s.start].lines().count().max(1)),
+        message: e.message().to_string(),
+    })?;
+    if case.deck.is_some() == case.plate_mesh.is_some() {
+        return Err(CaseError::Invalid {
+            path: file(),
+            line: None,
+            message: "give exactly one of `deck` and `plate_mesh`".into(),
+        });
+    }
+    for spec in &case.checks {
+        if let CheckSpec::Summary { key, .. } = spec {
+            if let Err(e) = Summary::check_key(key) {
+                return Err(CaseError::Invalid {
+                    path: file(),
+                    line: text
+                        .lines()
+                        .position(|l| l.contains(&format!("\"{key}\"")))
+                        .map(|i| i + 1),
+                    message: format!("summary check: {e}"),
+                });
+            }
+        }
+    }
+    case.path = path.to_path_buf();
+    Ok(case)
+}
+
+/// The case files named on the command line: files as given, directories expanded
+/// to their `*.toml` (sorted).
+pub fn case_files(args: &[PathBuf]) -> Result<Vec<PathBuf>, CaseError> {
+    let mut out = Vec::new();
+    for a in args {
+        if a.is_dir() {
+            let mut v: Vec<PathBuf> = std::fs::read_dir(a)
+                .map_err(|source| CaseError::Read {
+                    path: a.display().to_string(),
+                    source,
+                })?
+                .filter_map(|e| e.ok().map(|e| e.path()))
+                .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+                .collect();
+            v.sort();
+            out.extend(v);
+        } else if a.exists() {
+            out.push(a.clone());
+        } else {
+            return Err(CaseError::Missing {
+                path: a.display().to_string(),
+            });
+        }
+    }
+    Ok(out)
+}
+
+/// The cases named by files or directories; none named means `verification/`.
+pub fn load_cases(args: &[PathBuf]) -> Result<Vec<Case>, CaseError> {
+    let default = [PathBuf::from("verification")];
+    let args = if args.is_empty() { &default[..] } else { args };
+    case_files(args)?.iter().map(|p| read_case(p)).collect()
+}
+
+/// A path of a case file, relative to the case file.
+pub fn rel(case: &Case, p: &Path) -> PathBuf {
+    case.path.parent().unwrap_or(Path::new(".")).join(p)
+}
+
+/// The case's model, modifications applied.
+pub fn case_model(case: &Case) -> Result<Model, CaseError> {
+    let mut m = match (&case.deck, case.plate_mesh) {
+        (Some(d), _) => crate::load_deck(&rel(case, d), Default::default())?.0,
+        (None, Some(n)) => crate::mesh::plate_model(n)?,
+        _ => unreachable!("checked by read_case"),
+    };
+    if case.every_step {
+        m.time.every = 1;
+    }
+    Ok(case.modify.apply(&m)?)
+}
+
+/// The case's run options.
+pub fn case_options(case: &Case) -> RunOptions {
+    RunOptions {
+        scheme: case.scheme,
+        dt: case.dt,
+        steps: case.steps,
+        snapshot_times: case.snapshots.clone(),
+        ..Default::default()
+    }
+}
+
+/// A quantity of a run's summary that convergence checks follow; NaN where the run
+/// has none (no contact, no ledger), which fails the check.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Quantity {
+    EnergyError,
+    ContactDuration,
+    PeakForce,
+    PeakForceTime,
+}
+
+impl Quantity {
+    /// The quantity's value in a summary.
+    pub fn of(self, s: &Summary) -> f64 {
+        match self {
+            Quantity::EnergyError => s.energy.max_relative_error,
+            Quantity::ContactDuration => s.contact.duration,
+            Quantity::PeakForce => Some(s.contact.peak_force),
+            Quantity::PeakForceTime => s.contact.peak_force_time,
+        }
+        .unwrap_or(f64::NAN)
+    }
+
+    /// The name a case file gives it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Quantity::EnergyError => "energy_error",
+            Quantity::ContactDuration => "contact_duration",
+            Quantity::PeakForce => "peak_force",
+            Quantity::PeakForceTime => "peak_force_time",
+        }
+    }
+}
+
+/// A quantity of the ball on a semi-infinite rod, for [`CheckSpec::SemiInfiniteRod`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RodQuantity {
+    ContactEndTcl,
+    VelocityZeroTcl,
+    PeakForce,
+    PeakForceTcl,
+    ReboundVelocity,
+    TransferredFraction,
+}
+
+impl RodQuantity {
+    /// The name a case file gives it.
+    pub fn name(self) -> &'static str {
+        match self {
+            RodQuantity::ContactEndTcl => "contact_end_tcl",
+            RodQuantity::VelocityZeroTcl => "velocity_zero_tcl",
+            RodQuantity::PeakForce => "peak_force",
+            RodQuantity::PeakForceTcl => "peak_force_tcl",
+            RodQuantity::ReboundVelocity => "rebound_velocity",
+            RodQuantity::TransferredFraction => "transferred_fraction",
+        }
+    }
+}

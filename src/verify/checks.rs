@@ -1,0 +1,379 @@
+//! The check kinds that judge one run, one function each. The kinds that need a
+//! family of runs (Δt and mesh convergence) are evaluated by the study stage
+//! ([`crate::study::cases`]); [`check`] returns `None` for them.
+
+use super::case::{rel, Case, CheckSpec, RodQuantity, Tol};
+use super::{gold, CheckResult};
+use crate::ledger::EnergyRow;
+use crate::model::Model;
+use crate::numerics::argmax;
+use crate::physics::analytic;
+use crate::physics::references::{infinite_plate, rod_params, semi_infinite, ReferenceError};
+use crate::run::{Column, Run};
+
+/// A check that cannot be evaluated on its run.
+#[derive(Debug, thiserror::Error)]
+pub enum CheckError {
+    #[error("case {case}: {check}: {source}")]
+    Reference {
+        case: String,
+        check: &'static str,
+        #[source]
+        source: ReferenceError,
+    },
+    #[error("case {case}: {check} needs a model with a contact")]
+    NoContact { case: String, check: &'static str },
+    #[error("case {case}: the run has no history column {column}")]
+    NoColumn { case: String, column: String },
+    #[error("case {case}: {source}")]
+    Summary {
+        case: String,
+        #[source]
+        source: crate::run::summary::UnknownKey,
+    },
+}
+
+/// What every check reads: the case, its model and its run.
+struct Cx<'a> {
+    case: &'a Case,
+    model: &'a Model,
+    run: &'a Run,
+}
+
+impl Cx<'_> {
+    fn energy(&self) -> &[EnergyRow] {
+        &self.run.energy
+    }
+    /// Time in units of L/C for a rod target, else as it is.
+    fn tcl(&self, t: f64) -> f64 {
+        self.model.rod.map_or(t, |r| t / (r.length / r.wave_speed))
+    }
+    fn result(
+        &self,
+        check: String,
+        value: f64,
+        reference: f64,
+        tolerance: String,
+        passed: bool,
+        detail: String,
+    ) -> CheckResult {
+        CheckResult {
+            case: self.case.name.clone(),
+            check,
+            value,
+            reference,
+            tolerance,
+            passed,
+            detail,
+            time_s: 0.0,
+        }
+    }
+    fn reference<T>(&self, check: &'static str, r: Result<T, ReferenceError>) -> Result<T, CheckError> {
+        r.map_err(|source| CheckError::Reference {
+            case: self.case.name.clone(),
+            check,
+            source,
+        })
+    }
+}
+
+/// An optional summary value, NaN where the run has none (which fails any check).
+fn or_nan(v: Option<f64>) -> f64 {
+    v.unwrap_or(f64::NAN)
+}
+
+/// Evaluates one check of a case on its run; `None` for the kinds that need a family
+/// of runs.
+pub fn check(case: &Case, model: &Model, run: &Run, spec: &CheckSpec) -> Result<Option<CheckResult>, CheckError> {
+    let cx = Cx { case, model, run };
+    Ok(Some(match spec {
+        CheckSpec::EnergyBalance { max } => energy_balance(&cx, *max),
+        CheckSpec::Momentum { max } => momentum(&cx, *max)?,
+        CheckSpec::ContactComplementarity => contact_complementarity(&cx),
+        CheckSpec::KineticEqualsStrain { from_tcl, to_tcl, max } => {
+            kinetic_equals_strain(&cx, *from_tcl, *to_tcl, *max)
+        }
+        CheckSpec::StrainEnergyDip {
+            near_tcl,
+            half_width,
+            min_fraction,
+            max_fraction,
+        } => strain_energy_dip(&cx, *near_tcl, *half_width, [*min_fraction, *max_fraction]),
+        CheckSpec::Eq16Deficit { after_tcl, min, max } => eq16_deficit(&cx, *after_tcl, *min, *max),
+        CheckSpec::Summary {
+            key,
+            reference,
+            tol,
+            source,
+        } => summary(&cx, key, *reference, tol, source)?,
+        CheckSpec::SemiInfiniteRod { quantity, tol } => semi_infinite_rod(&cx, *quantity, tol)?,
+        CheckSpec::DalembertStrain {
+            element,
+            x,
+            until_tcl,
+            max,
+        } => dalembert_strain(&cx, *element, *x, *until_tcl, *max)?,
+        CheckSpec::InfinitePlate { until_s, max } => infinite_plate_force(&cx, *until_s, *max)?,
+        CheckSpec::RigidTarget { tol } => rigid_target(&cx, tol)?,
+        CheckSpec::Gold { file, tol } => {
+            let path = rel(case, file);
+            let out = gold::compare(&path, &run.history_names(), &run.history, tol);
+            cx.result(
+                format!("gold {}", file.display()),
+                out.worst,
+                0.0,
+                tol.text(),
+                out.passed,
+                out.detail,
+            )
+        }
+        CheckSpec::DtConvergence { .. } | CheckSpec::MeshConvergence { .. } => return Ok(None),
+    }))
+}
+
+fn energy_balance(cx: &Cx, max: f64) -> CheckResult {
+    let e = cx.energy();
+    let (k, v) = argmax(e.iter().map(|r| r.error.abs()));
+    cx.result(
+        "energy_balance".into(),
+        v,
+        0.0,
+        format!("≤ {max:.1e}"),
+        v <= max,
+        format!("largest at t = {:.4e} {}", e[k].time, cx.run.units.time),
+    )
+}
+
+fn momentum(cx: &Cx, max: f64) -> Result<CheckResult, CheckError> {
+    let e = cx.energy();
+    let c = cx.model.contact.as_ref().ok_or_else(|| CheckError::NoContact {
+        case: cx.case.name.clone(),
+        check: "momentum",
+    })?;
+    let p_ref = (c.impactor.mass * cx.model.v0[c.impactor.dof]).abs();
+    let (k, v) = argmax(e.iter().map(|r| (r.momentum - e[0].momentum).abs() / p_ref));
+    Ok(cx.result(
+        "momentum".into(),
+        v,
+        0.0,
+        format!("≤ {max:.1e}"),
+        v <= max,
+        format!("largest at t = {:.4e} {}", e[k].time, cx.run.units.time),
+    ))
+}
+
+fn contact_complementarity(cx: &Cx) -> CheckResult {
+    let s = &cx.run.series;
+    let mut bad = 0usize;
+    let mut first = None;
+    for (k, row) in cx.energy().iter().enumerate() {
+        let (a, f) = (s.alpha[k], s.force[k]);
+        let ok =
+            f >= 0.0 && ((f > 0.0) == (a > 0.0)) && ((row.se_impactor > 0.0) == (a > 0.0)) && row.se_impactor >= 0.0;
+        if !ok {
+            bad += 1;
+            first.get_or_insert(s.time[k]);
+        }
+    }
+    cx.result(
+        "contact_complementarity".into(),
+        bad as f64,
+        0.0,
+        "0 violations".into(),
+        bad == 0,
+        first.map_or("F ≥ 0, F > 0 and SE_i > 0 exactly when α > 0".into(), |t| {
+            format!("first violation at t = {t:.4e} {}", cx.run.units.time)
+        }),
+    )
+}
+
+fn kinetic_equals_strain(cx: &Cx, from_tcl: f64, to_tcl: f64, max: f64) -> CheckResult {
+    let e = cx.energy();
+    let u0 = e.first().map_or(1.0, |r| r.total);
+    let (k, v) = argmax(e.iter().map(|r| {
+        let t = cx.tcl(r.time);
+        if t >= from_tcl && t <= to_tcl {
+            (r.ke_target - r.se_target).abs() / u0
+        } else {
+            0.0
+        }
+    }));
+    cx.result(
+        format!("kinetic_equals_strain tC/L {from_tcl}..{to_tcl}"),
+        v,
+        0.0,
+        format!("≤ {max:.1e}"),
+        v <= max,
+        format!("largest at tC/L = {:.4}", cx.tcl(e[k].time)),
+    )
+}
+
+fn strain_energy_dip(cx: &Cx, near_tcl: f64, half_width: f64, [lo, hi]: [f64; 2]) -> CheckResult {
+    let e = cx.energy();
+    let end = or_nan(cx.run.summary.contact.intervals.first().map(|i| i[1]));
+    let plateau = e.iter().find(|r| r.time >= end).map_or(f64::NAN, |r| r.se_target);
+    let (k, v) = argmax(e.iter().map(|r| {
+        if (cx.tcl(r.time) - near_tcl).abs() <= half_width {
+            -r.se_target
+        } else {
+            f64::NEG_INFINITY
+        }
+    }));
+    let frac = -v / plateau;
+    let at = cx.tcl(e[k].time);
+    let ok = frac >= lo && frac <= hi && (at - near_tcl).abs() < half_width;
+    cx.result(
+        format!("strain_energy_dip near tC/L {near_tcl}"),
+        frac,
+        0.0,
+        format!("depth in [{lo}, {hi}] within ±{half_width}"),
+        ok,
+        format!("minimum SE_t = {frac:.4} of its plateau at tC/L = {at:.4}"),
+    )
+}
+
+fn eq16_deficit(cx: &Cx, after_tcl: f64, min: f64, max: f64) -> CheckResult {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for r in cx
+        .energy()
+        .iter()
+        .filter(|r| cx.tcl(r.time) >= after_tcl && r.ke_target > 0.0)
+    {
+        let d = (r.ke_target - r.ke_target_eq16) / r.ke_target;
+        lo = lo.min(d);
+        hi = hi.max(d);
+    }
+    cx.result(
+        "eq16_deficit".into(),
+        hi,
+        0.0,
+        format!("in [{min:.1e}, {max:.1e}]"),
+        lo >= min && hi <= max,
+        format!("(½vᵀMv − Eq.16)/½vᵀMv ranges {lo:.3e}..{hi:.3e} after tC/L = {after_tcl}"),
+    )
+}
+
+fn summary(cx: &Cx, key: &str, reference: f64, tol: &Tol, source: &str) -> Result<CheckResult, CheckError> {
+    let v = cx.run.summary.number(key).map_err(|source| CheckError::Summary {
+        case: cx.case.name.clone(),
+        source,
+    })?;
+    let v = or_nan(v);
+    Ok(cx.result(
+        key.to_string(),
+        v,
+        reference,
+        tol.text(),
+        tol.accepts(v, reference),
+        source.to_string(),
+    ))
+}
+
+fn semi_infinite_rod(cx: &Cx, quantity: RodQuantity, tol: &Tol) -> Result<CheckResult, CheckError> {
+    let (_, ev, lc) = cx.reference("semi_infinite_rod", semi_infinite(cx.model))?;
+    let s = &cx.run.summary;
+    let rod = s.rod.as_ref();
+    let (v, r) = match quantity {
+        RodQuantity::ContactEndTcl => (or_nan(rod.and_then(|r| r.contact_end_tcl)), ev.contact_end / lc),
+        RodQuantity::VelocityZeroTcl => (
+            or_nan(rod.and_then(|r| r.velocity_zero_time_tcl)),
+            ev.velocity_zero / lc,
+        ),
+        RodQuantity::PeakForce => (s.contact.peak_force, ev.peak_force),
+        RodQuantity::PeakForceTcl => (or_nan(s.contact.peak_force_time) / lc, ev.peak_time / lc),
+        RodQuantity::ReboundVelocity => (or_nan(s.impactor.rebound_velocity), ev.rebound_velocity),
+        RodQuantity::TransferredFraction => (
+            or_nan(s.energy.transferred_fraction),
+            1.0 - (ev.rebound_velocity / s.impactor.initial_velocity).powi(2),
+        ),
+    };
+    Ok(cx.result(
+        format!("semi_infinite_rod {}", quantity.name()),
+        v,
+        r,
+        tol.text(),
+        tol.accepts(v, r),
+        "ball on a semi-infinite rod, RK4 h = L/C/2e5".into(),
+    ))
+}
+
+fn dalembert_strain(cx: &Cx, element: i64, x: f64, until_tcl: f64, max: f64) -> Result<CheckResult, CheckError> {
+    let (tr, _, lc) = cx.reference("dalembert_strain", semi_infinite(cx.model))?;
+    let rod = cx.reference("dalembert_strain", rod_params(cx.model))?;
+    let column = Column::rod_strain(element);
+    let j = cx.run.column(&column).ok_or_else(|| CheckError::NoColumn {
+        case: cx.case.name.clone(),
+        column: column.name(),
+    })?;
+    let peak = tr.force.iter().fold(0.0f64, |a, &f| a.max(f)) / rod.ea;
+    let h = &cx.run.history;
+    let (k, v) = argmax(h.iter().map(|h| {
+        if h[0] / lc < until_tcl {
+            (h[j] - analytic::dalembert_strain(&tr, x, rod.wave_speed, rod.ea, h[0])).abs() / peak
+        } else {
+            0.0
+        }
+    }));
+    Ok(cx.result(
+        format!("dalembert_strain element {element}"),
+        v,
+        0.0,
+        format!("≤ {max:.1e} of peak"),
+        v <= max,
+        format!("largest at tC/L = {:.4}", h[k][0] / lc),
+    ))
+}
+
+fn infinite_plate_force(cx: &Cx, until: f64, max: f64) -> Result<CheckResult, CheckError> {
+    let (p, z) = cx.reference("infinite_plate", infinite_plate(cx.model))?;
+    let tr = p.integrate(until, until / 2.0e4);
+    let peak = tr.force.iter().fold(0.0f64, |a, &f| a.max(f));
+    let sr = &cx.run.series;
+    let (k, v) = argmax(sr.time.iter().zip(&sr.force).map(|(&t, &f)| {
+        if t <= until {
+            (f - analytic::force_at(&tr, t)).abs() / peak
+        } else {
+            0.0
+        }
+    }));
+    Ok(cx.result(
+        format!("infinite_plate force to {:.0} us", until * 1e6),
+        v,
+        0.0,
+        format!("≤ {max:.1e} of peak"),
+        v <= max,
+        format!(
+            "impedance 8√(ρh D*) = {z:.4e}; largest at t = {:.4e} {}",
+            sr.time[k], cx.run.units.time
+        ),
+    ))
+}
+
+fn rigid_target(cx: &Cx, tol: &Tol) -> Result<CheckResult, CheckError> {
+    let model = cx.model;
+    let c = model.contact.as_ref().ok_or_else(|| CheckError::NoContact {
+        case: cx.case.name.clone(),
+        check: "rigid_target",
+    })?;
+    let diag = crate::assembly::assemble(model).m_diag();
+    let comp = model.dofs[c.impactor.dof].comp;
+    let target: f64 = model
+        .target_mask()
+        .iter()
+        .enumerate()
+        .filter(|&(i, &t)| t && model.dofs[i].comp == comp)
+        .map(|(i, _)| diag[i])
+        .sum();
+    let mu = c.impactor.mass * target / (c.impactor.mass + target);
+    let (_, f, dur) = analytic::rigid_target(mu, model.v0[c.impactor.dof], c.stiffness);
+    let s = &cx.run.summary;
+    let (vd, vf) = (or_nan(s.contact.duration), s.contact.peak_force);
+    Ok(cx.result(
+        "rigid_target duration".into(),
+        vd,
+        dur,
+        tol.text(),
+        tol.accepts(vd, dur) && tol.accepts(vf, f),
+        format!("peak force {vf:.5e} vs {f:.5e}; reduced mass {mu:.4e}"),
+    ))
+}
