@@ -20,6 +20,16 @@ pub enum Error {
     Check(#[from] crate::verify::CheckError),
     #[error("{0}")]
     Reference(#[from] crate::physics::references::ReferenceError),
+    #[error("{0}")]
+    Mesh(#[from] crate::mesh::MeshError),
+    #[error("{0}")]
+    Scene(#[from] crate::scene::SceneError),
+    #[error("{0}")]
+    Plot(#[from] crate::plot::PlotError),
+    #[error("{0}")]
+    Audit(#[from] crate::verify::audit::AuditError),
+    #[error("{0}")]
+    Fields(#[from] crate::report::fields::FieldsError),
     #[error("invalid option: {0}")]
     Usage(String),
     #[error("cannot write outputs to {path}: {source}")]
@@ -40,6 +50,11 @@ impl Error {
             | Error::Case(_)
             | Error::Check(_)
             | Error::Reference(_)
+            | Error::Mesh(_)
+            | Error::Scene(_)
+            | Error::Plot(_)
+            | Error::Audit(_)
+            | Error::Fields(_)
             | Error::Usage(_)
             | Error::Io { .. } => 2,
             Error::Solve(_) => 3,

@@ -17,6 +17,15 @@ pub const PLATE_SIDE: f64 = 6.0;
 pub const GAGE_Y: [f64; 2] = [8.0 * 6.0 / 49.0, 16.0 * 6.0 / 49.0];
 
 /// Ids of a generated plate mesh.
+/// A mesh size a generated deck cannot have.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum MeshError {
+    #[error("the plate mesh needs an odd N ≥ 3 (an element at the centre), not {0}")]
+    Plate(usize),
+    #[error("the rod mesh needs an even number of elements (at least 2), not {0}")]
+    Rod(usize),
+}
+
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PlateMesh {
     pub n: usize,
@@ -24,11 +33,9 @@ pub struct PlateMesh {
 }
 
 impl PlateMesh {
-    pub fn new(n: usize) -> Result<Self, String> {
+    pub fn new(n: usize) -> Result<Self, MeshError> {
         if n < 3 || n % 2 == 0 {
-            return Err(format!(
-                "the plate mesh needs an odd N ≥ 3 (an element at the centre), not {n}"
-            ));
+            return Err(MeshError::Plate(n));
         }
         Ok(PlateMesh {
             n,
@@ -106,7 +113,7 @@ impl PlateMesh {
 }
 
 /// The paper's plate deck on an N×N mesh.
-pub fn plate_deck(n: usize) -> Result<String, String> {
+pub fn plate_deck(n: usize) -> Result<String, MeshError> {
     let m = PlateMesh::new(n)?;
     let (e, base) = (m.centre_element(), m.base);
     let contact = m.contact_grids();
@@ -172,11 +179,9 @@ pub fn plate_deck(n: usize) -> Result<String, String> {
 /// The paper's rod deck (`reference-data/decks/rod.bdf`) with N elements instead of
 /// 144: the same 36 in rod, ball, contact and TSTEP; the two elements at mid-rod are
 /// requested for output (N even); the CONM2 is renumbered 99999.
-pub fn rod_deck(n: usize) -> Result<String, String> {
+pub fn rod_deck(n: usize) -> Result<String, MeshError> {
     if n < 2 || n % 2 != 0 {
-        return Err(format!(
-            "the rod mesh needs an even number of elements (at least 2), not {n}"
-        ));
+        return Err(MeshError::Rod(n));
     }
     let text = include_str!("../reference-data/decks/rod.bdf");
     let (a, b) = (n / 2, n / 2 + 1);
@@ -198,6 +203,6 @@ pub fn rod_deck(n: usize) -> Result<String, String> {
 /// The paper's plate on an n×n mesh, built from the generated deck (through the deck
 /// reader, as a user's deck would be).
 pub fn plate_model(n: usize) -> Result<crate::model::Model, crate::Error> {
-    let text = plate_deck(n).map_err(crate::Error::Usage)?;
+    let text = plate_deck(n)?;
     crate::model_from_text(&format!("plate-{n}x{n}"), &text)
 }

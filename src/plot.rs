@@ -79,10 +79,25 @@ pub struct Chart {
     pub headroom: f64,
 }
 
-pub type Res = Result<(), String>;
+/// A plotters failure while drawing, with its message.
+#[derive(Debug, Clone, thiserror::Error)]
+#[error("{0}")]
+pub struct DrawError(String);
 
-fn err<E: std::fmt::Display>(e: E) -> String {
-    e.to_string()
+/// A figure that could not be written.
+#[derive(Debug, Clone, thiserror::Error)]
+#[error("drawing {path}: {source}")]
+pub struct PlotError {
+    pub path: String,
+    #[source]
+    pub source: DrawError,
+}
+
+pub type Res = Result<(), DrawError>;
+
+/// Any plotters error as a [`DrawError`].
+pub fn err<E: std::fmt::Display>(e: E) -> DrawError {
+    DrawError(e.to_string())
 }
 
 fn range(v: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
@@ -112,19 +127,25 @@ pub trait Figure {
 }
 
 /// Writes a figure as `stem.png` and `stem.svg`; returns both paths.
-pub fn write_figure(fig: &impl Figure, stem: &Path) -> Result<Vec<PathBuf>, String> {
+pub fn write_figure(fig: &impl Figure, stem: &Path) -> Result<Vec<PathBuf>, PlotError> {
     register_font();
     let png = stem.with_extension("png");
     let svg = stem.with_extension("svg");
+    let at = |p: &Path| {
+        let path = p.display().to_string();
+        move |source| PlotError { path, source }
+    };
     {
         let root = BitMapBackend::new(&png, fig.size()).into_drawing_area();
-        fig.draw(&root)?;
-        root.present().map_err(err)?;
+        fig.draw(&root)
+            .and_then(|_| root.present().map_err(err))
+            .map_err(at(&png))?;
     }
     {
         let root = SVGBackend::new(&svg, fig.size()).into_drawing_area();
-        fig.draw(&root)?;
-        root.present().map_err(err)?;
+        fig.draw(&root)
+            .and_then(|_| root.present().map_err(err))
+            .map_err(at(&svg))?;
     }
     Ok(vec![png, svg])
 }
@@ -142,7 +163,7 @@ impl Figure for Chart {
 }
 
 /// Writes a line chart as `stem.png` and `stem.svg`; returns both paths.
-pub fn line_chart(chart: &Chart, stem: &Path) -> Result<Vec<PathBuf>, String> {
+pub fn line_chart(chart: &Chart, stem: &Path) -> Result<Vec<PathBuf>, PlotError> {
     write_figure(chart, stem)
 }
 
@@ -306,7 +327,7 @@ impl Figure for ContourRow<'_> {
 }
 
 /// Writes a row of contour maps (one per panel) as `stem.png` and `stem.svg`.
-pub fn contours(panels: &[Contour], stem: &Path, overall_title: &str, footer: &str) -> Result<Vec<PathBuf>, String> {
+pub fn contours(panels: &[Contour], stem: &Path, overall_title: &str, footer: &str) -> Result<Vec<PathBuf>, PlotError> {
     write_figure(
         &ContourRow {
             panels,

@@ -296,3 +296,30 @@ source = "a test"
     );
     assert!(err.contains("contact.peak_force_time,"), "{err}");
 }
+
+/// Goal: a check that does not apply to its model is a typed error of the check
+/// stage naming the case, the check and why (exit code 2, bad input), not an
+/// "invalid option" (which is for the command line only).
+#[test]
+fn a_check_that_does_not_apply_names_case_check_and_reason() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("case.toml");
+    let deck = root().join("reference-data/decks/plate.bdf");
+    std::fs::write(
+        &p,
+        format!(
+            "name = \"misfit\"\ndeck = \"{}\"\nsteps = 10\n[[check]]\nkind = \"semi_infinite_rod\"\nquantity = \"peak_force\"\ntol = {{ rel = 1e-3 }}\n",
+            deck.display()
+        ),
+    )
+    .unwrap();
+    let case = verify::read_case(&p).unwrap();
+    let e = impactlab::study::cases::evaluate(&case).unwrap_err();
+    assert!(matches!(e, impactlab::Error::Check(_)), "{e:?}");
+    let msg = e.to_string();
+    assert_eq!(
+        msg,
+        "case misfit: semi_infinite_rod: the reference needs a uniform rod target"
+    );
+    assert_eq!(e.exit_code(), 2);
+}

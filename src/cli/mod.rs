@@ -110,7 +110,7 @@ pub fn run(a: RunArgs) -> Result<u8, Error> {
     say(&output::human_summary(&model, &r));
     sayln(&format!("  outputs:  {}", dir.display()));
     if let Some(fdir) = a.fields {
-        let files = impactlab::report::fields::write_fields(&model, &r, &fdir).map_err(Error::Usage)?;
+        let files = impactlab::report::fields::write_fields(&model, &r, &fdir)?;
         sayln(&format!(
             "  fields:   {} VTU files and fields.pvd in {}",
             files.len() - 1,
@@ -123,7 +123,7 @@ pub fn run(a: RunArgs) -> Result<u8, Error> {
 /// `impactlab scene`: its K, its deck, what its effects cost.
 pub fn scene(a: SceneArgs) -> Result<u8, Error> {
     let (s, model, deck) = impactlab::scene::load(&a.scene)?;
-    let (k, how) = impactlab::scene::contact_stiffness(&s).map_err(Error::Usage)?;
+    let (k, how) = impactlab::scene::contact_stiffness(&s).map_err(|e| impactlab::scene::invalid(&a.scene, e))?;
     sayln(&format!("Hertz K = {k:.6e} ({how})"));
     if let Some(p) = a.to_deck {
         output::write_file_atomically(&p, deck.as_bytes()).map_err(io_error(&p))?;
@@ -138,7 +138,7 @@ pub fn scene(a: SceneArgs) -> Result<u8, Error> {
 /// `impactlab mesh plate`: a generated deck.
 pub fn mesh(what: MeshKind) -> Result<u8, Error> {
     let MeshKind::Plate { n, out } = what;
-    let text = impactlab::mesh::plate_deck(n).map_err(Error::Usage)?;
+    let text = impactlab::mesh::plate_deck(n)?;
     match out {
         Some(p) => output::write_file_atomically(&p, text.as_bytes()).map_err(io_error(&p))?,
         None => say(&text),
@@ -164,7 +164,7 @@ pub fn study(what: StudyKind) -> Result<u8, Error> {
             std::fs::create_dir_all(&out).map_err(io_error(&out))?;
             let csv = stability::csv(&cells);
             output::write_file_atomically(&out.join("stability-map.csv"), csv.as_bytes()).map_err(io_error(&out))?;
-            stability::figure(&cells, 2e-7, &out.join("stability-map")).map_err(Error::Usage)?;
+            stability::figure(&cells, 2e-7, &out.join("stability-map"))?;
             let readme = stability::readme(&cells);
             output::write_file_atomically(&out.join("README.md"), readme.as_bytes()).map_err(io_error(&out))?;
             let failed = cells.iter().filter(|c| c.outcome.is_err()).count();
@@ -238,7 +238,7 @@ pub fn report(a: ReportArgs) -> Result<u8, Error> {
 
 /// `impactlab audit`: what moved between two runs.
 pub fn audit(a: AuditArgs) -> Result<u8, Error> {
-    let moved = impactlab::verify::audit::audit(&a.baseline, &a.candidate).map_err(Error::Usage)?;
+    let moved = impactlab::verify::audit::audit(&a.baseline, &a.candidate)?;
     say(&impactlab::verify::audit::audit_text(&moved));
     Ok(0)
 }

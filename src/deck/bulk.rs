@@ -340,9 +340,9 @@ fn replicate(phys: &PhysLine, cards: &mut Vec<RawCard>, last_pattern: &mut Optio
                     let inc = inc.trim().trim_start_matches('(').trim_end_matches(')').trim();
                     match increment(prev_text, inc) {
                         Ok(v) => v,
-                        Err(msg) => {
+                        Err(e) => {
                             diags.push(
-                                Diagnostic::error(Some(pf.pos.clone()), msg)
+                                Diagnostic::error(Some(pf.pos.clone()), e.to_string())
                                     .card(&prev.name)
                                     .field(pf.number, "replication increment")
                                     .token(t)
@@ -381,10 +381,21 @@ fn replicate(phys: &PhysLine, cards: &mut Vec<RawCard>, last_pattern: &mut Optio
     }
 }
 
+/// Why a replication increment cannot be applied.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+enum IncrementError {
+    #[error("increments a field that is blank on the previous card")]
+    Blank,
+    #[error("cannot increment '{0}': it is not a number")]
+    NotANumber(String),
+    #[error("is not a number to increment by")]
+    BadIncrement,
+}
+
 /// `previous + increment`, integer when both are integers, real otherwise.
-fn increment(prev: &str, inc: &str) -> Result<String, String> {
+fn increment(prev: &str, inc: &str) -> Result<String, IncrementError> {
     if prev.is_empty() {
-        return Err("increments a field that is blank on the previous card".into());
+        return Err(IncrementError::Blank);
     }
     if let (Some(a), Some(b)) = (parse_int(prev), parse_int(inc)) {
         return Ok((a + b).to_string());
@@ -395,7 +406,7 @@ fn increment(prev: &str, inc: &str) -> Result<String, String> {
     };
     match (val(prev), val(inc)) {
         (Some(a), Some(b)) => Ok(format_real(a + b)),
-        (None, _) => Err(format!("cannot increment '{prev}': it is not a number")),
-        (_, None) => Err("is not a number to increment by".into()),
+        (None, _) => Err(IncrementError::NotANumber(prev.to_string())),
+        (_, None) => Err(IncrementError::BadIncrement),
     }
 }

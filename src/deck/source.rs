@@ -145,7 +145,7 @@ fn expand_tabs(s: &str) -> String {
 }
 
 /// `INCLUDE 'file'` (MSC style). Returns the quoted file name, or an error message.
-fn include_target(text: &str) -> Option<Result<String, String>> {
+fn include_target(text: &str) -> Option<Result<String, &'static str>> {
     let t = text.trim_start();
     // `get` rather than indexing: the line may hold multi-byte characters.
     if !t.get(..7).is_some_and(|w| w.eq_ignore_ascii_case("INCLUDE")) {
@@ -161,7 +161,7 @@ fn include_target(text: &str) -> Option<Result<String, String>> {
             let end = rest[1..].find(q).unwrap() + 1;
             Some(Ok(rest[1..end].to_string()))
         }
-        _ => Some(Err("INCLUDE needs a quoted file name: INCLUDE 'file.bdf'".into())),
+        _ => Some(Err("INCLUDE needs a quoted file name: INCLUDE 'file.bdf'")),
     }
 }
 

@@ -14,9 +14,28 @@ use vtkio::model::{
     Version, VertexNumbers, Vtk,
 };
 
+/// Field files that cannot be written or read back.
+#[derive(Debug, thiserror::Error)]
+pub enum FieldsError {
+    #[error("{path}: {source}")]
+    Vtk {
+        path: String,
+        #[source]
+        source: vtkio::Error,
+    },
+    #[error("{path}: {source}")]
+    Io {
+        path: String,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error("{path}: {what}")]
+    Content { path: String, what: &'static str },
+}
+
 /// Writes `DIR/fields-NNNN.vtu` for each snapshot of `run` and `DIR/fields.pvd`, all
 /// at once (staged, then swapped in like the run's outputs).
-pub fn write_fields(model: &Model, run: &Run, dir: &Path) -> Result<Vec<PathBuf>, String> {
+pub fn write_fields(model: &Model, run: &Run, dir: &Path) -> Result<Vec<PathBuf>, FieldsError> {
     let mut files: Vec<(String, Vec<u8>)> = Vec::new();
     // Points: every grid an element touches, with its coordinates.
     let mut index: HashMap<i64, usize> = HashMap::new();
@@ -106,7 +125,10 @@ pub fn write_fields(model: &Model, run: &Run, dir: &Path) -> Result<Vec<PathBuf>
         };
         let name = format!("fields-{k:04}.vtu");
         let mut bytes = Vec::new();
-        vtk.write_xml(&mut bytes).map_err(|e| format!("{name}: {e}"))?;
+        vtk.write_xml(&mut bytes).map_err(|source| FieldsError::Vtk {
+            path: dir.join(&name).display().to_string(),
+            source,
+        })?;
         let _ = writeln!(pvd, "    <DataSet timestep=\"{t:e}\" part=\"0\" file=\"{name}\"/>");
         written.push(dir.join(&name));
         files.push((name, bytes));
@@ -115,7 +137,10 @@ pub fn write_fields(model: &Model, run: &Run, dir: &Path) -> Result<Vec<PathBuf>
     files.push(("fields.pvd".into(), pvd.into_bytes()));
     written.push(dir.join("fields.pvd"));
     let refs: Vec<(&str, Vec<u8>)> = files.iter().map(|(n, b)| (n.as_str(), b.clone())).collect();
-    crate::output::write_dir_atomically(dir, &refs).map_err(|e| format!("{}: {e}", dir.display()))?;
+    crate::output::write_dir_atomically(dir, &refs).map_err(|source| FieldsError::Io {
+        path: dir.display().to_string(),
+        source,
+    })?;
     Ok(written)
 }
 
@@ -149,13 +174,20 @@ pub fn field_times(dt: f64, steps: usize, n: usize) -> Vec<f64> {
 }
 
 /// Reads a VTU back (for tests and users' checks): number of points and cells.
-pub fn read_back(path: &Path) -> Result<(usize, usize), String> {
-    let vtk = Vtk::import(path).map_err(|e| format!("{}: {e}", path.display()))?;
+pub fn read_back(path: &Path) -> Result<(usize, usize), FieldsError> {
+    let file = || path.display().to_string();
+    let vtk = Vtk::import(path).map_err(|source| FieldsError::Vtk { path: file(), source })?;
     match vtk.data {
         DataSet::UnstructuredGrid { pieces, .. } => match pieces.into_iter().next() {
             Some(Piece::Inline(p)) => Ok((p.num_points(), p.cells.types.len())),
-            _ => Err("no inline piece".into()),
+            _ => Err(FieldsError::Content {
+                path: file(),
+                what: "no inline piece",
+            }),
         },
-        _ => Err("not an unstructured grid".into()),
+        _ => Err(FieldsError::Content {
+            path: file(),
+            what: "not an unstructured grid",
+        }),
     }
 }

@@ -76,8 +76,7 @@ pub fn report_case(outcome: &CaseOutcome, dir: &Path) -> Result<CaseReport, Erro
         plate_figures(model, run, dir, &footer)
     } else {
         Ok(Vec::new())
-    }
-    .map_err(|e| Error::Usage(format!("drawing the figures of {}: {e}", case.name)))?;
+    }?;
     let markdown = markdown(case, model, run, checks, &figures, *wall);
     std::fs::write(dir.join("index.md"), &markdown).map_err(io(dir))?;
     std::fs::write(dir.join("index.html"), html(&case.name, &markdown)).map_err(io(dir))?;
@@ -129,9 +128,9 @@ fn energy_lines(e: &[EnergyRow], x: impl Fn(f64) -> f64) -> Vec<Line> {
     ]
 }
 
-fn rod_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<Vec<PathBuf>, String> {
+fn rod_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<Vec<PathBuf>, Error> {
     let rod = model.rod.expect("a rod");
-    let (tr, _, lc) = crate::physics::references::semi_infinite(model).map_err(|e| e.to_string())?;
+    let (tr, _, lc) = crate::physics::references::semi_infinite(model)?;
     let u = &model.units;
     let mut out = Vec::new();
     let s = &run.series;
@@ -267,11 +266,11 @@ fn rod_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<Vec
     Ok(out)
 }
 
-fn plate_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<Vec<PathBuf>, String> {
+fn plate_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<Vec<PathBuf>, Error> {
     let u = &model.units;
     let mut out = Vec::new();
     let s = &run.series;
-    let (p, _) = crate::physics::references::infinite_plate(model).map_err(|e| e.to_string())?;
+    let (p, _) = crate::physics::references::infinite_plate(model)?;
     let ax = TimeAxis::of(model);
     let end = run.summary.contact.intervals.first().map_or(250e-6, |i| i[1]);
     let tr = p.integrate(80e-6, 1e-9);

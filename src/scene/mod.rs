@@ -148,49 +148,94 @@ fn newmark() -> Scheme {
     Scheme::Newmark
 }
 
-fn bad(path: &Path, msg: impl std::fmt::Display) -> Error {
-    Error::Usage(format!("{}: {msg}", path.display()))
+/// What is wrong with a scene: its one error type.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{0}")]
+pub struct SceneIssue(pub String);
+
+impl From<crate::mesh::MeshError> for SceneIssue {
+    fn from(e: crate::mesh::MeshError) -> Self {
+        SceneIssue(e.to_string())
+    }
+}
+
+/// A scene file that cannot be used, with its path (and line, where the TOML
+/// reader gives one).
+#[derive(Debug, thiserror::Error)]
+pub enum SceneError {
+    #[error("{path}: {source}")]
+    Read {
+        path: String,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error("{path}{}: {issue}", line.map_or(String::new(), |l| format!(":{l}")))]
+    Invalid {
+        path: String,
+        line: Option<usize>,
+        issue: SceneIssue,
+    },
+}
+
+/// The error of the scene at `path`.
+pub fn invalid(path: &Path, issue: SceneIssue) -> SceneError {
+    SceneError::Invalid {
+        path: path.display().to_string(),
+        line: None,
+        issue,
+    }
 }
 
 /// Reads a scene file.
-pub fn read(path: &Path) -> Result<Scene, Error> {
-    let text = std::fs::read_to_string(path).map_err(|e| bad(path, e))?;
-    let s: Scene = toml::from_str(&text).map_err(|e| bad(path, e))?;
-    validate(&s).map_err(|e| bad(path, e))?;
+pub fn read(path: &Path) -> Result<Scene, SceneError> {
+    let text = std::fs::read_to_string(path).map_err(|source| SceneError::Read {
+        path: path.display().to_string(),
+        source,
+    })?;
+    let s: Scene = toml::from_str(&text).map_err(|e| SceneError::Invalid {
+        path: path.display().to_string(),
+        line: e.span().map(|r| text[..r.start].lines().count().max(1)),
+        issue: SceneIssue(e.message().to_string()),
+    })?;
+    validate(&s).map_err(|e| invalid(path, e))?;
     Ok(s)
 }
 
-fn validate(s: &Scene) -> Result<(), String> {
+fn validate(s: &Scene) -> Result<(), SceneIssue> {
     let pos = |name: &str, v: f64| {
         if v.is_finite() && v > 0.0 {
             Ok(())
         } else {
-            Err(format!("{name} must be positive, not {v}"))
+            Err(SceneIssue(format!("{name} must be positive, not {v}")))
         }
     };
     pos("impactor.mass", s.impactor.mass)?;
     pos("run.end", s.run.end)?;
     if !s.impactor.velocity.is_finite() || s.impactor.velocity == 0.0 {
-        return Err("impactor.velocity must be a nonzero number".into());
+        return Err(SceneIssue("impactor.velocity must be a nonzero number".into()));
     }
     if s.contact.law != "hertz" {
-        return Err(format!(
+        return Err(SceneIssue(format!(
             "contact.law '{}' is not supported (only \"hertz\")",
             s.contact.law
-        ));
+        )));
     }
     if s.effects.rotary_inertia {
-        return Err(
+        return Err(SceneIssue(
             "effects.rotary_inertia is asked for, but the elements lump mass to translations only \
-                    (NASTRAN's default); the model cannot represent it"
+             (NASTRAN's default); the model cannot represent it"
                 .into(),
-        );
+        ));
     }
     if s.effects.damping {
-        return Err("effects.damping is asked for, but Rayleigh damping is not implemented".into());
+        return Err(SceneIssue(
+            "effects.damping is asked for, but Rayleigh damping is not implemented".into(),
+        ));
     }
     if s.effects.gravity {
-        return Err("effects.gravity is asked for, but body forces are not implemented".into());
+        return Err(SceneIssue(
+            "effects.gravity is asked for, but body forces are not implemented".into(),
+        ));
     }
     match &s.target {
         Target::Rod {
@@ -205,15 +250,21 @@ fn validate(s: &Scene) -> Result<(), String> {
             pos("target.material.e", material.e)?;
             pos("target.material.rho", material.rho)?;
             if *elements < 2 || elements % 2 != 0 {
-                return Err(format!("target.elements must be even and at least 2, not {elements}"));
+                return Err(SceneIssue(format!(
+                    "target.elements must be even and at least 2, not {elements}"
+                )));
             }
             for e in ends {
                 if e != "free" && e != "fixed" {
-                    return Err(format!("target.ends: '{e}' is neither \"free\" nor \"fixed\""));
+                    return Err(SceneIssue(format!(
+                        "target.ends: '{e}' is neither \"free\" nor \"fixed\""
+                    )));
                 }
             }
             if s.effects.membrane {
-                return Err("effects.membrane applies to plates; this target is a rod".into());
+                return Err(SceneIssue(
+                    "effects.membrane applies to plates; this target is a rod".into(),
+                ));
             }
         }
         Target::Plate {
@@ -229,16 +280,20 @@ fn validate(s: &Scene) -> Result<(), String> {
             pos("target.thickness", *thickness)?;
             pos("target.rho", *rho)?;
             if a != b {
-                return Err(format!(
+                return Err(SceneIssue(format!(
                     "target: the plate generator meshes square plates; a = {a} but b = {b}"
-                ));
+                )));
             }
             if *mesh < 3 || mesh % 2 == 0 {
-                return Err(format!("target.mesh must be odd and at least 3, not {mesh}"));
+                return Err(SceneIssue(format!(
+                    "target.mesh must be odd and at least 3, not {mesh}"
+                )));
             }
             for e in edges {
                 if e != "clamped" && e != "free" {
-                    return Err(format!("target.edges: '{e}' is neither \"clamped\" nor \"free\""));
+                    return Err(SceneIssue(format!(
+                        "target.edges: '{e}' is neither \"clamped\" nor \"free\""
+                    )));
                 }
             }
         }
@@ -247,36 +302,46 @@ fn validate(s: &Scene) -> Result<(), String> {
 }
 
 /// Hertz K of the scene: given, Eq. 5 or Eq. 18 (with the formula's inputs).
-pub fn contact_stiffness(s: &Scene) -> Result<(f64, String), String> {
+pub fn contact_stiffness(s: &Scene) -> Result<(f64, String), SceneIssue> {
     let k = &s.contact.k;
     if let Some(v) = k.as_float().or(k.as_integer().map(|i| i as f64)) {
         return if v > 0.0 {
             Ok((v, "given".into()))
         } else {
-            Err(format!("contact.k must be positive, not {v}"))
+            Err(SceneIssue(format!("contact.k must be positive, not {v}")))
         };
     }
     let which = k.as_str().unwrap_or("");
     let r = s
         .impactor
         .radius
-        .ok_or("contact.k = \"eq5\"/\"eq18\" needs impactor.radius")?;
+        .ok_or_else(|| SceneIssue("contact.k = \"eq5\"/\"eq18\" needs impactor.radius".into()))?;
     let mi = s
         .impactor
         .material
-        .ok_or("contact.k = \"eq5\"/\"eq18\" needs impactor.material")?;
+        .ok_or_else(|| SceneIssue("contact.k = \"eq5\"/\"eq18\" needs impactor.material".into()))?;
     let ki = physics::plane_strain_modulus(mi.e, mi.nu);
     let (kt, eq) = match (which, &s.target) {
         ("eq5", Target::Rod { material, .. }) => (physics::plane_strain_modulus(material.e, material.nu), "Eq. 5"),
         ("eq18", Target::Plate { e33: Some(e33), .. }) => (*e33, "Eq. 18 (k_t = E33)"),
-        ("eq18", Target::Plate { e33: None, .. }) => return Err("contact.k = \"eq18\" needs target.e33".into()),
+        ("eq18", Target::Plate { e33: None, .. }) => {
+            return Err(SceneIssue("contact.k = \"eq18\" needs target.e33".into()))
+        }
         ("eq5", Target::Plate { .. }) => {
-            return Err("contact.k = \"eq5\" is for an isotropic target; a plate uses \"eq18\"".into())
+            return Err(SceneIssue(
+                "contact.k = \"eq5\" is for an isotropic target; a plate uses \"eq18\"".into(),
+            ))
         }
         ("eq18", Target::Rod { .. }) => {
-            return Err("contact.k = \"eq18\" is for a composite plate; a rod uses \"eq5\"".into())
+            return Err(SceneIssue(
+                "contact.k = \"eq18\" is for a composite plate; a rod uses \"eq5\"".into(),
+            ))
         }
-        (w, _) => return Err(format!("contact.k must be a number, \"eq5\" or \"eq18\", not '{w}'")),
+        (w, _) => {
+            return Err(SceneIssue(format!(
+                "contact.k must be a number, \"eq5\" or \"eq18\", not '{w}'"
+            )))
+        }
     };
     let kk = physics::hertz_stiffness(r, ki, kt);
     Ok((
@@ -289,19 +354,19 @@ pub fn contact_stiffness(s: &Scene) -> Result<(f64, String), String> {
 /// (2.94328 α_max/v0 with the impactor's mass), i.e. about the paper's resolution
 /// (its rod contact took 372 steps); the accuracy study shows Newmark at this
 /// resolution within 0.1 % in contact duration and peak force.
-pub fn time_step(s: &Scene, k: f64) -> Result<f64, String> {
+pub fn time_step(s: &Scene, k: f64) -> Result<f64, SceneIssue> {
     if let Some(v) = s.run.dt.as_float() {
         return if v > 0.0 {
             Ok(v)
         } else {
-            Err(format!("run.dt must be positive, not {v}"))
+            Err(SceneIssue(format!("run.dt must be positive, not {v}")))
         };
     }
     if s.run.dt.as_str() == Some("auto") {
         let (_, _, t) = physics::analytic::rigid_target(s.impactor.mass, s.impactor.velocity, k);
         return Ok(t / 400.0);
     }
-    Err("run.dt must be a number or \"auto\"".into())
+    Err(SceneIssue("run.dt must be a number or \"auto\"".into()))
 }
 
 fn mat2_line(w: &mut String, id: i64, g: &[f64; 6], rho: Option<f64>) {
@@ -315,7 +380,7 @@ fn mat2_line(w: &mut String, id: i64, g: &[f64; 6], rho: Option<f64>) {
 }
 
 /// The NASTRAN deck the scene stands for.
-pub fn to_deck(s: &Scene) -> Result<String, String> {
+pub fn to_deck(s: &Scene) -> Result<String, SceneIssue> {
     validate(s)?;
     let (k, how) = contact_stiffness(s)?;
     let dt = time_step(s, k)?;
@@ -458,7 +523,7 @@ fn join<T: std::fmt::Display>(v: &[T]) -> String {
 /// The scene's model (through its deck), its run options, and the computed K.
 pub fn load(path: &Path) -> Result<(Scene, Model, String), Error> {
     let s = read(path)?;
-    let deck = to_deck(&s).map_err(|e| bad(path, e))?;
+    let deck = to_deck(&s).map_err(|e| invalid(path, e))?;
     let name = path
         .file_stem()
         .map_or("scene".into(), |n| n.to_string_lossy().into_owned());

@@ -139,7 +139,7 @@ fn skipped(problem: &str, scheme: Scheme, dt: f64, mesh: usize, why: String) -> 
 }
 
 fn rod_model(n: usize) -> Result<Model, Error> {
-    let text = crate::mesh::rod_deck(n).map_err(Error::Usage)?;
+    let text = crate::mesh::rod_deck(n)?;
     let mut m = crate::model_from_text(&format!("rod-{n}"), &text)?;
     m.time.every = 1;
     Ok(m)
@@ -384,7 +384,7 @@ const MEASURES: [Measure; 3] = [
     ("force-l2", "force history (L2)", |r| r.error_force_l2),
 ];
 
-fn figures(rows: &[Row], dir: &Path) -> Result<Vec<PathBuf>, String> {
+fn figures(rows: &[Row], dir: &Path) -> Result<Vec<PathBuf>, crate::plot::PlotError> {
     let mut out = Vec::new();
     for problem in ["rod", "rod-dt", "plate"] {
         for (slug, name, get) in MEASURES {
@@ -537,7 +537,7 @@ pub fn run_study(
             source,
         }
     })?;
-    let figs = figures(&rows, dir).map_err(|e| Error::Usage(format!("drawing the study's figures: {e}")))?;
+    let figs = figures(&rows, dir)?;
     let mut md = String::from(include_str!("accuracy-intro.md"));
     let _ = writeln!(
         md,

@@ -76,7 +76,7 @@ pub struct MeshRow {
 pub fn plate_mesh_study(ns: &[usize], opts: &RunOptions) -> Result<Vec<MeshRow>, Error> {
     let mut rows = Vec::new();
     for &n in ns {
-        let mesh = PlateMesh::new(n).map_err(Error::Usage)?;
+        let mesh = PlateMesh::new(n)?;
         let model = plate_model(n)?;
         let run = run_model(&model, opts)?;
         let s = &run.summary;

@@ -20,7 +20,7 @@ pub struct Cell {
     pub dt_s: f64,
     pub velocity_scale: f64,
     /// Max relative energy error, or the failure.
-    pub outcome: Result<f64, String>,
+    pub outcome: Result<f64, crate::integrate::SolveError>,
 }
 
 /// Runs the grid on `model` (the rod) over `t_end` seconds.
@@ -42,9 +42,7 @@ pub fn run_map(model: &Model, dt0: f64, t_end: f64, progress: &dyn Fn(&str)) -> 
                     steps: Some((t_end / dt).ceil() as usize),
                     ..Default::default()
                 };
-                let outcome = run_model(&m, &opts)
-                    .map(|r| r.summary.energy.max_relative_error.unwrap_or(f64::NAN))
-                    .map_err(|e| e.to_string());
+                let outcome = run_model(&m, &opts).map(|r| r.summary.energy.max_relative_error.unwrap_or(f64::NAN));
                 cells.push(Cell {
                     scheme,
                     dt_s: dt,
@@ -62,7 +60,7 @@ pub fn csv(cells: &[Cell]) -> String {
     for c in cells {
         let (e, f) = match &c.outcome {
             Ok(e) => (format!("{e:.6e}"), String::new()),
-            Err(f) => (String::new(), f.replace('"', "'")),
+            Err(f) => (String::new(), f.to_string().replace('"', "'")),
         };
         let _ = writeln!(
             s,
@@ -98,7 +96,7 @@ impl crate::plot::Figure for Map<'_> {
     fn size(&self) -> (u32, u32) {
         (1400, 560)
     }
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, plotters::coord::Shift>) -> Result<(), String>
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, plotters::coord::Shift>) -> crate::plot::Res
     where
         DB::ErrorType: 'static,
     {
@@ -107,7 +105,7 @@ impl crate::plot::Figure for Map<'_> {
 }
 
 /// Draws the map (one panel per scheme) as PNG and SVG.
-pub fn figure(cells: &[Cell], dt0: f64, stem: &Path) -> Result<Vec<PathBuf>, String> {
+pub fn figure(cells: &[Cell], dt0: f64, stem: &Path) -> Result<Vec<PathBuf>, crate::plot::PlotError> {
     crate::plot::write_figure(&Map { cells, dt0 }, stem)
 }
 
@@ -115,11 +113,11 @@ fn draw<DB: DrawingBackend>(
     cells: &[Cell],
     dt0: f64,
     root: &DrawingArea<DB, plotters::coord::Shift>,
-) -> Result<(), String>
+) -> crate::plot::Res
 where
     DB::ErrorType: 'static,
 {
-    let e = |x: DrawingAreaErrorKind<DB::ErrorType>| x.to_string();
+    let e = |x: DrawingAreaErrorKind<DB::ErrorType>| crate::plot::err(x);
     root.fill(&WHITE).map_err(e)?;
     let root = root
         .margin(10, 0, 0, 0)

@@ -5,6 +5,25 @@ use super::gold;
 use serde_json::Value;
 use std::path::Path;
 
+/// Two run directories that cannot be compared.
+#[derive(Debug, thiserror::Error)]
+pub enum AuditError {
+    #[error("{path}: {source}")]
+    Read {
+        path: String,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error("{path}: {source}")]
+    Json {
+        path: String,
+        #[source]
+        source: serde_json::Error,
+    },
+    #[error("{0}")]
+    Csv(#[from] gold::CsvError),
+}
+
 /// One compared quantity.
 #[derive(Debug, Clone)]
 pub struct Moved {
@@ -40,12 +59,13 @@ fn leaves(prefix: &str, v: &Value, out: &mut Vec<(String, f64)>) {
 
 /// Compares `history.csv`, `energy.csv` and `summary.json` of two run directories.
 /// Timing entries (`run.*_s`) are listed but never count as a numerical change.
-pub fn audit(base: &Path, cand: &Path) -> Result<Vec<Moved>, String> {
+pub fn audit(base: &Path, cand: &Path) -> Result<Vec<Moved>, AuditError> {
     let mut out = Vec::new();
-    let read_json = |d: &Path| -> Result<Value, String> {
+    let read_json = |d: &Path| -> Result<Value, AuditError> {
         let p = d.join("summary.json");
-        let t = std::fs::read_to_string(&p).map_err(|e| format!("{}: {e}", p.display()))?;
-        serde_json::from_str(&t).map_err(|e| format!("{}: {e}", p.display()))
+        let path = || p.display().to_string();
+        let t = std::fs::read_to_string(&p).map_err(|source| AuditError::Read { path: path(), source })?;
+        serde_json::from_str(&t).map_err(|source| AuditError::Json { path: path(), source })
     };
     let (mut a, mut b) = (Vec::new(), Vec::new());
     leaves("", &read_json(base)?, &mut a);

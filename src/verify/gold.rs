@@ -49,20 +49,40 @@ fn fail(detail: String) -> GoldOutcome {
     }
 }
 
-/// Reads a CSV written by [`crate::output`] (header with units, numbers).
-pub fn read(path: &Path) -> Result<(Vec<String>, Vec<Vec<f64>>), String> {
-    let mut r = csv::Reader::from_path(path).map_err(|e| format!("gold file {}: {e}", path.display()))?;
+/// A CSV of numbers that cannot be read.
+#[derive(Debug, thiserror::Error)]
+pub enum CsvError {
+    #[error("{path}: {source}")]
+    Read {
+        path: String,
+        #[source]
+        source: csv::Error,
+    },
+    #[error("{path}: row {row}: {message}")]
+    Number { path: String, row: usize, message: String },
+}
+
+/// Reads a CSV written by [`crate::output`] (header with units, numbers): the column
+/// names without units, and the rows.
+pub fn read(path: &Path) -> Result<(Vec<String>, Vec<Vec<f64>>), CsvError> {
+    let file = || path.display().to_string();
+    let read = |source| CsvError::Read { path: file(), source };
+    let mut r = csv::Reader::from_path(path).map_err(read)?;
     let header: Vec<String> = r
         .headers()
-        .map_err(|e| e.to_string())?
+        .map_err(read)?
         .iter()
         .map(|h| h.split(' ').next().unwrap_or("").to_string())
         .collect();
     let mut rows = Vec::new();
     for (i, rec) in r.records().enumerate() {
-        let rec = rec.map_err(|e| format!("{}: row {}: {e}", path.display(), i + 2))?;
+        let rec = rec.map_err(read)?;
         let row: Result<Vec<f64>, _> = rec.iter().map(|x| x.trim().parse::<f64>()).collect();
-        rows.push(row.map_err(|e| format!("{}: row {}: {e}", path.display(), i + 2))?);
+        rows.push(row.map_err(|e| CsvError::Number {
+            path: file(),
+            row: i + 2,
+            message: e.to_string(),
+        })?);
     }
     Ok((header, rows))
 }
