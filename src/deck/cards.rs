@@ -446,349 +446,21 @@ pub fn type_cards(raw: &[RawCard], diags: &mut Diagnostics) -> (Bulk, Vec<(Strin
     for card in raw {
         let mut r = Reader::new(card, diags);
         match card.name.as_str() {
-            "GRID" => {
-                let g = Grid {
-                    id: r.id(0, "ID"),
-                    cp: r.int_or(1, "CP", 0),
-                    x: [
-                        r.real_or(2, "X1", 0.0),
-                        r.real_or(3, "X2", 0.0),
-                        r.real_or(4, "X3", 0.0),
-                    ],
-                    cd: r.int_or(5, "CD", 0),
-                    ps: if r.text(6).is_empty() {
-                        None
-                    } else {
-                        Some(r.components(6, "PS"))
-                    },
-                    at: r.at(),
-                };
-                r.extra_fields(8);
-                if r.ok {
-                    b.grids.push(g);
-                }
-            }
-            "GRDSET" => {
-                b.grdset = GrdSet {
-                    cp: r.int_or(1, "CP", 0),
-                    cd: r.int_or(5, "CD", 0),
-                    ps: r.components(6, "PS"),
-                };
-                r.extra_fields(8);
-            }
-            "EPOINT" | "SPOINT" => {
-                let ids = r.id_list(0, "ID");
-                if r.ok {
-                    let at = r.at();
-                    let list = if card.name == "EPOINT" {
-                        &mut b.epoints
-                    } else {
-                        &mut b.spoints
-                    };
-                    list.extend(ids.into_iter().map(|i| (i, at.clone())));
-                }
-            }
-            "CROD" => {
-                let c = Crod {
-                    eid: r.id(0, "EID"),
-                    pid: r.int_or(1, "PID", 0),
-                    g: [r.id(2, "G1"), r.id(3, "G2")],
-                    at: r.at(),
-                };
-                let pid = if r.text(1).is_empty() { c.eid } else { c.pid };
-                if c.g[0] == c.g[1] && r.ok {
-                    r.fail(3, "G2", "is the same grid as G1");
-                }
-                r.extra_fields(4);
-                if r.ok {
-                    b.crods.push(Crod { pid, ..c });
-                }
-            }
-            "PROD" => {
-                let p = Prod {
-                    pid: r.id(0, "PID"),
-                    mid: r.id(1, "MID"),
-                    a: r.real(2, "A"),
-                    j: r.real_or(3, "J", 0.0),
-                    nsm: r.real_or(5, "NSM", 0.0),
-                    at: r.at(),
-                };
-                r.real_opt(4, "C");
-                r.positive(2, "A", p.a);
-                r.non_negative(3, "J", p.j);
-                r.extra_fields(6);
-                if r.ok {
-                    b.prods.push(p);
-                }
-            }
-            "CQUAD4" => {
-                let c = Cquad4 {
-                    eid: r.id(0, "EID"),
-                    pid: r.int_or(1, "PID", 0),
-                    g: [r.id(2, "G1"), r.id(3, "G2"), r.id(4, "G3"), r.id(5, "G4")],
-                    at: r.at(),
-                };
-                let pid = if r.text(1).is_empty() { c.eid } else { c.pid };
-                let theta = r.real_or(6, "THETA/MCID", 0.0);
-                if theta != 0.0 {
-                    r.fail(
-                        6,
-                        "THETA/MCID",
-                        "a material orientation is not supported (must be blank or 0.0)",
-                    );
-                }
-                let zoffs = r.real_or(7, "ZOFFS", 0.0);
-                if zoffs != 0.0 {
-                    r.fail(7, "ZOFFS", "an offset plate is not supported (must be blank or 0.0)");
-                }
-                let mut gs = c.g.to_vec();
-                gs.sort();
-                gs.dedup();
-                if gs.len() != 4 && r.ok {
-                    r.fail(2, "G1-G4", "the four corner grids must be distinct");
-                }
-                if r.ok {
-                    b.cquad4s.push(Cquad4 { pid, ..c });
-                }
-            }
-            "PSHELL" => {
-                let p = Pshell {
-                    pid: r.id(0, "PID"),
-                    mid1: r.int_opt(1, "MID1"),
-                    t: r.real(2, "T"),
-                    mid2: r.int_opt(3, "MID2"),
-                    bend_ratio: r.real_or(4, "12I/T**3", 1.0),
-                    mid3: r.int_opt(5, "MID3"),
-                    nsm: r.real_or(7, "NSM", 0.0),
-                    at: r.at(),
-                };
-                r.real_opt(6, "TS/T");
-                r.positive(2, "T", p.t);
-                r.positive(4, "12I/T**3", p.bend_ratio);
-                if r.int_opt(10, "MID4").is_some() {
-                    r.fail(10, "MID4", "membrane-bending coupling material is not supported");
-                }
-                if r.ok {
-                    b.pshells.push(p);
-                }
-            }
-            "MAT1" => {
-                let e = r.real_opt(1, "E");
-                let g = r.real_opt(2, "G");
-                let nu = r.real_opt(3, "NU");
-                let rho = r.real_or(4, "RHO", 0.0);
-                let (e, g, nu) = match (e, g, nu) {
-                    (Some(e), Some(g), Some(nu)) => (e, g, nu),
-                    (Some(e), None, Some(nu)) => (e, e / (2.0 * (1.0 + nu)), nu),
-                    (Some(e), Some(g), None) => (e, g, e / (2.0 * g) - 1.0),
-                    (None, Some(g), Some(nu)) => (2.0 * g * (1.0 + nu), g, nu),
-                    (Some(e), None, None) => (e, 0.0, 0.0),
-                    _ => {
-                        if r.ok {
-                            r.fail(1, "E", "MAT1 needs E, or two of E, G and NU");
-                        }
-                        (0.0, 0.0, 0.0)
-                    }
-                };
-                if r.ok {
-                    if e <= 0.0 {
-                        r.fail(1, "E", format!("Young's modulus must be positive (E = {e})"));
-                    }
-                    if !(-1.0..0.5).contains(&nu) {
-                        r.fail(3, "NU", format!("Poisson's ratio must lie in (-1, 0.5) (NU = {nu})"));
-                    }
-                    r.positive(4, "RHO", rho);
-                }
-                let m = Mat1 {
-                    mid: r.id(0, "MID"),
-                    e,
-                    g,
-                    nu,
-                    rho,
-                    at: r.at(),
-                };
-                if r.ok {
-                    b.mat1s.push(m);
-                }
-            }
-            "MAT2" => {
-                let v: Vec<f64> = (1..=6)
-                    .map(|k| r.real_or(k, ["", "G11", "G12", "G13", "G22", "G23", "G33"][k], 0.0))
-                    .collect();
-                let rho = r.real_or(7, "RHO", 0.0);
-                r.positive(7, "RHO", rho);
-                for (k, name) in [
-                    (8, "A1"),
-                    (9, "A2"),
-                    (10, "A3"),
-                    (11, "TREF"),
-                    (12, "GE"),
-                    (13, "ST"),
-                    (14, "SC"),
-                    (15, "SS"),
-                ] {
-                    r.real_opt(k, name);
-                }
-                let g = [[v[0], v[1], v[2]], [v[1], v[3], v[4]], [v[2], v[4], v[5]]];
-                let m = Mat2 {
-                    mid: r.id(0, "MID"),
-                    g,
-                    rho,
-                    at: r.at(),
-                };
-                if r.ok {
-                    b.mat2s.push(m);
-                }
-            }
-            "CONM2" => {
-                let cid = r.int_or(2, "CID", 0);
-                if cid != 0 {
-                    r.fail(2, "CID", "only the basic system (CID blank or 0) is supported");
-                }
-                for (k, name) in [(4, "X1"), (5, "X2"), (6, "X3")] {
-                    if r.real_or(k, name, 0.0) != 0.0 {
-                        r.fail(k, name, "mass offsets are not supported (must be blank or 0.0)");
-                    }
-                }
-                let names = ["I11", "I21", "I22", "I31", "I32", "I33"];
-                let mut inertia = [0.0; 6];
-                for (i, name) in names.iter().enumerate() {
-                    inertia[i] = r.real_or(8 + i, name, 0.0);
-                }
-                let c = Conm2 {
-                    eid: r.id(0, "EID"),
-                    g: r.id(1, "G"),
-                    mass: r.real(3, "M"),
-                    inertia,
-                    at: r.at(),
-                };
-                r.positive(3, "M", c.mass);
-                for (i, k) in [(0, 8), (2, 10), (5, 13)] {
-                    r.non_negative(k, names[i], inertia[i]);
-                }
-                if inertia[4] != 0.0 && inertia[5] == 0.0 {
-                    r.warn(
-                        12,
-                        "I32",
-                        "CONM2 inertia has a product of inertia I32 but no I33: a value meant for I33 may sit one field early",
-                    );
-                }
-                r.extra_fields(14);
-                if r.ok {
-                    b.conm2s.push(c);
-                }
-            }
-            "SPC1" => {
-                let s = Spc1 {
-                    sid: r.id(0, "SID"),
-                    c: r.components(1, "C"),
-                    grids: r.id_list(2, "G"),
-                    at: r.at(),
-                };
-                if r.ok && s.grids.is_empty() {
-                    r.fail(2, "G1", "SPC1 names no grid");
-                }
-                if r.ok && s.c.0 == 0 && !r.text(1).is_empty() && r.text(1) != "0" {
-                    r.fail(1, "C", "names no component");
-                }
-                if r.ok {
-                    b.spc1s.push(s);
-                }
-            }
-            "TF" => {
-                let mut t = Tf {
-                    sid: r.id(0, "SID"),
-                    gd: r.id(1, "GD"),
-                    cd: r.component(2, "CD"),
-                    b: [
-                        r.real_or(3, "B0", 0.0),
-                        r.real_or(4, "B1", 0.0),
-                        r.real_or(5, "B2", 0.0),
-                    ],
-                    terms: Vec::new(),
-                    at: r.at(),
-                };
-                let nlines = card.fields.len().div_ceil(8);
-                for line in 1..nlines {
-                    let k = 8 * line;
-                    if (k..k + 8).all(|i| r.text(i).is_empty()) {
-                        continue;
-                    }
-                    let term = TfTerm {
-                        g: r.id(k, "G(i)"),
-                        c: r.component(k + 1, "C(i)"),
-                        a: [
-                            r.real_or(k + 2, "A0(i)", 0.0),
-                            r.real_or(k + 3, "A1(i)", 0.0),
-                            r.real_or(k + 4, "A2(i)", 0.0),
-                        ],
-                    };
-                    for i in k + 5..k + 8 {
-                        if !r.text(i).is_empty() {
-                            r.fail(i, "unused", "TF continuation holds one term in fields 2-6");
-                        }
-                    }
-                    t.terms.push(term);
-                }
-                if r.ok {
-                    b.tfs.push(t);
-                }
-            }
-            "TSTEP" => {
-                let t = Tstep {
-                    sid: r.id(0, "SID"),
-                    n: r.int(1, "N(1)").max(0) as usize,
-                    dt: r.real(2, "DT(1)"),
-                    every: r.int_or(3, "NO(1)", 1).max(0) as usize,
-                    at: r.at(),
-                };
-                if r.ok && t.n == 0 {
-                    r.fail(1, "N(1)", "the number of steps must be positive");
-                }
-                r.positive(2, "DT(1)", t.dt);
-                if r.ok && t.every == 0 {
-                    r.fail(3, "NO(1)", "the output interval must be positive");
-                }
-                if card.fields.len() > 8 {
-                    r.fail(9, "N(2)", "more than one TSTEP interval is not supported");
-                }
-                if r.ok {
-                    b.tsteps.push(t);
-                }
-            }
-            "NOLIN3" => {
-                let n = Nolin3 {
-                    sid: r.id(0, "SID"),
-                    gi: r.id(1, "GI"),
-                    ci: r.component(2, "CI"),
-                    s: r.real(3, "S"),
-                    gj: r.id(4, "GJ"),
-                    cj: r.component(5, "CJ"),
-                    a: r.real(6, "A"),
-                    at: r.at(),
-                };
-                if r.ok && n.a <= 0.0 {
-                    r.fail(6, "A", "the exponent must be positive");
-                }
-                r.extra_fields(7);
-                if r.ok {
-                    b.nolin3s.push(n);
-                }
-            }
-            "TIC" => {
-                let t = Tic {
-                    sid: r.id(0, "SID"),
-                    g: r.id(1, "G"),
-                    c: r.component(2, "C"),
-                    u0: r.real_or(3, "U0", 0.0),
-                    v0: r.real_or(4, "V0", 0.0),
-                    at: r.at(),
-                };
-                r.extra_fields(5);
-                if r.ok {
-                    b.tics.push(t);
-                }
-            }
+            "GRID" => card_grid(&mut r, &mut b),
+            "GRDSET" => card_grdset(&mut r, &mut b),
+            "EPOINT" | "SPOINT" => card_points(&mut r, &mut b, card),
+            "CROD" => card_crod(&mut r, &mut b),
+            "PROD" => card_prod(&mut r, &mut b),
+            "CQUAD4" => card_cquad4(&mut r, &mut b),
+            "PSHELL" => card_pshell(&mut r, &mut b),
+            "MAT1" => card_mat1(&mut r, &mut b),
+            "MAT2" => card_mat2(&mut r, &mut b),
+            "CONM2" => card_conm2(&mut r, &mut b),
+            "SPC1" => card_spc1(&mut r, &mut b),
+            "TF" => card_tf(&mut r, &mut b, card),
+            "TSTEP" => card_tstep(&mut r, &mut b, card),
+            "NOLIN3" => card_nolin3(&mut r, &mut b),
+            "TIC" => card_tic(&mut r, &mut b),
             "PARAM" => r.diags.push(
                 Diagnostic::warning(Some(card.pos.clone()), "PARAM cards are not used by impactlab; ignored")
                     .card("PARAM")
@@ -798,4 +470,377 @@ pub fn type_cards(raw: &[RawCard], diags: &mut Diagnostics) -> (Bulk, Vec<(Strin
         }
     }
     (b, unknown)
+}
+
+/// GRID.
+fn card_grid(r: &mut Reader, b: &mut Bulk) {
+    let g = Grid {
+        id: r.id(0, "ID"),
+        cp: r.int_or(1, "CP", 0),
+        x: [
+            r.real_or(2, "X1", 0.0),
+            r.real_or(3, "X2", 0.0),
+            r.real_or(4, "X3", 0.0),
+        ],
+        cd: r.int_or(5, "CD", 0),
+        ps: if r.text(6).is_empty() {
+            None
+        } else {
+            Some(r.components(6, "PS"))
+        },
+        at: r.at(),
+    };
+    r.extra_fields(8);
+    if r.ok {
+        b.grids.push(g);
+    }
+}
+
+/// GRDSET.
+fn card_grdset(r: &mut Reader, b: &mut Bulk) {
+    b.grdset = GrdSet {
+        cp: r.int_or(1, "CP", 0),
+        cd: r.int_or(5, "CD", 0),
+        ps: r.components(6, "PS"),
+    };
+    r.extra_fields(8);
+}
+
+/// EPOINT or SPOINT.
+fn card_points(r: &mut Reader, b: &mut Bulk, card: &RawCard) {
+    let ids = r.id_list(0, "ID");
+    if r.ok {
+        let at = r.at();
+        let list = if card.name == "EPOINT" {
+            &mut b.epoints
+        } else {
+            &mut b.spoints
+        };
+        list.extend(ids.into_iter().map(|i| (i, at.clone())));
+    }
+}
+
+/// CROD.
+fn card_crod(r: &mut Reader, b: &mut Bulk) {
+    let c = Crod {
+        eid: r.id(0, "EID"),
+        pid: r.int_or(1, "PID", 0),
+        g: [r.id(2, "G1"), r.id(3, "G2")],
+        at: r.at(),
+    };
+    let pid = if r.text(1).is_empty() { c.eid } else { c.pid };
+    if c.g[0] == c.g[1] && r.ok {
+        r.fail(3, "G2", "is the same grid as G1");
+    }
+    r.extra_fields(4);
+    if r.ok {
+        b.crods.push(Crod { pid, ..c });
+    }
+}
+
+/// PROD.
+fn card_prod(r: &mut Reader, b: &mut Bulk) {
+    let p = Prod {
+        pid: r.id(0, "PID"),
+        mid: r.id(1, "MID"),
+        a: r.real(2, "A"),
+        j: r.real_or(3, "J", 0.0),
+        nsm: r.real_or(5, "NSM", 0.0),
+        at: r.at(),
+    };
+    r.real_opt(4, "C");
+    r.positive(2, "A", p.a);
+    r.non_negative(3, "J", p.j);
+    r.extra_fields(6);
+    if r.ok {
+        b.prods.push(p);
+    }
+}
+
+/// CQUAD4.
+fn card_cquad4(r: &mut Reader, b: &mut Bulk) {
+    let c = Cquad4 {
+        eid: r.id(0, "EID"),
+        pid: r.int_or(1, "PID", 0),
+        g: [r.id(2, "G1"), r.id(3, "G2"), r.id(4, "G3"), r.id(5, "G4")],
+        at: r.at(),
+    };
+    let pid = if r.text(1).is_empty() { c.eid } else { c.pid };
+    let theta = r.real_or(6, "THETA/MCID", 0.0);
+    if theta != 0.0 {
+        r.fail(
+            6,
+            "THETA/MCID",
+            "a material orientation is not supported (must be blank or 0.0)",
+        );
+    }
+    let zoffs = r.real_or(7, "ZOFFS", 0.0);
+    if zoffs != 0.0 {
+        r.fail(7, "ZOFFS", "an offset plate is not supported (must be blank or 0.0)");
+    }
+    let mut gs = c.g.to_vec();
+    gs.sort();
+    gs.dedup();
+    if gs.len() != 4 && r.ok {
+        r.fail(2, "G1-G4", "the four corner grids must be distinct");
+    }
+    if r.ok {
+        b.cquad4s.push(Cquad4 { pid, ..c });
+    }
+}
+
+/// PSHELL.
+fn card_pshell(r: &mut Reader, b: &mut Bulk) {
+    let p = Pshell {
+        pid: r.id(0, "PID"),
+        mid1: r.int_opt(1, "MID1"),
+        t: r.real(2, "T"),
+        mid2: r.int_opt(3, "MID2"),
+        bend_ratio: r.real_or(4, "12I/T**3", 1.0),
+        mid3: r.int_opt(5, "MID3"),
+        nsm: r.real_or(7, "NSM", 0.0),
+        at: r.at(),
+    };
+    r.real_opt(6, "TS/T");
+    r.positive(2, "T", p.t);
+    r.positive(4, "12I/T**3", p.bend_ratio);
+    if r.int_opt(10, "MID4").is_some() {
+        r.fail(10, "MID4", "membrane-bending coupling material is not supported");
+    }
+    if r.ok {
+        b.pshells.push(p);
+    }
+}
+
+/// MAT1.
+fn card_mat1(r: &mut Reader, b: &mut Bulk) {
+    let e = r.real_opt(1, "E");
+    let g = r.real_opt(2, "G");
+    let nu = r.real_opt(3, "NU");
+    let rho = r.real_or(4, "RHO", 0.0);
+    let (e, g, nu) = match (e, g, nu) {
+        (Some(e), Some(g), Some(nu)) => (e, g, nu),
+        (Some(e), None, Some(nu)) => (e, e / (2.0 * (1.0 + nu)), nu),
+        (Some(e), Some(g), None) => (e, g, e / (2.0 * g) - 1.0),
+        (None, Some(g), Some(nu)) => (2.0 * g * (1.0 + nu), g, nu),
+        (Some(e), None, None) => (e, 0.0, 0.0),
+        _ => {
+            if r.ok {
+                r.fail(1, "E", "MAT1 needs E, or two of E, G and NU");
+            }
+            (0.0, 0.0, 0.0)
+        }
+    };
+    if r.ok {
+        if e <= 0.0 {
+            r.fail(1, "E", format!("Young's modulus must be positive (E = {e})"));
+        }
+        if !(-1.0..0.5).contains(&nu) {
+            r.fail(3, "NU", format!("Poisson's ratio must lie in (-1, 0.5) (NU = {nu})"));
+        }
+        r.positive(4, "RHO", rho);
+    }
+    let m = Mat1 {
+        mid: r.id(0, "MID"),
+        e,
+        g,
+        nu,
+        rho,
+        at: r.at(),
+    };
+    if r.ok {
+        b.mat1s.push(m);
+    }
+}
+
+/// MAT2.
+fn card_mat2(r: &mut Reader, b: &mut Bulk) {
+    let v: Vec<f64> = (1..=6)
+        .map(|k| r.real_or(k, ["", "G11", "G12", "G13", "G22", "G23", "G33"][k], 0.0))
+        .collect();
+    let rho = r.real_or(7, "RHO", 0.0);
+    r.positive(7, "RHO", rho);
+    for (k, name) in [
+        (8, "A1"),
+        (9, "A2"),
+        (10, "A3"),
+        (11, "TREF"),
+        (12, "GE"),
+        (13, "ST"),
+        (14, "SC"),
+        (15, "SS"),
+    ] {
+        r.real_opt(k, name);
+    }
+    let g = [[v[0], v[1], v[2]], [v[1], v[3], v[4]], [v[2], v[4], v[5]]];
+    let m = Mat2 {
+        mid: r.id(0, "MID"),
+        g,
+        rho,
+        at: r.at(),
+    };
+    if r.ok {
+        b.mat2s.push(m);
+    }
+}
+
+/// CONM2.
+fn card_conm2(r: &mut Reader, b: &mut Bulk) {
+    let cid = r.int_or(2, "CID", 0);
+    if cid != 0 {
+        r.fail(2, "CID", "only the basic system (CID blank or 0) is supported");
+    }
+    for (k, name) in [(4, "X1"), (5, "X2"), (6, "X3")] {
+        if r.real_or(k, name, 0.0) != 0.0 {
+            r.fail(k, name, "mass offsets are not supported (must be blank or 0.0)");
+        }
+    }
+    let names = ["I11", "I21", "I22", "I31", "I32", "I33"];
+    let mut inertia = [0.0; 6];
+    for (i, name) in names.iter().enumerate() {
+        inertia[i] = r.real_or(8 + i, name, 0.0);
+    }
+    let c = Conm2 {
+        eid: r.id(0, "EID"),
+        g: r.id(1, "G"),
+        mass: r.real(3, "M"),
+        inertia,
+        at: r.at(),
+    };
+    r.positive(3, "M", c.mass);
+    for (i, k) in [(0, 8), (2, 10), (5, 13)] {
+        r.non_negative(k, names[i], inertia[i]);
+    }
+    if inertia[4] != 0.0 && inertia[5] == 0.0 {
+        r.warn(
+            12,
+            "I32",
+            "CONM2 inertia has a product of inertia I32 but no I33: a value meant for I33 may sit one field early",
+        );
+    }
+    r.extra_fields(14);
+    if r.ok {
+        b.conm2s.push(c);
+    }
+}
+
+/// SPC1.
+fn card_spc1(r: &mut Reader, b: &mut Bulk) {
+    let s = Spc1 {
+        sid: r.id(0, "SID"),
+        c: r.components(1, "C"),
+        grids: r.id_list(2, "G"),
+        at: r.at(),
+    };
+    if r.ok && s.grids.is_empty() {
+        r.fail(2, "G1", "SPC1 names no grid");
+    }
+    if r.ok && s.c.0 == 0 && !r.text(1).is_empty() && r.text(1) != "0" {
+        r.fail(1, "C", "names no component");
+    }
+    if r.ok {
+        b.spc1s.push(s);
+    }
+}
+
+/// TF.
+fn card_tf(r: &mut Reader, b: &mut Bulk, card: &RawCard) {
+    let mut t = Tf {
+        sid: r.id(0, "SID"),
+        gd: r.id(1, "GD"),
+        cd: r.component(2, "CD"),
+        b: [
+            r.real_or(3, "B0", 0.0),
+            r.real_or(4, "B1", 0.0),
+            r.real_or(5, "B2", 0.0),
+        ],
+        terms: Vec::new(),
+        at: r.at(),
+    };
+    let nlines = card.fields.len().div_ceil(8);
+    for line in 1..nlines {
+        let k = 8 * line;
+        if (k..k + 8).all(|i| r.text(i).is_empty()) {
+            continue;
+        }
+        let term = TfTerm {
+            g: r.id(k, "G(i)"),
+            c: r.component(k + 1, "C(i)"),
+            a: [
+                r.real_or(k + 2, "A0(i)", 0.0),
+                r.real_or(k + 3, "A1(i)", 0.0),
+                r.real_or(k + 4, "A2(i)", 0.0),
+            ],
+        };
+        for i in k + 5..k + 8 {
+            if !r.text(i).is_empty() {
+                r.fail(i, "unused", "TF continuation holds one term in fields 2-6");
+            }
+        }
+        t.terms.push(term);
+    }
+    if r.ok {
+        b.tfs.push(t);
+    }
+}
+
+/// TSTEP.
+fn card_tstep(r: &mut Reader, b: &mut Bulk, card: &RawCard) {
+    let t = Tstep {
+        sid: r.id(0, "SID"),
+        n: r.int(1, "N(1)").max(0) as usize,
+        dt: r.real(2, "DT(1)"),
+        every: r.int_or(3, "NO(1)", 1).max(0) as usize,
+        at: r.at(),
+    };
+    if r.ok && t.n == 0 {
+        r.fail(1, "N(1)", "the number of steps must be positive");
+    }
+    r.positive(2, "DT(1)", t.dt);
+    if r.ok && t.every == 0 {
+        r.fail(3, "NO(1)", "the output interval must be positive");
+    }
+    if card.fields.len() > 8 {
+        r.fail(9, "N(2)", "more than one TSTEP interval is not supported");
+    }
+    if r.ok {
+        b.tsteps.push(t);
+    }
+}
+
+/// NOLIN3.
+fn card_nolin3(r: &mut Reader, b: &mut Bulk) {
+    let n = Nolin3 {
+        sid: r.id(0, "SID"),
+        gi: r.id(1, "GI"),
+        ci: r.component(2, "CI"),
+        s: r.real(3, "S"),
+        gj: r.id(4, "GJ"),
+        cj: r.component(5, "CJ"),
+        a: r.real(6, "A"),
+        at: r.at(),
+    };
+    if r.ok && n.a <= 0.0 {
+        r.fail(6, "A", "the exponent must be positive");
+    }
+    r.extra_fields(7);
+    if r.ok {
+        b.nolin3s.push(n);
+    }
+}
+
+/// TIC.
+fn card_tic(r: &mut Reader, b: &mut Bulk) {
+    let t = Tic {
+        sid: r.id(0, "SID"),
+        g: r.id(1, "G"),
+        c: r.component(2, "C"),
+        u0: r.real_or(3, "U0", 0.0),
+        v0: r.real_or(4, "V0", 0.0),
+        at: r.at(),
+    };
+    r.extra_fields(5);
+    if r.ok {
+        b.tics.push(t);
+    }
 }

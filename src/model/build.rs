@@ -98,59 +98,163 @@ impl Ctx {
     }
 }
 
-/// Builds the model of a deck, collecting every error.
+/// The cards the case control selects.
+struct Selected<'d> {
+    spcs: Vec<&'d crate::deck::cards::Spc1>,
+    tfs: Vec<&'d crate::deck::cards::Tf>,
+    nolins: Vec<&'d crate::deck::cards::Nolin3>,
+    tics: Vec<&'d crate::deck::cards::Tic>,
+    tsteps: Vec<&'d crate::deck::cards::Tstep>,
+}
+
+/// Points and the numbering of the solved DOFs.
+struct Numbering<'d> {
+    grids: BTreeMap<i64, &'d crate::deck::cards::Grid>,
+    scalar: BTreeMap<i64, &'d CardRef>,
+    dofs: Vec<DofLabel>,
+    index: HashMap<DofLabel, usize>,
+}
+
+impl Numbering<'_> {
+    /// The solved DOF index of T1..R3 of a grid.
+    fn grid_dofs(&self, id: i64) -> [Option<usize>; 6] {
+        let mut d = [None; 6];
+        for (k, slot) in d.iter_mut().enumerate() {
+            *slot = self
+                .index
+                .get(&DofLabel {
+                    point: id,
+                    comp: k as u8 + 1,
+                })
+                .copied();
+        }
+        d
+    }
+
+    /// A reference (point, component) to a solved DOF, with a clear error otherwise.
+    fn lookup(&self, cx: &mut Ctx, at: &CardRef, what: &str, g: i64, c: usize) -> Option<usize> {
+        let is_grid = self.grids.contains_key(&g);
+        let is_scalar = self.scalar.contains_key(&g);
+        if !is_grid && !is_scalar {
+            cx.err(at.error(format!("{what} references point {g}, which does not exist")));
+            return None;
+        }
+        if is_grid && c == 0 {
+            cx.err(at.error(format!(
+                "{what} names grid {g} with component 0: a grid needs a component 1-6"
+            )));
+            return None;
+        }
+        let l = DofLabel {
+            point: g,
+            comp: if is_scalar { 0 } else { c as u8 },
+        };
+        match self.index.get(&l) {
+            Some(&i) => Some(i),
+            None => {
+                cx.err(at.error(format!("{what} uses {l}, which is constrained (SPC1 or PS)")));
+                None
+            }
+        }
+    }
+}
+
+/// The TF-defined scalar points, as functionals of the solved DOFs.
+struct Dependent {
+    points: Vec<DependentPoint>,
+    index: HashMap<i64, usize>,
+}
+
+/// The elements, and how many elements touch each grid.
+struct Elements {
+    list: Vec<Element>,
+    on_element: HashMap<i64, usize>,
+}
+
+/// Builds the model of a deck, collecting every error: named stages, each reporting
+/// its problems against the cards.
 pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> {
     let mut cx = Ctx { diags: Vec::new() };
-    let b = &deck.bulk;
     let case = &deck.case;
+    let sel = select_cards(&mut cx, deck);
+    let constrained = constrained_grids(&mut cx, deck, &sel);
+    let tf_of = transfer_functions(&mut cx, &sel, deck);
+    let num = number_dofs(deck, &constrained, &tf_of);
+    let dependent = dependent_points(&mut cx, &tf_of, &num);
+    let elements = build_elements(&mut cx, deck, &num);
+    let time = time_control(&sel);
+    let (u0, v0) = initial_conditions(&mut cx, &sel, &dependent, &num);
+    let refs = ContactRefs {
+        dependent: &dependent.points,
+        dep_index: &dependent.index,
+        elements: &elements.list,
+        on_element: &elements.on_element,
+        labels: &num.dofs,
+    };
+    let contact = build_contact(&mut cx, &sel.nolins, &refs, |cx, at, w, g, c| {
+        num.lookup(cx, at, w, g, c)
+    });
+    let outputs = output_plan(&mut cx, deck, &num, &dependent, &elements.list, contact.as_ref());
+    let rod = rod_info(&elements.list);
+    let model = Model {
+        name: deck.name.clone(),
+        title: case.title.clone(),
+        units: deck.units.clone(),
+        deck_sha256: deck.sha256.clone(),
+        dofs: num.dofs,
+        dependent: dependent.points,
+        elements: elements.list,
+        contact,
+        u0,
+        v0,
+        time,
+        outputs,
+        rod,
+        inert_dofs: 0,
+    };
+    let errors = cx.diags.iter().any(|d| d.is_error());
+    if errors {
+        Err(ModelError { diagnostics: cx.diags })
+    } else {
+        Ok((model, cx.diags))
+    }
+}
 
-    let spcs = cx.select("SPC1", "SPC", &case.spc, &b.spc1s, |c| c.sid, |c| &c.at);
-    let tfs = cx.select("TF", "TFL", &case.tfl, &b.tfs, |c| c.sid, |c| &c.at);
-    let nolins = cx.select("NOLIN3", "NONLINEAR", &case.nonlinear, &b.nolin3s, |c| c.sid, |c| &c.at);
-    let tics = cx.select("TIC", "IC", &case.ic, &b.tics, |c| c.sid, |c| &c.at);
-    let tsteps = cx.select("TSTEP", "TSTEP", &case.tstep, &b.tsteps, |c| c.sid, |c| &c.at);
+/// The SPC1, TF, NOLIN3, TIC and TSTEP cards the case control selects.
+fn select_cards<'d>(cx: &mut Ctx, deck: &'d Deck) -> Selected<'d> {
+    let (b, case) = (&deck.bulk, &deck.case);
+    let sel = Selected {
+        spcs: cx.select("SPC1", "SPC", &case.spc, &b.spc1s, |c| c.sid, |c| &c.at),
+        tfs: cx.select("TF", "TFL", &case.tfl, &b.tfs, |c| c.sid, |c| &c.at),
+        nolins: cx.select("NOLIN3", "NONLINEAR", &case.nonlinear, &b.nolin3s, |c| c.sid, |c| &c.at),
+        tics: cx.select("TIC", "IC", &case.ic, &b.tics, |c| c.sid, |c| &c.at),
+        tsteps: cx.select("TSTEP", "TSTEP", &case.tstep, &b.tsteps, |c| c.sid, |c| &c.at),
+    };
     if case.tstep.is_none() {
         cx.err(Diagnostic::error(
             case.at.clone(),
             "case control has no TSTEP request: a transient run needs one",
         ));
     }
+    sel
+}
 
-    // Points.
-    let grids: BTreeMap<i64, &crate::deck::cards::Grid> = b.grids.iter().map(|g| (g.id, g)).collect();
-    for g in &b.grids {
-        let cp = if g.cp != 0 { g.cp } else { b.grdset.cp };
-        let cd = if g.cd != 0 { g.cd } else { b.grdset.cd };
-        if cp != 0 || cd != 0 {
-            cx.err(g.at.error("only the basic coordinate system is supported (CP and CD blank or 0)"));
-        }
-    }
-    let mut scalar: BTreeMap<i64, &CardRef> = BTreeMap::new();
-    for (id, at) in b.epoints.iter().chain(b.spoints.iter()) {
-        scalar.insert(*id, at);
-    }
+/// The scalar points of the deck (EPOINT, SPOINT).
+fn scalar_points(deck: &Deck) -> BTreeMap<i64, &CardRef> {
+    let b = &deck.bulk;
+    b.epoints
+        .iter()
+        .chain(b.spoints.iter())
+        .map(|(id, at)| (*id, at))
+        .collect()
+}
 
-    // Constrained components per grid.
-    let mut constrained: HashMap<i64, u8> = HashMap::new();
-    for g in &b.grids {
-        let ps = g.ps.unwrap_or(b.grdset.ps);
-        constrained.insert(g.id, ps.0);
-    }
-    for s in &spcs {
-        for gid in &s.grids {
-            match constrained.get_mut(gid) {
-                Some(c) => *c |= s.c.0,
-                None if scalar.contains_key(gid) => cx.err(s.at.error(format!(
-                    "SPC1 constrains point {gid}, a scalar point: only grids are supported"
-                ))),
-                None => cx.err(s.at.error(format!("SPC1 references grid {gid}, which does not exist"))),
-            }
-        }
-    }
-
-    // Dependent (TF-defined) scalar points.
+/// The selected TFs that define a scalar point from B0 and A0 terms, by point.
+fn transfer_functions<'d>(cx: &mut Ctx, sel: &Selected<'d>, deck: &Deck) -> BTreeMap<i64, &'d crate::deck::cards::Tf> {
+    let tfs = &sel.tfs;
+    let scalar = scalar_points(deck);
     let mut tf_of: BTreeMap<i64, &crate::deck::cards::Tf> = BTreeMap::new();
-    for t in &tfs {
+    for t in tfs {
         if !scalar.contains_key(&t.gd) {
             cx.err(t.at.error(format!(
                 "TF dependent point {} must be an EPOINT or SPOINT (a TF on a structural DOF is not supported)",
@@ -180,7 +284,51 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
         }
     }
 
-    // Number the solved DOFs: grid components in id order, then free scalar points.
+    tf_of
+}
+
+/// The grids (basic coordinate system only) and their constrained components (PS,
+/// GRDSET and the selected SPC1s).
+fn constrained_grids(cx: &mut Ctx, deck: &Deck, sel: &Selected) -> HashMap<i64, u8> {
+    let b = &deck.bulk;
+    let spcs = &sel.spcs;
+    for g in &b.grids {
+        let cp = if g.cp != 0 { g.cp } else { b.grdset.cp };
+        let cd = if g.cd != 0 { g.cd } else { b.grdset.cd };
+        if cp != 0 || cd != 0 {
+            cx.err(g.at.error("only the basic coordinate system is supported (CP and CD blank or 0)"));
+        }
+    }
+    let scalar = scalar_points(deck);
+    let mut constrained: HashMap<i64, u8> = HashMap::new();
+    for g in &b.grids {
+        let ps = g.ps.unwrap_or(b.grdset.ps);
+        constrained.insert(g.id, ps.0);
+    }
+    for s in spcs {
+        for gid in &s.grids {
+            match constrained.get_mut(gid) {
+                Some(c) => *c |= s.c.0,
+                None if scalar.contains_key(gid) => cx.err(s.at.error(format!(
+                    "SPC1 constrains point {gid}, a scalar point: only grids are supported"
+                ))),
+                None => cx.err(s.at.error(format!("SPC1 references grid {gid}, which does not exist"))),
+            }
+        }
+    }
+
+    constrained
+}
+
+/// The numbering of the solved DOFs: grid components in id order, then the scalar
+/// points no TF defines.
+fn number_dofs<'d>(
+    deck: &'d Deck,
+    constrained: &HashMap<i64, u8>,
+    tf_of: &BTreeMap<i64, &crate::deck::cards::Tf>,
+) -> Numbering<'d> {
+    let grids: BTreeMap<i64, &crate::deck::cards::Grid> = deck.bulk.grids.iter().map(|g| (g.id, g)).collect();
+    let scalar = scalar_points(deck);
     let mut dofs = Vec::new();
     let mut index: HashMap<DofLabel, usize> = HashMap::new();
     for &id in grids.keys() {
@@ -200,49 +348,19 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
             dofs.push(l);
         }
     }
-    let grid_dofs = |id: i64| -> [Option<usize>; 6] {
-        let mut d = [None; 6];
-        for (k, slot) in d.iter_mut().enumerate() {
-            *slot = index
-                .get(&DofLabel {
-                    point: id,
-                    comp: k as u8 + 1,
-                })
-                .copied();
-        }
-        d
-    };
+    Numbering {
+        grids,
+        scalar,
+        dofs,
+        index,
+    }
+}
 
-    // A reference (point, component) to a solved DOF, with a clear error otherwise.
-    let lookup = |cx: &mut Ctx, at: &CardRef, what: &str, g: i64, c: usize| -> Option<usize> {
-        let is_grid = grids.contains_key(&g);
-        let is_scalar = scalar.contains_key(&g);
-        if !is_grid && !is_scalar {
-            cx.err(at.error(format!("{what} references point {g}, which does not exist")));
-            return None;
-        }
-        if is_grid && c == 0 {
-            cx.err(at.error(format!(
-                "{what} names grid {g} with component 0: a grid needs a component 1-6"
-            )));
-            return None;
-        }
-        let l = DofLabel {
-            point: g,
-            comp: if is_scalar { 0 } else { c as u8 },
-        };
-        match index.get(&l) {
-            Some(&i) => Some(i),
-            None => {
-                cx.err(at.error(format!("{what} uses {l}, which is constrained (SPC1 or PS)")));
-                None
-            }
-        }
-    };
-
+/// Each TF's dependent point as a functional of the solved DOFs.
+fn dependent_points(cx: &mut Ctx, tf_of: &BTreeMap<i64, &crate::deck::cards::Tf>, num: &Numbering) -> Dependent {
     let mut dependent = Vec::new();
     let mut dep_index: HashMap<i64, usize> = HashMap::new();
-    for (&gd, t) in &tf_of {
+    for (&gd, t) in tf_of {
         let mut f = Functional::new();
         let mut ok = true;
         for term in &t.terms {
@@ -254,7 +372,7 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
                 ok = false;
                 continue;
             }
-            match lookup(&mut cx, &t.at, "TF", term.g, term.c) {
+            match num.lookup(cx, &t.at, "TF", term.g, term.c) {
                 Some(i) => f.push((i, -term.a[0] / t.b[0])),
                 None => ok = false,
             }
@@ -269,12 +387,32 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
         }
     }
 
-    // Materials and properties.
+    Dependent {
+        points: dependent,
+        index: dep_index,
+    }
+}
+
+/// CRODs, CQUAD4s and CONM2s with their materials and sections resolved.
+fn build_elements(cx: &mut Ctx, deck: &Deck, num: &Numbering) -> Elements {
+    let mut out = Elements {
+        list: Vec::new(),
+        on_element: HashMap::new(),
+    };
+    rods(cx, deck, num, &mut out);
+    quads(cx, deck, num, &mut out);
+    point_masses(cx, deck, num, &mut out);
+    out
+}
+
+/// CRODs with their PROD and MAT1.
+fn rods(cx: &mut Ctx, deck: &Deck, num: &Numbering, out: &mut Elements) {
+    let b = &deck.bulk;
+    let grids = &num.grids;
+    let grid_dofs = |g: i64| num.grid_dofs(g);
+    let (elements, on_element) = (&mut out.list, &mut out.on_element);
     let mat1: HashMap<i64, &crate::deck::cards::Mat1> = b.mat1s.iter().map(|m| (m.mid, m)).collect();
     let prod: HashMap<i64, &crate::deck::cards::Prod> = b.prods.iter().map(|p| (p.pid, p)).collect();
-
-    let mut elements = Vec::new();
-    let mut on_element: HashMap<i64, usize> = HashMap::new();
     for c in &b.crods {
         let mut ok = true;
         let mut x = [[0.0; 3]; 2];
@@ -322,6 +460,15 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
         let dofs = c.g.iter().map(|&g| grid_dofs(g)).collect();
         elements.push(Element::new(c.eid, c.g.to_vec(), dofs, Rod { x, section }));
     }
+}
+
+/// CQUAD4s with their PSHELL and materials, flat in the basic XY plane.
+fn quads(cx: &mut Ctx, deck: &Deck, num: &Numbering, out: &mut Elements) {
+    let b = &deck.bulk;
+    let grids = &num.grids;
+    let grid_dofs = |g: i64| num.grid_dofs(g);
+    let (elements, on_element) = (&mut out.list, &mut out.on_element);
+    let mat1: HashMap<i64, &crate::deck::cards::Mat1> = b.mat1s.iter().map(|m| (m.mid, m)).collect();
     let pshell: HashMap<i64, &crate::deck::cards::Pshell> = b.pshells.iter().map(|p| (p.pid, p)).collect();
     let mut sections: HashMap<i64, Option<ShellSection>> = HashMap::new();
     for c in &b.cquad4s {
@@ -340,7 +487,7 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
             Some(s) => s.clone(),
             None => {
                 let s = match pshell.get(&c.pid) {
-                    Some(p) => shell_section(&mut cx, p, &mat1, &b.mat2s),
+                    Some(p) => shell_section(cx, p, &mat1, &b.mat2s),
                     None => {
                         cx.err(c.at.error(format!(
                             "CQUAD4 {} references PSHELL {}, which does not exist",
@@ -383,6 +530,14 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
             Quad4::new(xy, xyz[0][2], section),
         ));
     }
+}
+
+/// CONM2s.
+fn point_masses(cx: &mut Ctx, deck: &Deck, num: &Numbering, out: &mut Elements) {
+    let b = &deck.bulk;
+    let grids = &num.grids;
+    let grid_dofs = |g: i64| num.grid_dofs(g);
+    let elements = &mut out.list;
     for m in &b.conm2s {
         if !grids.contains_key(&m.g) {
             cx.err(m.at.error(format!("CONM2 {} references grid {}, which does not exist", m.eid, m.g)));
@@ -395,9 +550,11 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
         };
         elements.push(Element::new(m.eid, vec![m.g], vec![grid_dofs(m.g)], point));
     }
+}
 
-    // Time control.
-    let time = match tsteps.first() {
+/// The selected TSTEP (zero steps where there is none: already an error).
+fn time_control(sel: &Selected) -> TimeControl {
+    match sel.tsteps.first() {
         Some(t) => TimeControl {
             dt: t.dt,
             steps: t.n,
@@ -408,12 +565,15 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
             steps: 0,
             every: 1,
         },
-    };
+    }
+}
 
-    // Initial conditions.
-    let n = dofs.len();
+/// Initial displacements and velocities from the selected TICs.
+fn initial_conditions(cx: &mut Ctx, sel: &Selected, dependent: &Dependent, num: &Numbering) -> (Vec<f64>, Vec<f64>) {
+    let dep_index = &dependent.index;
+    let n = num.dofs.len();
     let (mut u0, mut v0) = (vec![0.0; n], vec![0.0; n]);
-    for t in &tics {
+    for t in &sel.tics {
         if dep_index.contains_key(&t.g) {
             cx.err(t.at.error(format!(
                 "TIC on point {}, which a TF defines: it has no state of its own",
@@ -421,23 +581,27 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
             )));
             continue;
         }
-        if let Some(i) = lookup(&mut cx, &t.at, "TIC", t.g, t.c) {
+        if let Some(i) = num.lookup(cx, &t.at, "TIC", t.g, t.c) {
             u0[i] = t.u0;
             v0[i] = t.v0;
         }
     }
 
-    // Contact.
-    let refs = ContactRefs {
-        dependent: &dependent,
-        dep_index: &dep_index,
-        elements: &elements,
-        on_element: &on_element,
-        labels: &dofs,
-    };
-    let contact = build_contact(&mut cx, &nolins, &refs, |cx, at, w, g, c| lookup(cx, at, w, g, c));
+    (u0, v0)
+}
 
-    // Output plan.
+/// What case control asks to be written: DISP, VELO, NLLOAD, STRESS, STRAIN.
+fn output_plan(
+    cx: &mut Ctx,
+    deck: &Deck,
+    num: &Numbering,
+    dependent: &Dependent,
+    elements: &[Element],
+    contact: Option<&Contact>,
+) -> OutputPlan {
+    let case = &deck.case;
+    let (grids, scalar, index) = (&num.grids, &num.scalar, &num.index);
+    let (dep_index, dependent) = (&dependent.index, &dependent.points);
     let mut outputs = OutputPlan::default();
     let set_members = |req: Option<&crate::deck::case::OutputRequest>| -> Option<Vec<i64>> {
         match req.map(|r| &r.set) {
@@ -477,7 +641,7 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
             outputs.velo = list;
         }
     }
-    if let (Some(members), Some(c)) = (set_members(case.outputs.get("NLLOAD")), &contact) {
+    if let (Some(members), Some(c)) = (set_members(case.outputs.get("NLLOAD")), contact) {
         let all = members.is_empty();
         outputs.nlload = (0..c.loads.len())
             .filter(|&k| all || members.contains(&c.loads[k].label.point))
@@ -512,29 +676,7 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
         ));
     }
 
-    let rod = rod_info(&elements);
-    let model = Model {
-        name: deck.name.clone(),
-        title: case.title.clone(),
-        units: deck.units.clone(),
-        deck_sha256: deck.sha256.clone(),
-        dofs,
-        dependent,
-        elements,
-        contact,
-        u0,
-        v0,
-        time,
-        outputs,
-        rod,
-        inert_dofs: 0,
-    };
-    let errors = cx.diags.iter().any(|d| d.is_error());
-    if errors {
-        Err(ModelError { diagnostics: cx.diags })
-    } else {
-        Ok((model, cx.diags))
-    }
+    outputs
 }
 
 /// What the contact definition refers to.
@@ -552,16 +694,55 @@ fn build_contact(
     refs: &ContactRefs,
     lookup: impl Fn(&mut Ctx, &CardRef, &str, i64, usize) -> Option<usize>,
 ) -> Option<Contact> {
-    let ContactRefs {
-        dependent,
-        dep_index,
-        elements,
-        on_element,
-        labels,
-    } = *refs;
-    // Errors already found (a missing material, a bad TF) make the two checks below
-    // fail as a consequence; they are reported only on an otherwise clean model.
+    // Errors already found (a missing material, a bad TF) make the checks of the
+    // impactor fail as a consequence; they are reported only on an otherwise clean model.
     let prior_errors = cx.diags.iter().any(|d| d.is_error());
+    let first = nolins.first()?;
+    let (driver, driver_label, loads) = contact_loads(cx, nolins, refs, lookup)?;
+    let imp = find_impactor(cx, first, &loads, refs.on_element, prior_errors)?;
+    let mass = refs
+        .elements
+        .iter()
+        .filter(|e| e.grids == [imp.label.point])
+        .filter_map(|e| e.kind::<PointMass>().map(|p| p.mass))
+        .sum::<f64>();
+    if mass <= 0.0 {
+        cx.err(
+            imp.at
+                .error(format!("the impactor grid {} has no CONM2 mass", imp.label.point)),
+        );
+        return None;
+    }
+    let stiffness = impactor_stiffness(cx, imp, &driver, driver_label, prior_errors)?;
+    let nonconservative = nonconservative_remainder(cx, &loads, &driver, stiffness, refs.labels);
+    let imp_grid = imp.label.point;
+    let imp_dofs = impactor_dofs(refs.elements, imp);
+    let imp_dof = imp.dof;
+    Some(Contact {
+        driver,
+        driver_label,
+        exponent: first.a,
+        stiffness,
+        impactor: Impactor {
+            grid: imp_grid,
+            dof: imp_dof,
+            mass,
+            dofs: imp_dofs,
+        },
+        loads,
+        nonconservative,
+    })
+}
+
+/// The NOLIN3 loads of one contact (one driver, one exponent), the driver as a
+/// functional of the solved DOFs and its label.
+fn contact_loads(
+    cx: &mut Ctx,
+    nolins: &[&crate::deck::cards::Nolin3],
+    refs: &ContactRefs,
+    lookup: impl Fn(&mut Ctx, &CardRef, &str, i64, usize) -> Option<usize>,
+) -> Option<(Functional, DofLabel, Vec<NonlinearLoad>)> {
+    let (dependent, dep_index) = (refs.dependent, refs.dep_index);
     let first = nolins.first()?;
     // One driver and one exponent for all NOLIN3 loads: one contact.
     let mut ok = true;
@@ -618,16 +799,23 @@ fn build_contact(
             ok = false;
         }
     }
-    if !ok {
-        return None;
-    }
-    // The impactor: the loaded grid that no structural element touches.
+    ok.then_some((driver, driver_label, loads))
+}
+
+/// The impactor: the loaded grid that no structural element touches.
+fn find_impactor<'l>(
+    cx: &mut Ctx,
+    first: &crate::deck::cards::Nolin3,
+    loads: &'l [NonlinearLoad],
+    on_element: &HashMap<i64, usize>,
+    prior_errors: bool,
+) -> Option<&'l NonlinearLoad> {
     let free: Vec<&NonlinearLoad> = loads
         .iter()
         .filter(|l| l.label.comp != 0 && !on_element.contains_key(&l.label.point))
         .collect();
-    let imp = match free.as_slice() {
-        [one] => *one,
+    match free.as_slice() {
+        [one] => Some(*one),
         [] => {
             if prior_errors {
                 return None;
@@ -636,7 +824,7 @@ fn build_contact(
                 "cannot identify the impactor: every grid loaded by NOLIN3 is attached to an element \
                  (the impactor is a point mass loaded by the contact and attached to nothing else)",
             ));
-            return None;
+            None
         }
         many => {
             if prior_errors {
@@ -647,21 +835,19 @@ fn build_contact(
                 many.len(),
                 many.iter().map(|l| l.label.point.to_string()).collect::<Vec<_>>().join(", ")
             )));
-            return None;
+            None
         }
-    };
-    let mass = elements
-        .iter()
-        .filter(|e| e.grids == [imp.label.point])
-        .filter_map(|e| e.kind::<PointMass>().map(|p| p.mass))
-        .sum::<f64>();
-    if mass <= 0.0 {
-        cx.err(
-            imp.at
-                .error(format!("the impactor grid {} has no CONM2 mass", imp.label.point)),
-        );
-        return None;
     }
+}
+
+/// The Hertz K the impactor's load implies, K = −S/(∂α/∂u), which must be positive.
+fn impactor_stiffness(
+    cx: &mut Ctx,
+    imp: &NonlinearLoad,
+    driver: &Functional,
+    driver_label: DofLabel,
+    prior_errors: bool,
+) -> Option<f64> {
     let c_imp: f64 = driver.iter().filter(|(j, _)| *j == imp.dof).map(|(_, c)| c).sum();
     if c_imp == 0.0 {
         if prior_errors {
@@ -683,12 +869,23 @@ fn build_contact(
         )));
         return None;
     }
-    // Non-conservative remainder g + K c over all DOFs touched.
+    Some(stiffness)
+}
+
+/// The non-conservative remainder S_i + K ∂α/∂u_i of the loads over all DOFs touched,
+/// each nonzero entry warned about.
+fn nonconservative_remainder(
+    cx: &mut Ctx,
+    loads: &[NonlinearLoad],
+    driver: &Functional,
+    stiffness: f64,
+    labels: &[DofLabel],
+) -> Functional {
     let mut rem: BTreeMap<usize, f64> = BTreeMap::new();
-    for l in &loads {
+    for l in loads {
         *rem.entry(l.dof).or_default() += l.scale;
     }
-    for &(j, c) in &driver {
+    for &(j, c) in driver {
         *rem.entry(j).or_default() += stiffness * c;
     }
     let nonconservative: Functional = rem.into_iter().filter(|(_, v)| *v != 0.0).collect();
@@ -706,35 +903,24 @@ fn build_contact(
             None => cx.warn(Diagnostic::warning(None, msg)),
         }
     }
+    nonconservative
+}
+
+/// Every solved DOF of the impactor's grid (its CONM2's and the loaded one).
+fn impactor_dofs(elements: &[Element], imp: &NonlinearLoad) -> Vec<usize> {
     let imp_grid = imp.label.point;
-    let imp_dofs = {
-        let mut v = Vec::new();
-        for e in elements.iter().filter(|e| e.grids == [imp_grid]) {
-            if e.kind::<PointMass>().is_some() {
-                v.extend(e.dofs.iter().flatten().flatten().copied());
-            }
+    let mut v = Vec::new();
+    for e in elements.iter().filter(|e| e.grids == [imp_grid]) {
+        if e.kind::<PointMass>().is_some() {
+            v.extend(e.dofs.iter().flatten().flatten().copied());
         }
-        if !v.contains(&imp.dof) {
-            v.push(imp.dof);
-        }
-        v.sort();
-        v.dedup();
-        v
-    };
-    Some(Contact {
-        driver,
-        driver_label,
-        exponent: first.a,
-        stiffness,
-        impactor: Impactor {
-            grid: imp_grid,
-            dof: imp.dof,
-            mass,
-            dofs: imp_dofs,
-        },
-        loads,
-        nonconservative,
-    })
+    }
+    if !v.contains(&imp.dof) {
+        v.push(imp.dof);
+    }
+    v.sort();
+    v.dedup();
+    v
 }
 
 /// The material matrix of a MAT1 (plane stress) or MAT2 id, checked positive definite.
