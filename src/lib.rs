@@ -1,27 +1,47 @@
 //! impactlab: low-velocity impact analysis of linear finite-element targets struck by
 //! a rigid impactor through a Hertzian contact, with an audited energy ledger.
 //!
-//! The pipeline (one home per stage): [`deck`] → [`model`] → [`assembly`] →
-//! [`integrate`] → [`ledger`] → [`output`].
+//! Modules in stage order (their declaration order below): each uses only modules
+//! listed before it (`tests/stages.rs` checks it), except [`error`], which gathers
+//! every stage's error type into one, and the two deck-to-model functions below.
+//!
+//! - [`numerics`]: shared numerics: interpolation, crossings, slopes, medians.
+//! - [`plot`]: the figure writer (PNG and SVG with a bundled font).
+//! - [`deck`]: input: NASTRAN decks to typed cards with source positions.
+//! - [`elements`]: element kernels and the one element interface.
+//! - [`model`]: DOFs, constraints, elements, contact, initial conditions, output plan.
+//! - [`assembly`]: global K and M over the solved DOFs; inert DOFs dropped.
+//! - [`physics`]: the Hertz law and the analytic references, with no solver code.
+//! - [`integrate`]: the time schemes and their one driver loop.
+//! - [`mesh`]: input: generated decks (the paper's plate on any mesh, its rod with any element count).
+//! - [`paper`]: input: the paper's two decks, embedded.
+//! - [`scene`]: input: impacts described in TOML, turned into the decks they stand for.
+//! - [`ledger`]: the energy ledger and momentum, per step.
+//! - [`run`]: one run: the pipeline, the recorder, the typed summary and history columns.
+//! - [`output`]: a run's files, written atomically, and its printed summary.
+//! - [`verify`]: verification cases, check kinds, gold files, audit, verdicts.
+//! - [`study`]: families of runs: verification cases, convergence, accuracy, stability, bench.
+//! - [`report`]: reports from case outcomes; VTU fields.
+//! - [`error`]: the program's error, one variant per stage, and its exit codes.
 
-pub mod assembly;
+pub mod numerics;
+pub mod plot;
 pub mod deck;
 pub mod elements;
-pub mod error;
-pub mod integrate;
-pub mod ledger;
-pub mod mesh;
 pub mod model;
-pub mod numerics;
-pub mod output;
-pub mod paper;
+pub mod assembly;
 pub mod physics;
-pub mod plot;
-pub mod report;
-pub mod run;
+pub mod integrate;
+pub mod mesh;
+pub mod paper;
 pub mod scene;
-pub mod study;
+pub mod ledger;
+pub mod run;
+pub mod output;
 pub mod verify;
+pub mod study;
+pub mod report;
+pub mod error;
 
 pub use error::Error;
 

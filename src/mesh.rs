@@ -1,4 +1,5 @@
-//! Generated decks: the paper's clamped composite plate on an N×N mesh.
+//! Generated decks: the paper's clamped composite plate on an N×N mesh and its rod
+//! with N elements, and the plate's model built from its deck.
 //!
 //! The 49×49 deck reproduces `reference-data/decks/plate.bdf` (with its INCLUDEd mesh)
 //! card for card in meaning: grids id = B·row + col (B = 100, or 1000 when N ≥ 99),

@@ -1,7 +1,7 @@
 //! Small numerics shared by every stage: interpolation, zero crossings, least-squares
 //! slopes, medians. Plain functions of slices; nothing here knows about models.
 
-/// Linear interpolation of samples y(t) at x; zero outside (t[0], t[last]] (a signal
+/// Linear interpolation of samples y(t) at x; zero outside (t₀, t_last] (a signal
 /// that starts at rest and is recorded until it ends).
 pub fn interp(t: &[f64], y: &[f64], x: f64) -> f64 {
     if t.is_empty() || x <= t[0] || x > t[t.len() - 1] {

@@ -21,7 +21,7 @@
 //!   W' = φ. The work of a conservative contact over a step then equals minus the change
 //!   of its potential exactly, so U_t is conserved to round-off at every Δt. Order 2.
 //!
-//! Both solve the condensed scalar equation of [`super::contact`] each step.
+//! Both solve the condensed scalar equation of the contact module each step.
 
 use super::contact::{discrete_gradient, solve};
 use super::linear::Factor;

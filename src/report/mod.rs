@@ -1,4 +1,4 @@
-//! Reports: a verification case run, its figures (the paper's Figures 2-4 for the rod,
+//! Reports from a case outcome (nothing is run here): its figures (the paper's Figures 2-4 for the rod,
 //! 6-9 for the plate), its ledger at key instants and its verdicts, as `index.md` and
 //! an `index.html` with the images inline. Physics comes from the run and the
 //! analytic references; this module only draws and writes.

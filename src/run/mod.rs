@@ -183,7 +183,7 @@ impl Run {
     }
 }
 
-/// The columns of `history.csv`, in the order of [`history_row`].
+/// The columns of `history.csv`, in the order the recorder writes its rows.
 pub fn history_columns(m: &Model) -> Vec<Column> {
     let mut cols = vec![
         Column::Time,
