@@ -128,19 +128,40 @@ fn energy_lines(e: &[EnergyRow], x: impl Fn(f64) -> f64) -> Vec<Line> {
     ]
 }
 
+/// What every figure of a case reads.
+struct Fig<'a> {
+    model: &'a Model,
+    run: &'a Run,
+    dir: &'a Path,
+    footer: &'a str,
+    ax: TimeAxis,
+}
+
 fn rod_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<Vec<PathBuf>, Error> {
-    let rod = model.rod.expect("a rod");
     let (tr, _, lc) = crate::physics::references::semi_infinite(model)?;
-    let u = &model.units;
-    let mut out = Vec::new();
-    let s = &run.series;
-    let ax = TimeAxis::of(model);
     let end = run
         .summary
         .rod
         .as_ref()
         .and_then(|r| r.contact_end_tcl)
         .unwrap_or(f64::NAN);
+    let f = Fig {
+        model,
+        run,
+        dir,
+        footer,
+        ax: TimeAxis::of(model),
+    };
+    let mut out = rod_force(&f, &tr, lc, end)?;
+    out.extend(rod_strain(&f, &tr, lc)?);
+    out.extend(rod_energy(&f, lc, end)?);
+    Ok(out)
+}
+
+/// The contact force against the ball on a semi-infinite rod (paper Fig. 2).
+fn rod_force(f: &Fig, tr: &analytic::Trace, lc: f64, end: f64) -> Result<Vec<PathBuf>, Error> {
+    let (u, s, ax, footer, dir) = (&f.model.units, &f.run.series, &f.ax, f.footer, f.dir);
+    let mut out = Vec::new();
     let t_end = 1.2 * end * lc;
     let (tf, ff): (Vec<f64>, Vec<f64>) = s
         .time
@@ -173,6 +194,14 @@ fn rod_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<Vec
         },
         &dir.join("force"),
     )?);
+    Ok(out)
+}
+
+/// The strain of the requested element nearest mid-rod against d'Alembert (Fig. 3).
+fn rod_strain(f: &Fig, tr: &analytic::Trace, lc: f64) -> Result<Vec<PathBuf>, Error> {
+    let (model, run, footer, dir) = (f.model, f.run, f.footer, f.dir);
+    let rod = model.rod.expect("a rod");
+    let mut out = Vec::new();
     // Mid-rod strain: the requested element nearest L/2.
     let mid = model
         .elements
@@ -199,7 +228,7 @@ fn rod_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<Vec
             .iter()
             .map(|&ti| {
                 if ti / lc < 1.45 {
-                    analytic::dalembert_strain(&tr, xc - x0, rod.wave_speed, ea, ti)
+                    analytic::dalembert_strain(tr, xc - x0, rod.wave_speed, ea, ti)
                 } else {
                     f64::NAN
                 }
@@ -227,6 +256,13 @@ fn rod_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<Vec
             &dir.join("strain"),
         )?);
     }
+    Ok(out)
+}
+
+/// The energy partition against tC/L with the paper's readings (Fig. 4).
+fn rod_energy(f: &Fig, lc: f64, end: f64) -> Result<Vec<PathBuf>, Error> {
+    let (u, run, footer, dir) = (&f.model.units, f.run, f.footer, f.dir);
+    let mut out = Vec::new();
     let mut lines = energy_lines(&run.energy, |t| t / lc);
     let u0 = run.energy[0].total;
     let tmax = run.energy.last().map_or(1.0, |r| r.time / lc);
@@ -267,11 +303,26 @@ fn rod_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<Vec
 }
 
 fn plate_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<Vec<PathBuf>, Error> {
-    let u = &model.units;
+    let f = Fig {
+        model,
+        run,
+        dir,
+        footer,
+        ax: TimeAxis::of(model),
+    };
+    let mut out = plate_force(&f)?;
+    out.extend(plate_displacement(&f)?);
+    out.extend(plate_gages(&f)?);
+    out.extend(plate_energy(&f)?);
+    Ok(out)
+}
+
+/// The contact force against the infinite plate (paper Fig. 6).
+fn plate_force(f: &Fig) -> Result<Vec<PathBuf>, Error> {
+    let (model, run, ax, footer, dir) = (f.model, f.run, &f.ax, f.footer, f.dir);
+    let (u, s) = (&model.units, &run.series);
     let mut out = Vec::new();
-    let s = &run.series;
     let (p, _) = crate::physics::references::infinite_plate(model)?;
-    let ax = TimeAxis::of(model);
     let end = run.summary.contact.intervals.first().map_or(250e-6, |i| i[1]);
     let tr = p.integrate(80e-6, 1e-9);
     let (ta, fa): (Vec<f64>, Vec<f64>) = tr
@@ -318,6 +369,14 @@ fn plate_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<V
         },
         &dir.join("force"),
     )?);
+    Ok(out)
+}
+
+/// The transverse displacement at the case's snapshot times (paper Fig. 7).
+fn plate_displacement(f: &Fig) -> Result<Vec<PathBuf>, Error> {
+    let (model, run, ax, footer, dir) = (f.model, f.run, &f.ax, f.footer, f.dir);
+    let u = &model.units;
+    let mut out = Vec::new();
     // Displacement field w at the snapshot times.
     let w_index: std::collections::HashMap<i64, usize> = run
         .dofs
@@ -359,6 +418,13 @@ fn plate_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<V
             footer,
         )?);
     }
+    Ok(out)
+}
+
+/// The strains at gages A and B, both fibres (paper Figs. 8 and 9).
+fn plate_gages(f: &Fig) -> Result<Vec<PathBuf>, Error> {
+    let (run, ax, footer, dir) = (f.run, &f.ax, f.footer, f.dir);
+    let mut out = Vec::new();
     let mesh_gages: Vec<i64> = run
         .history_columns
         .iter()
@@ -405,6 +471,14 @@ fn plate_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<V
             &dir.join(format!("gage-{}", gage.to_lowercase())),
         )?);
     }
+    Ok(out)
+}
+
+/// The energy partition of impactor and plate with the deck's external work.
+fn plate_energy(f: &Fig) -> Result<Vec<PathBuf>, Error> {
+    let (model, run, ax, footer, dir) = (f.model, f.run, &f.ax, f.footer, f.dir);
+    let u = &model.units;
+    let mut out = Vec::new();
     let mut lines = energy_lines(&run.energy, |t| t * ax.scale);
     lines.push(Line::new(
         "external work (deck's non-conservative NOLIN3)",
