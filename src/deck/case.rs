@@ -190,6 +190,7 @@ pub fn parse_case(lines: &[SrcLine], diags: &mut Diagnostics) -> CaseControl {
             ["SUBTITLE"] | ["SUBTI"] => cc.subtitle = rhs,
             ["LABEL"] => cc.label = rhs,
             ["SET", n] => {
+                // A SET continues on the lines after one that ends with a comma.
                 let mut src = l.text.clone();
                 while rhs.trim_end().ends_with(',') && i < lines.len() {
                     rhs.push_str(lines[i].text.trim());
@@ -197,71 +198,10 @@ pub fn parse_case(lines: &[SrcLine], diags: &mut Diagnostics) -> CaseControl {
                     src.push_str(&lines[i].text);
                     i += 1;
                 }
-                let Some(id) = parse_int(n) else {
-                    diags.push(
-                        Diagnostic::error(Some(pos), "is not a set number")
-                            .card("SET")
-                            .token(n)
-                            .quote(&src),
-                    );
-                    continue;
-                };
-                let members = parse_id_list(&rhs, &pos, &src, diags);
-                if cc
-                    .sets
-                    .insert(
-                        id,
-                        SetDef {
-                            members,
-                            pos: pos.clone(),
-                        },
-                    )
-                    .is_some()
-                {
-                    diags.push(
-                        Diagnostic::error(Some(pos), format!("SET {id} is defined twice"))
-                            .card("SET")
-                            .quote(&src),
-                    );
-                }
+                set_definition(&mut cc, n, &rhs, &src, pos, diags);
             }
-            [k] if SELECTORS.contains(k) => match parse_int(&rhs) {
-                Some(id) => {
-                    let sel = Some(Selection { id, pos });
-                    match *k {
-                        "SPC" => cc.spc = sel,
-                        "IC" => cc.ic = sel,
-                        "NONLINEAR" => cc.nonlinear = sel,
-                        "TSTEP" => cc.tstep = sel,
-                        _ => cc.tfl = sel,
-                    }
-                }
-                None => diags.push(
-                    Diagnostic::error(Some(pos), "is not a set identification number")
-                        .card(k)
-                        .token(&rhs)
-                        .quote(&l.text),
-                ),
-            },
-            [k] if OUTPUTS.contains(k) => {
-                let up = rhs.to_ascii_uppercase();
-                let set = match up.as_str() {
-                    "ALL" => Some(OutputSet::All),
-                    "NONE" => Some(OutputSet::None),
-                    _ => parse_int(&up).map(OutputSet::Set),
-                };
-                match set {
-                    Some(set) => {
-                        cc.outputs.insert(k.to_string(), OutputRequest { set, pos });
-                    }
-                    None => diags.push(
-                        Diagnostic::error(Some(pos), "is not ALL, NONE or a set number")
-                            .card(k)
-                            .token(&rhs)
-                            .quote(&l.text),
-                    ),
-                }
-            }
+            [k] if SELECTORS.contains(k) => selector(&mut cc, k, &rhs, pos, &l.text, diags),
+            [k] if OUTPUTS.contains(k) => output_request(&mut cc, k, &rhs, pos, &l.text, diags),
             ["SUBCASE"] | ["SUBCASE", ..] => diags.push(
                 Diagnostic::error(Some(pos), "SUBCASE is not supported: one transient case per deck")
                     .card("SUBCASE")
@@ -279,7 +219,80 @@ pub fn parse_case(lines: &[SrcLine], diags: &mut Diagnostics) -> CaseControl {
             ),
         }
     }
-    // Every set named by an output request must exist.
+    check_output_sets(&cc, diags);
+    cc
+}
+
+/// `SET n = …`: the set's members (its lines joined in `src`).
+fn set_definition(cc: &mut CaseControl, n: &str, rhs: &str, src: &str, pos: Pos, diags: &mut Diagnostics) {
+    let Some(id) = parse_int(n) else {
+        diags.push(
+            Diagnostic::error(Some(pos), "is not a set number")
+                .card("SET")
+                .token(n)
+                .quote(src),
+        );
+        return;
+    };
+    let members = parse_id_list(rhs, &pos, src, diags);
+    let def = SetDef {
+        members,
+        pos: pos.clone(),
+    };
+    if cc.sets.insert(id, def).is_some() {
+        diags.push(
+            Diagnostic::error(Some(pos), format!("SET {id} is defined twice"))
+                .card("SET")
+                .quote(src),
+        );
+    }
+}
+
+/// `SPC = n`, `IC = n`, `NONLINEAR = n`, `TSTEP = n`, `TFL = n`.
+fn selector(cc: &mut CaseControl, k: &str, rhs: &str, pos: Pos, text: &str, diags: &mut Diagnostics) {
+    match parse_int(rhs) {
+        Some(id) => {
+            let sel = Some(Selection { id, pos });
+            match k {
+                "SPC" => cc.spc = sel,
+                "IC" => cc.ic = sel,
+                "NONLINEAR" => cc.nonlinear = sel,
+                "TSTEP" => cc.tstep = sel,
+                _ => cc.tfl = sel,
+            }
+        }
+        None => diags.push(
+            Diagnostic::error(Some(pos), "is not a set identification number")
+                .card(k)
+                .token(rhs)
+                .quote(text),
+        ),
+    }
+}
+
+/// `DISP = ALL | NONE | n` and the other output requests.
+fn output_request(cc: &mut CaseControl, k: &str, rhs: &str, pos: Pos, text: &str, diags: &mut Diagnostics) {
+    let up = rhs.to_ascii_uppercase();
+    let set = match up.as_str() {
+        "ALL" => Some(OutputSet::All),
+        "NONE" => Some(OutputSet::None),
+        _ => parse_int(&up).map(OutputSet::Set),
+    };
+    match set {
+        Some(set) => {
+            cc.outputs.insert(k.to_string(), OutputRequest { set, pos });
+        }
+        None => diags.push(
+            Diagnostic::error(Some(pos), "is not ALL, NONE or a set number")
+                .card(k)
+                .token(rhs)
+                .quote(text),
+        ),
+    }
+}
+
+/// Every set named by an output request must exist.
+fn check_output_sets(cc: &CaseControl, diags: &mut Diagnostics) {
     for (k, req) in &cc.outputs {
         if let OutputSet::Set(id) = req.set {
             if !cc.sets.contains_key(&id) {
@@ -293,5 +306,4 @@ pub fn parse_case(lines: &[SrcLine], diags: &mut Diagnostics) -> CaseControl {
             }
         }
     }
-    cc
 }

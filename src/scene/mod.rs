@@ -394,108 +394,126 @@ pub fn to_deck(s: &Scene) -> Result<String, SceneIssue> {
     let _ = writeln!(w, "ID SCENE,IMPACT\nSOL 27\nCEND");
     let _ = writeln!(w, "  TITLE = {}", if s.title.is_empty() { "SCENE" } else { &s.title });
     let _ = writeln!(w, "  SPC = 1\n  IC = 3\n  NONLINEAR = 5\n  TSTEP = 1\n  TFL = 111");
-    let v0 = s.impactor.velocity;
+    let steps_line = format!("TSTEP,1,{steps},{},{every}", format_real(dt));
     match &s.target {
-        Target::Rod {
-            length,
-            area,
-            elements: n,
-            material,
-            ends,
-        } => {
-            let mut pts = vec![999, 1];
-            pts.extend(s.output.points.iter().copied());
-            output_requests(w, &pts, &s.output.gages);
-            let r = s.impactor.radius.unwrap_or(0.0);
-            let _ = writeln!(w, "GRID,999,,{},0.0,0.0", format_real(-r));
-            for i in 0..=*n {
-                let _ = writeln!(
-                    w,
-                    "GRID,{},,{},0.0,0.0",
-                    i + 1,
-                    format_real(length * i as f64 / *n as f64)
-                );
-            }
-            for i in 1..=*n {
-                let _ = writeln!(w, "CROD,{i},1,{i},{}", i + 1);
-            }
-            let _ = writeln!(w, "CONM2,999999,999,0,{}", format_real(s.impactor.mass));
-            let _ = writeln!(w, "PROD,1,11,{}", format_real(*area));
-            let _ = writeln!(
-                w,
-                "MAT1,11,{},,{},{}",
-                format_real(material.e),
-                format_real(material.nu),
-                format_real(material.rho)
-            );
-            let _ = writeln!(w, "SPC1,1,23456,1,THRU,{}\nSPC1,1,23456,999", n + 1);
-            for (end, g) in ends.iter().zip([1, n + 1]) {
-                if end == "fixed" {
-                    let _ = writeln!(w, "SPC1,1,1,{g}");
-                }
-            }
-            let _ = writeln!(w, "TSTEP,1,{steps},{},{every}", format_real(dt));
-            let _ = writeln!(w, "NOLIN3,5,1,1,{},10001,0,1.5", format_real(k));
-            let _ = writeln!(w, "NOLIN3,5,999,1,{},10001,0,1.5", format_real(-k));
-            let _ = writeln!(
-                w,
-                "TF,111,10001,0,1.0,0.0,0.0,,,+TF-1\n+TF-1,999,1,-1.0,0.0,0.0,,,,+TF-2\n+TF-2,1,1,1.0,0.0,0.0"
-            );
-            let _ = writeln!(w, "TIC,3,999,1,0.0,{}", format_real(v0));
-        }
-        Target::Plate {
-            a,
-            thickness,
-            mesh: n,
-            membrane,
-            bending,
-            rho,
-            edges,
-            ..
-        } => {
-            let m = crate::mesh::PlateMesh::new(*n)?;
-            let contact = m.contact_grids();
-            let mut pts: Vec<i64> = vec![999];
-            pts.extend(contact.iter().map(|&g| g as i64));
-            pts.extend(s.output.points.iter().copied());
-            output_requests(w, &pts, &s.output.gages);
-            let _ = writeln!(
-                w,
-                "GRID,999,,0.0,0.0,{}",
-                format_real(-s.impactor.radius.unwrap_or(0.0))
-            );
-            let _ = writeln!(w, "CONM2,999999,999,0,{}", format_real(s.impactor.mass));
-            let last = n + 1;
-            m.write_grids_and_quads(w, *a);
-            let _ = writeln!(w, "PSHELL,1,101,{},201,1.0", format_real(*thickness));
-            mat2_line(w, 101, membrane, Some(*rho));
-            mat2_line(w, 201, bending, None);
-            // Edges: y = −b/2 (row 1), x = +a/2 (col last), y = +b/2 (row last), x = −a/2 (col 1).
-            let sides: [Vec<usize>; 4] = [
-                (1..=last).map(|c| m.grid(1, c)).collect(),
-                (1..=last).map(|r| m.grid(r, last)).collect(),
-                (1..=last).map(|c| m.grid(last, c)).collect(),
-                (1..=last).map(|r| m.grid(r, 1)).collect(),
-            ];
-            for (edge, grids) in edges.iter().zip(&sides) {
-                if edge == "clamped" {
-                    for g in grids {
-                        let _ = writeln!(w, "SPC1,1,123456,{g}");
-                    }
-                }
-            }
-            let _ = writeln!(w, "SPC1,1,12456,999\nGRDSET,,,,,,,6");
-            let _ = writeln!(w, "TSTEP,1,{steps},{},{every}", format_real(dt));
-            for g in contact {
-                let _ = writeln!(w, "NOLIN3,5,{g},3,{},10001,0,1.5", format_real(k / 4.0));
-            }
-            let _ = writeln!(w, "NOLIN3,5,999,3,{},10001,0,1.5", format_real(-k));
-            m.write_indentation_tf(w);
-            let _ = writeln!(w, "TIC,3,999,3,0.0,{}", format_real(v0));
-        }
+        Target::Rod { .. } => rod_bulk(w, s, k, &steps_line),
+        Target::Plate { .. } => plate_bulk(w, s, k, &steps_line)?,
     }
     let _ = writeln!(w, "ENDDATA");
     Ok(d)
+}
+
+/// The rod's bulk data: grids, CRODs, the ball, its contact and initial velocity.
+fn rod_bulk(w: &mut String, s: &Scene, k: f64, tstep: &str) {
+    let v0 = s.impactor.velocity;
+    let Target::Rod {
+        length,
+        area,
+        elements: n,
+        material,
+        ends,
+    } = &s.target
+    else {
+        unreachable!("called for a rod")
+    };
+    let mut pts = vec![999, 1];
+    pts.extend(s.output.points.iter().copied());
+    output_requests(w, &pts, &s.output.gages);
+    let r = s.impactor.radius.unwrap_or(0.0);
+    let _ = writeln!(w, "GRID,999,,{},0.0,0.0", format_real(-r));
+    for i in 0..=*n {
+        let _ = writeln!(
+            w,
+            "GRID,{},,{},0.0,0.0",
+            i + 1,
+            format_real(length * i as f64 / *n as f64)
+        );
+    }
+    for i in 1..=*n {
+        let _ = writeln!(w, "CROD,{i},1,{i},{}", i + 1);
+    }
+    let _ = writeln!(w, "CONM2,999999,999,0,{}", format_real(s.impactor.mass));
+    let _ = writeln!(w, "PROD,1,11,{}", format_real(*area));
+    let _ = writeln!(
+        w,
+        "MAT1,11,{},,{},{}",
+        format_real(material.e),
+        format_real(material.nu),
+        format_real(material.rho)
+    );
+    let _ = writeln!(w, "SPC1,1,23456,1,THRU,{}\nSPC1,1,23456,999", n + 1);
+    for (end, g) in ends.iter().zip([1, n + 1]) {
+        if end == "fixed" {
+            let _ = writeln!(w, "SPC1,1,1,{g}");
+        }
+    }
+    let _ = writeln!(w, "{tstep}");
+    let _ = writeln!(w, "NOLIN3,5,1,1,{},10001,0,1.5", format_real(k));
+    let _ = writeln!(w, "NOLIN3,5,999,1,{},10001,0,1.5", format_real(-k));
+    let _ = writeln!(
+        w,
+        "TF,111,10001,0,1.0,0.0,0.0,,,+TF-1\n+TF-1,999,1,-1.0,0.0,0.0,,,,+TF-2\n+TF-2,1,1,1.0,0.0,0.0"
+    );
+    let _ = writeln!(w, "TIC,3,999,1,0.0,{}", format_real(v0));
+}
+
+/// The plate's bulk data: the mesh, its edges, the impactor, its contact on the centre
+/// element's corners and its initial velocity.
+fn plate_bulk(w: &mut String, s: &Scene, k: f64, tstep: &str) -> Result<(), SceneIssue> {
+    let v0 = s.impactor.velocity;
+    let Target::Plate {
+        a,
+        thickness,
+        mesh: n,
+        membrane,
+        bending,
+        rho,
+        edges,
+        ..
+    } = &s.target
+    else {
+        unreachable!("called for a plate")
+    };
+    let m = crate::mesh::PlateMesh::new(*n)?;
+    let contact = m.contact_grids();
+    let mut pts: Vec<i64> = vec![999];
+    pts.extend(contact.iter().map(|&g| g as i64));
+    pts.extend(s.output.points.iter().copied());
+    output_requests(w, &pts, &s.output.gages);
+    let _ = writeln!(
+        w,
+        "GRID,999,,0.0,0.0,{}",
+        format_real(-s.impactor.radius.unwrap_or(0.0))
+    );
+    let _ = writeln!(w, "CONM2,999999,999,0,{}", format_real(s.impactor.mass));
+    let last = n + 1;
+    m.write_grids_and_quads(w, *a);
+    let _ = writeln!(w, "PSHELL,1,101,{},201,1.0", format_real(*thickness));
+    mat2_line(w, 101, membrane, Some(*rho));
+    mat2_line(w, 201, bending, None);
+    // Edges: y = −b/2 (row 1), x = +a/2 (col last), y = +b/2 (row last), x = −a/2 (col 1).
+    let sides: [Vec<usize>; 4] = [
+        (1..=last).map(|c| m.grid(1, c)).collect(),
+        (1..=last).map(|r| m.grid(r, last)).collect(),
+        (1..=last).map(|c| m.grid(last, c)).collect(),
+        (1..=last).map(|r| m.grid(r, 1)).collect(),
+    ];
+    for (edge, grids) in edges.iter().zip(&sides) {
+        if edge == "clamped" {
+            for g in grids {
+                let _ = writeln!(w, "SPC1,1,123456,{g}");
+            }
+        }
+    }
+    let _ = writeln!(w, "SPC1,1,12456,999\nGRDSET,,,,,,,6");
+    let _ = writeln!(w, "{tstep}");
+    for g in contact {
+        let _ = writeln!(w, "NOLIN3,5,{g},3,{},10001,0,1.5", format_real(k / 4.0));
+    }
+    let _ = writeln!(w, "NOLIN3,5,999,3,{},10001,0,1.5", format_real(-k));
+    m.write_indentation_tf(w);
+    let _ = writeln!(w, "TIC,3,999,3,0.0,{}", format_real(v0));
+    Ok(())
 }
 
 /// Case control output requests (the contact points and `points` displaced, the
