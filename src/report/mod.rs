@@ -521,11 +521,18 @@ fn key_instants(run: &Run) -> Vec<(&'static str, usize)> {
 }
 
 fn markdown(case: &Case, model: &Model, run: &Run, checks: &[CheckResult], figures: &[PathBuf], wall: f64) -> String {
-    let s = &run.summary;
-    let u = &model.units;
-    let ax = TimeAxis::of(model);
     let mut m = String::new();
     let _ = writeln!(m, "# {} — {}\n", case.name, case.description);
+    what_was_run(&mut m, model, run, wall);
+    summary_table(&mut m, model, run);
+    ledger_table(&mut m, model, run);
+    checks_table(&mut m, case, checks);
+    figure_list(&mut m, figures);
+    m
+}
+
+fn what_was_run(m: &mut String, model: &Model, run: &Run, wall: f64) {
+    let (s, u) = (&run.summary, &model.units);
     let _ = writeln!(m, "## What was run\n");
     let _ = writeln!(m, "| | |\n|---|---|");
     let _ = writeln!(m, "| deck | `{}` ({}) |", model.name, model.title.trim());
@@ -538,6 +545,10 @@ fn markdown(case: &Case, model: &Model, run: &Run, checks: &[CheckResult], figur
     );
     let _ = writeln!(m, "| wall time | {wall:.2} s (this machine) |");
     let _ = writeln!(m, "| units | {}, {}, {} |\n", u.length, u.force, u.time);
+}
+
+fn summary_table(m: &mut String, model: &Model, run: &Run) {
+    let (s, u, ax) = (&run.summary, &model.units, TimeAxis::of(model));
     let _ = writeln!(m, "## Summary\n");
     let _ = writeln!(m, "| quantity | value |\n|---|---|");
     let iv: Vec<String> = s
@@ -550,36 +561,40 @@ fn markdown(case: &Case, model: &Model, run: &Run, checks: &[CheckResult], figur
     let row = |m: &mut String, name: &str, v: Option<f64>, unit: &str| {
         let _ = writeln!(m, "| {name} | {} {unit} |", v.map_or("—".into(), |x| sig(x, 6)));
     };
-    row(&mut m, "peak force", Some(s.contact.peak_force), &u.force);
+    row(m, "peak force", Some(s.contact.peak_force), &u.force);
     row(
-        &mut m,
+        m,
         "peak force time",
         s.contact.peak_force_time.map(|t| t * ax.scale),
         &ax.unit,
     );
     row(
-        &mut m,
+        m,
         "impactor at rest",
         s.impactor.velocity_zero_time.map(|t| t * ax.scale),
         &ax.unit,
     );
     row(
-        &mut m,
+        m,
         "rebound velocity",
         s.impactor.rebound_velocity,
         &format!("{}/{}", u.length, u.time),
     );
     row(
-        &mut m,
+        m,
         "energy transferred to the target",
         s.energy.transferred_fraction.map(|x| 100.0 * x),
         "%",
     );
-    row(&mut m, "max relative energy error", s.energy.max_relative_error, "");
+    row(m, "max relative energy error", s.energy.max_relative_error, "");
     if let Some(r) = &s.rod {
-        row(&mut m, "contact ends (tC/L)", r.contact_end_tcl, "");
-        row(&mut m, "impactor at rest (tC/L)", r.velocity_zero_time_tcl, "");
+        row(m, "contact ends (tC/L)", r.contact_end_tcl, "");
+        row(m, "impactor at rest (tC/L)", r.velocity_zero_time_tcl, "");
     }
+}
+
+fn ledger_table(m: &mut String, model: &Model, run: &Run) {
+    let ax = TimeAxis::of(model);
     let _ = writeln!(m, "\n## Energy ledger at key instants\n");
     let _ = writeln!(
         m,
@@ -602,6 +617,9 @@ fn markdown(case: &Case, model: &Model, run: &Run, checks: &[CheckResult], figur
             r.error
         );
     }
+}
+
+fn checks_table(m: &mut String, case: &Case, checks: &[CheckResult]) {
     let file = case
         .path
         .file_name()
@@ -623,6 +641,9 @@ fn markdown(case: &Case, model: &Model, run: &Run, checks: &[CheckResult], figur
             if c.passed { "pass" } else { "**FAIL**" }
         );
     }
+}
+
+fn figure_list(m: &mut String, figures: &[PathBuf]) {
     let _ = writeln!(m, "\n## Figures\n");
     for f in figures.iter().filter(|f| f.extension().is_some_and(|e| e == "png")) {
         let name = f
@@ -632,7 +653,6 @@ fn markdown(case: &Case, model: &Model, run: &Run, checks: &[CheckResult], figur
         let stem = name.trim_end_matches(".png");
         let _ = writeln!(m, "![{stem}]({name}) ([SVG]({stem}.svg))\n");
     }
-    m
 }
 
 fn html(title: &str, markdown: &str) -> String {
