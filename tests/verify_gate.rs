@@ -57,10 +57,14 @@ fn verify_passes_on_every_case_and_reports_junit() {
     }
 }
 
+/// A case file in `dir`; `DECK` and `PLATE` in `body` stand for the paper's decks.
 fn temp_case(dir: &Path, body: &str) -> std::path::PathBuf {
     let p = dir.join("case.toml");
-    let deck = root().join("reference-data/decks/rod.bdf");
-    std::fs::write(&p, body.replace("DECK", deck.to_str().unwrap())).unwrap();
+    let deck = |name: &str| root().join("reference-data/decks").join(name).display().to_string();
+    let body = body
+        .replace("DECK", &deck("rod.bdf"))
+        .replace("PLATE", &deck("plate.bdf"));
+    std::fs::write(&p, body).unwrap();
     p
 }
 
@@ -303,16 +307,17 @@ source = "a test"
 #[test]
 fn a_check_that_does_not_apply_names_case_check_and_reason() {
     let dir = tempfile::tempdir().unwrap();
-    let p = dir.path().join("case.toml");
-    let deck = root().join("reference-data/decks/plate.bdf");
-    std::fs::write(
-        &p,
-        format!(
-            "name = \"misfit\"\ndeck = \"{}\"\nsteps = 10\n[[check]]\nkind = \"semi_infinite_rod\"\nquantity = \"peak_force\"\ntol = {{ rel = 1e-3 }}\n",
-            deck.display()
-        ),
-    )
-    .unwrap();
+    let p = temp_case(
+        dir.path(),
+        r#"name = "misfit"
+deck = "PLATE"
+steps = 10
+[[check]]
+kind = "semi_infinite_rod"
+quantity = "peak_force"
+tol = { rel = 1e-3 }
+"#,
+    );
     let case = verify::read_case(&p).unwrap();
     let e = impactlab::study::cases::evaluate(&case).unwrap_err();
     assert!(matches!(e, impactlab::Error::Check(_)), "{e:?}");

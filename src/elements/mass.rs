@@ -56,13 +56,4 @@ impl Kernel for PointMass {
     fn cell(&self) -> Option<Cell> {
         None
     }
-    fn clone_box(&self) -> Box<dyn Kernel> {
-        Box::new(self.clone())
-    }
-    fn as_any(&self) -> &dyn std::any::Any {
-        self
-    }
-    fn as_any_mut(&mut self) -> &mut dyn std::any::Any {
-        self
-    }
 }

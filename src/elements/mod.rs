@@ -126,9 +126,26 @@ pub trait Kernel: fmt::Debug + Send + Sync + Any {
     fn points(&self) -> Vec<[f64; 3]>;
     /// The cell it draws as in field output (`None`: not drawn).
     fn cell(&self) -> Option<Cell>;
-    fn clone_box(&self) -> Box<dyn Kernel>;
+}
+
+/// A kernel behind a box: cloned, and seen as its concrete kind; every `Kernel` that
+/// is `Clone` is one.
+pub trait BoxedKernel: Kernel {
+    fn clone_box(&self) -> Box<dyn BoxedKernel>;
     fn as_any(&self) -> &dyn Any;
     fn as_any_mut(&mut self) -> &mut dyn Any;
+}
+
+impl<K: Kernel + Clone> BoxedKernel for K {
+    fn clone_box(&self) -> Box<dyn BoxedKernel> {
+        Box::new(self.clone())
+    }
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
+    fn as_any_mut(&mut self) -> &mut dyn Any {
+        self
+    }
 }
 
 /// An element of the model: its kernel, id, grids and the solved DOF index of T1..R3
@@ -138,7 +155,7 @@ pub struct Element {
     pub eid: i64,
     pub grids: Vec<i64>,
     pub dofs: Vec<[Option<usize>; 6]>,
-    pub kernel: Box<dyn Kernel>,
+    pub kernel: Box<dyn BoxedKernel>,
 }
 
 impl Clone for Element {
@@ -154,7 +171,7 @@ impl Clone for Element {
 
 impl Element {
     /// An element of kernel `kernel` on `grids`, with the solved DOFs of each grid.
-    pub fn new(eid: i64, grids: Vec<i64>, dofs: Vec<[Option<usize>; 6]>, kernel: impl Kernel) -> Self {
+    pub fn new(eid: i64, grids: Vec<i64>, dofs: Vec<[Option<usize>; 6]>, kernel: impl Kernel + Clone) -> Self {
         debug_assert_eq!(grids.len(), dofs.len());
         debug_assert!(grids.len() <= MAX_GRIDS);
         Element {

@@ -358,15 +358,6 @@ impl Kernel for Quad4 {
     fn cell(&self) -> Option<Cell> {
         Some(Cell::Quad)
     }
-    fn clone_box(&self) -> Box<dyn Kernel> {
-        Box::new(self.clone())
-    }
-    fn as_any(&self) -> &dyn std::any::Any {
-        self
-    }
-    fn as_any_mut(&mut self) -> &mut dyn std::any::Any {
-        self
-    }
 }
 
 #[cfg(test)]

@@ -140,15 +140,6 @@ impl Kernel for Rod {
     fn cell(&self) -> Option<Cell> {
         Some(Cell::Line)
     }
-    fn clone_box(&self) -> Box<dyn Kernel> {
-        Box::new(self.clone())
-    }
-    fn as_any(&self) -> &dyn std::any::Any {
-        self
-    }
-    fn as_any_mut(&mut self) -> &mut dyn std::any::Any {
-        self
-    }
 }
 
 #[cfg(test)]

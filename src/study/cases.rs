@@ -65,17 +65,9 @@ pub fn evaluate_all(cases: &[Case], jobs: usize) -> Vec<(String, Result<CaseOutc
 
 /// The checks that need a family of runs.
 fn convergence(case: &Case, model: &Model, run: &Run, spec: &CheckSpec) -> Result<CheckResult, crate::Error> {
-    let result =
-        |check: String, value: f64, reference: f64, tolerance: String, passed: bool, detail: String| CheckResult {
-            case: case.name.clone(),
-            check,
-            value,
-            reference,
-            tolerance,
-            passed,
-            detail,
-            time_s: 0.0,
-        };
+    let result = |check, value, reference, tolerance, passed, detail| {
+        CheckResult::new(case, check, value, reference, tolerance, passed, detail)
+    };
     let list = |values: &[f64]| values.iter().map(|v| format!("{v:.6e}")).collect::<Vec<_>>().join(", ");
     match spec {
         CheckSpec::DtConvergence {

@@ -57,16 +57,7 @@ impl Cx<'_> {
         passed: bool,
         detail: String,
     ) -> CheckResult {
-        CheckResult {
-            case: self.case.name.clone(),
-            check,
-            value,
-            reference,
-            tolerance,
-            passed,
-            detail,
-            time_s: 0.0,
-        }
+        CheckResult::new(self.case, check, value, reference, tolerance, passed, detail)
     }
     fn reference<T>(&self, check: &'static str, r: Result<T, ReferenceError>) -> Result<T, CheckError> {
         r.map_err(|source| CheckError::Reference {
