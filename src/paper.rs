@@ -1,17 +1,40 @@
 //! The paper's two decks (restored from its appendix, `reference-data/decks/`),
 //! embedded so that an installed binary runs them from any directory.
 
+use std::path::Path;
+
 /// The steel ball on the free-free aluminium rod (144 CRODs).
 pub const ROD_DECK: &str = include_str!("../reference-data/decks/rod.bdf");
-/// The steel rod on the clamped glass/epoxy plate (49×49 CQUAD4).
+/// The steel rod on the clamped glass/epoxy plate (49×49 CQUAD4); its mesh is in
+/// [`PLATE_MESH`], which it INCLUDEs.
 pub const PLATE_DECK: &str = include_str!("../reference-data/decks/plate.bdf");
+/// The plate's mesh, `plate-mesh-49x49.bdf`.
+pub const PLATE_MESH: &str = include_str!("../reference-data/decks/plate-mesh-49x49.bdf");
 
 /// The model of the paper's rod deck.
 pub fn rod_model() -> Result<crate::model::Model, crate::Error> {
-    crate::model_from_text("rod", ROD_DECK)
+    read(&[("rod.bdf", ROD_DECK)])
 }
 
 /// The model of the paper's plate deck.
 pub fn plate_model() -> Result<crate::model::Model, crate::Error> {
-    crate::model_from_text("plate", PLATE_DECK)
+    read(&[("plate.bdf", PLATE_DECK), ("plate-mesh-49x49.bdf", PLATE_MESH)])
+}
+
+/// Writes the files into a temporary directory and reads the first as a deck, so that
+/// INCLUDEs, positions and the deck's SHA-256 are those of the files themselves.
+fn read(files: &[(&str, &str)]) -> Result<crate::model::Model, crate::Error> {
+    let dir = tempfile::tempdir().map_err(|source| crate::Error::Io {
+        path: "a temporary directory".into(),
+        source,
+    })?;
+    for (name, text) in files {
+        let p = dir.path().join(name);
+        std::fs::write(&p, text).map_err(|source| crate::Error::Io {
+            path: p.display().to_string(),
+            source,
+        })?;
+    }
+    let deck = dir.path().join(files[0].0);
+    Ok(crate::load_deck(Path::new(&deck), Default::default())?.0)
 }

@@ -190,3 +190,19 @@ fn a_failed_run_leaves_the_previous_outputs_whole() {
         .collect();
     assert_eq!(names.len(), 1, "no staging directories left behind: {names:?}");
 }
+
+/// Goal: the binary needs nothing from its source tree at run time (as after `cargo
+/// install --path .`): `bench` runs the paper's plate deck from a directory that has
+/// no `reference-data/`.
+#[test]
+fn bench_runs_from_any_directory() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_impactlab"))
+        .args(["bench", "--repeats", "1", "--steps", "20"])
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(out.contains("plate 49x49 (6913 solved DOF)"), "{out}");
+}

@@ -223,3 +223,24 @@ fn the_papers_restored_decks_parse_as_is() {
         .collect();
     assert_eq!((last_column[0], last_column[49]), (5050, 150));
 }
+
+/// Goal: the embedded paper decks (what an installed binary runs) are the files in
+/// reference-data: same SHA-256 (the plate's INCLUDE included) and the same model size.
+#[test]
+fn embedded_paper_decks_are_the_reference_files() {
+    for (embedded, file) in [
+        (impactlab::paper::rod_model().unwrap(), "rod.bdf"),
+        (impactlab::paper::plate_model().unwrap(), "plate.bdf"),
+    ] {
+        let (from_file, _) = impactlab::load_deck(
+            &std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("reference-data/decks")
+                .join(file),
+            Default::default(),
+        )
+        .unwrap();
+        assert_eq!(embedded.deck_sha256, from_file.deck_sha256, "{file}");
+        assert_eq!(embedded.n(), from_file.n(), "{file}");
+        assert_eq!(embedded.elements.len(), from_file.elements.len(), "{file}");
+    }
+}

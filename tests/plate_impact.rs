@@ -9,11 +9,11 @@ mod common;
 use common::deck;
 use impactlab::integrate::Scheme;
 use impactlab::model::Model;
-use impactlab::run::{run_model, Run, RunOptions};
+use impactlab::run::{run_model, RunOptions, RunResult};
 use std::sync::OnceLock;
 
-fn plate() -> &'static (Model, Run) {
-    static CELL: OnceLock<(Model, Run)> = OnceLock::new();
+fn plate() -> &'static (Model, RunResult) {
+    static CELL: OnceLock<(Model, RunResult)> = OnceLock::new();
     CELL.get_or_init(|| {
         let (m, _) = impactlab::load_deck(&deck("plate.bdf"), Default::default()).expect("plate deck loads");
         let r = common::run(&m, Scheme::Newmark, None, Some(3000));
@@ -21,7 +21,7 @@ fn plate() -> &'static (Model, Run) {
     })
 }
 
-fn column<'a>(r: &'a Run, name: &str) -> impl Iterator<Item = f64> + 'a {
+fn column<'a>(r: &'a RunResult, name: &str) -> impl Iterator<Item = f64> + 'a {
     let j = r
         .history_names()
         .iter()

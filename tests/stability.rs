@@ -10,9 +10,9 @@ use common::{deck, rod_model};
 use impactlab::integrate::{Scheme, SolveError};
 use impactlab::model::{Model, Modify};
 use impactlab::physics::analytic::rigid_target;
-use impactlab::run::{run_model, Run, RunOptions};
+use impactlab::run::{run_model, RunOptions, RunResult};
 
-fn go(m: &Model, scheme: Scheme, dt: f64, steps: usize) -> Result<Run, SolveError> {
+fn go(m: &Model, scheme: Scheme, dt: f64, steps: usize) -> Result<RunResult, SolveError> {
     run_model(
         m,
         &RunOptions {
@@ -29,7 +29,7 @@ fn modified(m: &Model, modify: Modify) -> Model {
 }
 
 /// The invariants every run must keep; `bound` is the scheme's energy-error bound.
-fn sane(r: &Run, bound: f64) {
+fn sane(r: &RunResult, bound: f64) {
     let s = &r.series;
     for k in 0..s.time.len() {
         assert!(
@@ -73,7 +73,7 @@ fn semi_infinite_end(m: &Model) -> f64 {
     impactlab::physics::references::semi_infinite(m).unwrap().1.contact_end
 }
 
-fn contact_end(r: &Run) -> f64 {
+fn contact_end(r: &RunResult) -> f64 {
     r.summary.contact.intervals[0][1]
 }
 

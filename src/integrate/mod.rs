@@ -143,6 +143,7 @@ pub trait Observer {
 /// What a run cost.
 #[derive(Debug, Clone, Default, serde::Serialize)]
 pub struct RunStats {
+    /// Steps done.
     pub steps: usize,
     pub factorizations: usize,
     pub solves: usize,
@@ -151,8 +152,13 @@ pub struct RunStats {
     pub factor_time: Duration,
     #[serde(serialize_with = "secs")]
     pub solve_time: Duration,
+    /// The whole time loop (factorisation and solves included).
     #[serde(serialize_with = "secs")]
     pub total_time: Duration,
+    /// Assembly of K and M and the inert-DOF reduction, before the loop (set by the
+    /// run stage).
+    #[serde(serialize_with = "secs")]
+    pub assembly_time: Duration,
 }
 
 fn secs<S: serde::Serializer>(d: &Duration, s: S) -> Result<S::Ok, S::Error> {

@@ -6,7 +6,7 @@
 
 use crate::ledger;
 use crate::model::Model;
-use crate::run::Run;
+use crate::run::RunResult;
 use std::fs;
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
@@ -106,7 +106,7 @@ pub fn energy_columns(m: &Model) -> Vec<String> {
 }
 
 /// The three output files of a run.
-pub fn run_files(model: &Model, run: &Run) -> Vec<(&'static str, Vec<u8>)> {
+pub fn run_files(model: &Model, run: &RunResult) -> Vec<(&'static str, Vec<u8>)> {
     let history = csv_bytes(&run.history_header(), run.history.iter().cloned());
     let energy = csv_bytes(&energy_columns(model), run.energy.iter().map(|r| r.values().to_vec()));
     let mut summary = serde_json::to_vec_pretty(&run.summary).expect("json of plain values");
@@ -120,7 +120,7 @@ pub fn run_files(model: &Model, run: &Run) -> Vec<(&'static str, Vec<u8>)> {
 
 /// A short human summary of a run. Every value carries the deck's unit; times of the
 /// order of a contact are printed in µs when the deck's time unit is the second.
-pub fn human_summary(model: &Model, run: &Run) -> String {
+pub fn human_summary(model: &Model, run: &RunResult) -> String {
     let s = &run.summary;
     let u = &model.units;
     let (scale, tu) = u.short_time();

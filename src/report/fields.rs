@@ -5,7 +5,7 @@
 
 use crate::elements::{Cell, Element, Fibre, Recovered};
 use crate::model::{DofLabel, Model};
-use crate::run::Run;
+use crate::run::RunResult;
 use std::collections::HashMap;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -35,36 +35,10 @@ pub enum FieldsError {
 
 /// Writes `DIR/fields-NNNN.vtu` for each snapshot of `run` and `DIR/fields.pvd`, all
 /// at once (staged, then swapped in like the run's outputs).
-pub fn write_fields(model: &Model, run: &Run, dir: &Path) -> Result<Vec<PathBuf>, FieldsError> {
-    let mut files: Vec<(String, Vec<u8>)> = Vec::new();
-    // Points: every grid an element touches, with its coordinates.
-    let mut index: HashMap<i64, usize> = HashMap::new();
-    let mut points: Vec<f64> = Vec::new();
-    let mut conn: Vec<u64> = Vec::new();
-    let mut offsets: Vec<u64> = Vec::new();
-    let mut types = Vec::new();
-    let mut cells: Vec<&Element> = Vec::new();
-    let mut add = |g: i64, x: [f64; 3], points: &mut Vec<f64>| -> u64 {
-        *index.entry(g).or_insert_with(|| {
-            points.extend_from_slice(&x);
-            points.len() / 3 - 1
-        }) as u64
-    };
-    for e in &model.elements {
-        let Some(cell) = e.kernel.cell() else { continue };
-        for (g, x) in e.grids.iter().zip(e.kernel.points()) {
-            let p = add(*g, x, &mut points);
-            conn.push(p);
-        }
-        types.push(match cell {
-            Cell::Line => CellType::Line,
-            Cell::Quad => CellType::Quad,
-        });
-        offsets.push(conn.len() as u64);
-        cells.push(e);
-    }
-    let layout = strain_layout(&cells);
+pub fn write_fields(model: &Model, run: &RunResult, dir: &Path) -> Result<Vec<PathBuf>, FieldsError> {
+    let mesh = Mesh::of(model);
     let full: HashMap<DofLabel, usize> = model.dofs.iter().enumerate().map(|(i, l)| (*l, i)).collect();
+    let mut files: Vec<(String, Vec<u8>)> = Vec::new();
     let mut written = Vec::new();
     let mut pvd = String::from(
         "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n  <Collection>\n",
@@ -77,58 +51,14 @@ pub fn write_fields(model: &Model, run: &Run, dir: &Path) -> Result<Vec<PathBuf>
                 u[i] = *v;
             }
         }
-        let mut disp = vec![0.0; points.len()];
-        for (l, &i) in &full {
-            if (1..=3).contains(&l.comp) {
-                if let Some(&p) = index.get(&l.point) {
-                    disp[3 * p + l.comp as usize - 1] = u[i];
-                }
-            }
-        }
-        let mut cell_data = Vec::new();
-        let strains: Vec<Vec<f64>> = cells.iter().map(|e| e.recover(&u, false)).collect();
-        for (name, columns) in &layout {
-            let v: Vec<f64> = strains.iter().flat_map(|r| columns.iter().map(|&j| r[j])).collect();
-            cell_data.push(if columns.len() == 1 {
-                Attribute::scalars(name.as_str(), 1).with_data(v)
-            } else {
-                Attribute::DataArray(vtkio::model::DataArray {
-                    name: name.clone(),
-                    elem: ElementType::Vectors,
-                    data: IOBuffer::F64(v),
-                })
-            });
-        }
-        let vtk = Vtk {
-            version: Version::new((1, 0)),
-            title: format!("{} t = {t:e}", model.name),
-            byte_order: ByteOrder::LittleEndian,
-            file_path: None,
-            data: DataSet::inline(UnstructuredGridPiece {
-                points: IOBuffer::F64(points.clone()),
-                cells: Cells {
-                    cell_verts: VertexNumbers::XML {
-                        connectivity: conn.clone(),
-                        offsets: offsets.clone(),
-                    },
-                    types: types.clone(),
-                },
-                data: Attributes {
-                    point: vec![Attribute::DataArray(vtkio::model::DataArray {
-                        name: format!("displacement [{}]", model.units.length),
-                        elem: ElementType::Vectors,
-                        data: IOBuffer::F64(disp),
-                    })],
-                    cell: cell_data,
-                },
-            }),
-        };
         let name = format!("fields-{k:04}.vtu");
         let mut bytes = Vec::new();
-        vtk.write_xml(&mut bytes).map_err(|source| FieldsError::Vtk {
-            path: dir.join(&name).display().to_string(),
-            source,
-        })?;
+        mesh.snapshot(model, &full, &u, *t)
+            .write_xml(&mut bytes)
+            .map_err(|source| FieldsError::Vtk {
+                path: dir.join(&name).display().to_string(),
+                source,
+            })?;
         let _ = writeln!(pvd, "    <DataSet timestep=\"{t:e}\" part=\"0\" file=\"{name}\"/>");
         written.push(dir.join(&name));
         files.push((name, bytes));
@@ -142,6 +72,102 @@ pub fn write_fields(model: &Model, run: &Run, dir: &Path) -> Result<Vec<PathBuf>
         source,
     })?;
     Ok(written)
+}
+
+/// The drawn part of a model: every grid an element touches, and the cells.
+struct Mesh<'m> {
+    /// Point index of each grid.
+    index: HashMap<i64, usize>,
+    points: Vec<f64>,
+    conn: Vec<u64>,
+    offsets: Vec<u64>,
+    types: Vec<CellType>,
+    cells: Vec<&'m Element>,
+    /// The strain arrays written per cell (see [`strain_layout`]).
+    layout: Vec<(String, Vec<usize>)>,
+}
+
+impl<'m> Mesh<'m> {
+    fn of(model: &'m Model) -> Self {
+        let mut m = Mesh {
+            index: HashMap::new(),
+            points: Vec::new(),
+            conn: Vec::new(),
+            offsets: Vec::new(),
+            types: Vec::new(),
+            cells: Vec::new(),
+            layout: Vec::new(),
+        };
+        for e in &model.elements {
+            let Some(cell) = e.kernel.cell() else { continue };
+            for (g, x) in e.grids.iter().zip(e.kernel.points()) {
+                let points = &mut m.points;
+                let p = *m.index.entry(*g).or_insert_with(|| {
+                    points.extend_from_slice(&x);
+                    points.len() / 3 - 1
+                });
+                m.conn.push(p as u64);
+            }
+            m.types.push(match cell {
+                Cell::Line => CellType::Line,
+                Cell::Quad => CellType::Quad,
+            });
+            m.offsets.push(m.conn.len() as u64);
+            m.cells.push(e);
+        }
+        m.layout = strain_layout(&m.cells);
+        m
+    }
+
+    /// One snapshot: nodal displacement and the cells' strains at `u` (all DOFs).
+    fn snapshot(&self, model: &Model, full: &HashMap<DofLabel, usize>, u: &[f64], t: f64) -> Vtk {
+        let mut disp = vec![0.0; self.points.len()];
+        for (l, &i) in full {
+            if (1..=3).contains(&l.comp) {
+                if let Some(&p) = self.index.get(&l.point) {
+                    disp[3 * p + l.comp as usize - 1] = u[i];
+                }
+            }
+        }
+        let mut cell_data = Vec::new();
+        let strains: Vec<Vec<f64>> = self.cells.iter().map(|e| e.recover(u, false)).collect();
+        for (name, columns) in &self.layout {
+            let v: Vec<f64> = strains.iter().flat_map(|r| columns.iter().map(|&j| r[j])).collect();
+            cell_data.push(if columns.len() == 1 {
+                Attribute::scalars(name.as_str(), 1).with_data(v)
+            } else {
+                Attribute::DataArray(vtkio::model::DataArray {
+                    name: name.clone(),
+                    elem: ElementType::Vectors,
+                    data: IOBuffer::F64(v),
+                })
+            });
+        }
+        Vtk {
+            version: Version::new((1, 0)),
+            title: format!("{} t = {t:e}", model.name),
+            byte_order: ByteOrder::LittleEndian,
+            file_path: None,
+            data: DataSet::inline(UnstructuredGridPiece {
+                points: IOBuffer::F64(self.points.clone()),
+                cells: Cells {
+                    cell_verts: VertexNumbers::XML {
+                        connectivity: self.conn.clone(),
+                        offsets: self.offsets.clone(),
+                    },
+                    types: self.types.clone(),
+                },
+                data: Attributes {
+                    point: vec![Attribute::DataArray(vtkio::model::DataArray {
+                        name: format!("displacement [{}]", model.units.length),
+                        elem: ElementType::Vectors,
+                        data: IOBuffer::F64(disp),
+                    })],
+                    cell: cell_data,
+                },
+            }),
+        }
+    }
 }
 
 /// The strain arrays of the cells: a name and which recovered values it holds. Empty

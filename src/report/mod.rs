@@ -11,7 +11,7 @@ use crate::ledger::EnergyRow;
 use crate::model::Model;
 use crate::physics::analytic;
 use crate::plot::{self, Chart, Contour, Line};
-use crate::run::{Column, Run};
+use crate::run::{Column, RunResult};
 use crate::verify::{Case, CaseOutcome, CheckResult};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -131,13 +131,13 @@ fn energy_lines(e: &[EnergyRow], x: impl Fn(f64) -> f64) -> Vec<Line> {
 /// What every figure of a case reads.
 struct Fig<'a> {
     model: &'a Model,
-    run: &'a Run,
+    run: &'a RunResult,
     dir: &'a Path,
     footer: &'a str,
     ax: TimeAxis,
 }
 
-fn rod_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<Vec<PathBuf>, Error> {
+fn rod_figures(model: &Model, run: &RunResult, dir: &Path, footer: &str) -> Result<Vec<PathBuf>, Error> {
     let (tr, _, lc) = crate::physics::references::semi_infinite(model)?;
     let end = run
         .summary
@@ -302,7 +302,7 @@ fn rod_energy(f: &Fig, lc: f64, end: f64) -> Result<Vec<PathBuf>, Error> {
     Ok(out)
 }
 
-fn plate_figures(model: &Model, run: &Run, dir: &Path, footer: &str) -> Result<Vec<PathBuf>, Error> {
+fn plate_figures(model: &Model, run: &RunResult, dir: &Path, footer: &str) -> Result<Vec<PathBuf>, Error> {
     let f = Fig {
         model,
         run,
@@ -502,7 +502,7 @@ fn plate_energy(f: &Fig) -> Result<Vec<PathBuf>, Error> {
 }
 
 /// Ledger rows at the key instants: start, peak force, impactor at rest, separation, end.
-fn key_instants(run: &Run) -> Vec<(&'static str, usize)> {
+fn key_instants(run: &RunResult) -> Vec<(&'static str, usize)> {
     let s = &run.series;
     let nearest = |t: f64| s.time.iter().position(|&x| x >= t).unwrap_or(s.time.len() - 1);
     let sm = &run.summary;
@@ -520,7 +520,14 @@ fn key_instants(run: &Run) -> Vec<(&'static str, usize)> {
     v
 }
 
-fn markdown(case: &Case, model: &Model, run: &Run, checks: &[CheckResult], figures: &[PathBuf], wall: f64) -> String {
+fn markdown(
+    case: &Case,
+    model: &Model,
+    run: &RunResult,
+    checks: &[CheckResult],
+    figures: &[PathBuf],
+    wall: f64,
+) -> String {
     let mut m = String::new();
     let _ = writeln!(m, "# {} — {}\n", case.name, case.description);
     what_was_run(&mut m, model, run, wall);
@@ -531,7 +538,7 @@ fn markdown(case: &Case, model: &Model, run: &Run, checks: &[CheckResult], figur
     m
 }
 
-fn what_was_run(m: &mut String, model: &Model, run: &Run, wall: f64) {
+fn what_was_run(m: &mut String, model: &Model, run: &RunResult, wall: f64) {
     let (s, u) = (&run.summary, &model.units);
     let _ = writeln!(m, "## What was run\n");
     let _ = writeln!(m, "| | |\n|---|---|");
@@ -547,7 +554,7 @@ fn what_was_run(m: &mut String, model: &Model, run: &Run, wall: f64) {
     let _ = writeln!(m, "| units | {}, {}, {} |\n", u.length, u.force, u.time);
 }
 
-fn summary_table(m: &mut String, model: &Model, run: &Run) {
+fn summary_table(m: &mut String, model: &Model, run: &RunResult) {
     let (s, u, ax) = (&run.summary, &model.units, TimeAxis::of(model));
     let _ = writeln!(m, "## Summary\n");
     let _ = writeln!(m, "| quantity | value |\n|---|---|");
@@ -593,7 +600,7 @@ fn summary_table(m: &mut String, model: &Model, run: &Run) {
     }
 }
 
-fn ledger_table(m: &mut String, model: &Model, run: &Run) {
+fn ledger_table(m: &mut String, model: &Model, run: &RunResult) {
     let ax = TimeAxis::of(model);
     let _ = writeln!(m, "\n## Energy ledger at key instants\n");
     let _ = writeln!(

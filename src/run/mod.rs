@@ -81,10 +81,12 @@ pub struct Series {
 
 /// Everything a run produced.
 #[derive(Debug, Clone)]
-pub struct Run {
+pub struct RunResult {
     pub scheme: Scheme,
     pub dt: f64,
     pub steps: usize,
+    /// Counts and wall-clock times of the run's stages (assembly, factorisation,
+    /// solves, the whole loop).
     pub stats: RunStats,
     pub series: Series,
     pub energy: Vec<EnergyRow>,
@@ -160,7 +162,7 @@ impl Observer for Recorder<'_> {
     }
 }
 
-impl Run {
+impl RunResult {
     /// Index of a history column.
     pub fn column(&self, c: &Column) -> Option<usize> {
         self.history_columns.iter().position(|x| x == c)
@@ -246,7 +248,7 @@ fn history_row(m: &Model, s: &StepState, force: f64) -> Vec<f64> {
 }
 
 /// Runs a model: assembles it, drops its inert DOFs when asked, integrates.
-pub fn run_model(model: &Model, opts: &RunOptions) -> Result<Run, SolveError> {
+pub fn run_model(model: &Model, opts: &RunOptions) -> Result<RunResult, SolveError> {
     let t0 = std::time::Instant::now();
     let sys = assemble(model);
     // A DOF with neither stiffness nor mass is a mechanism whether or not anything
@@ -265,18 +267,19 @@ pub fn run_model(model: &Model, opts: &RunOptions) -> Result<Run, SolveError> {
     } else {
         None
     };
-    let assembly_s = t0.elapsed().as_secs_f64();
+    let assembly_time = t0.elapsed();
     let (model, sys) = match &reduced {
         Some((m, s)) => (m, s),
         None => (model, &sys),
     };
     let mut run = run_system(model, sys, opts)?;
-    run.summary.run.assembly_s = assembly_s;
+    run.stats.assembly_time = assembly_time;
+    run.summary.run.assembly_s = assembly_time.as_secs_f64();
     Ok(run)
 }
 
 /// Runs a model whose system is already assembled.
-pub fn run_system(model: &Model, sys: &System, opts: &RunOptions) -> Result<Run, SolveError> {
+pub fn run_system(model: &Model, sys: &System, opts: &RunOptions) -> Result<RunResult, SolveError> {
     let dt = opts.dt.unwrap_or(model.time.dt);
     let steps = opts.steps.unwrap_or(model.time.steps);
     let bar = opts.progress.clone().unwrap_or_else(ProgressBar::hidden);
@@ -299,7 +302,7 @@ pub fn run_system(model: &Model, sys: &System, opts: &RunOptions) -> Result<Run,
     };
     let stats = integrate(model, sys, opts.scheme, dt, steps, &mut rec)?;
     rec.bar.finish_and_clear();
-    let mut run = Run {
+    let mut run = RunResult {
         scheme: opts.scheme,
         dt,
         steps,
@@ -313,7 +316,7 @@ pub fn run_system(model: &Model, sys: &System, opts: &RunOptions) -> Result<Run,
         dofs: model.dofs.clone(),
         snapshots: rec.snapshots,
     };
-    run.summary = summarize(model, &run, 0.0);
+    run.summary = summarize(model, &run);
     Ok(run)
 }
 
@@ -339,7 +342,7 @@ pub fn contact_intervals(t: &[f64], alpha: &[f64]) -> (Vec<[f64; 2]>, bool) {
     (out, open)
 }
 
-fn summarize(model: &Model, run: &Run, assembly_s: f64) -> Summary {
+fn summarize(model: &Model, run: &RunResult) -> Summary {
     let s = &run.series;
     let (intervals, open) = contact_intervals(&s.time, &s.alpha);
     let (kmax, fmax) = s
@@ -425,7 +428,7 @@ fn summarize(model: &Model, run: &Run, assembly_s: f64) -> Summary {
             contact_iterations: run.stats.contact_iterations,
             factor_s: run.stats.factor_time.as_secs_f64(),
             solve_s: run.stats.solve_time.as_secs_f64(),
-            assembly_s,
+            assembly_s: run.stats.assembly_time.as_secs_f64(),
             wall_s: run.stats.total_time.as_secs_f64(),
         },
         rod,

@@ -29,7 +29,7 @@ pub struct Scene {
     pub effects: Effects,
     #[serde(default)]
     pub output: Output,
-    pub run: Run,
+    pub run: RunResult,
 }
 
 #[derive(Debug, Clone, Deserialize)]
@@ -133,7 +133,7 @@ pub struct Output {
 
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct Run {
+pub struct RunResult {
     #[serde(default = "newmark")]
     pub scheme: Scheme,
     /// A step in the scene's time unit, or "auto".
@@ -201,14 +201,17 @@ pub fn read(path: &Path) -> Result<Scene, SceneError> {
     Ok(s)
 }
 
+/// A positive finite number, or why not.
+fn pos(name: &str, v: f64) -> Result<(), SceneIssue> {
+    if v.is_finite() && v > 0.0 {
+        Ok(())
+    } else {
+        Err(SceneIssue(format!("{name} must be positive, not {v}")))
+    }
+}
+
+/// The impactor, contact law, run and effects of a scene, then its target.
 fn validate(s: &Scene) -> Result<(), SceneIssue> {
-    let pos = |name: &str, v: f64| {
-        if v.is_finite() && v > 0.0 {
-            Ok(())
-        } else {
-            Err(SceneIssue(format!("{name} must be positive, not {v}")))
-        }
-    };
     pos("impactor.mass", s.impactor.mass)?;
     pos("run.end", s.run.end)?;
     if !s.impactor.velocity.is_finite() || s.impactor.velocity == 0.0 {
@@ -237,6 +240,11 @@ fn validate(s: &Scene) -> Result<(), SceneIssue> {
             "effects.gravity is asked for, but body forces are not implemented".into(),
         ));
     }
+    validate_target(s)
+}
+
+/// The target: a rod or a square plate the generators can mesh.
+fn validate_target(s: &Scene) -> Result<(), SceneIssue> {
     match &s.target {
         Target::Rod {
             length,

@@ -18,7 +18,7 @@ use crate::model::Model;
 use crate::numerics::{interp, median};
 use crate::physics::analytic;
 use crate::plot::{self, Chart, Line};
-use crate::run::{run_model, Run, RunOptions};
+use crate::run::{run_model, RunOptions, RunResult};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -67,7 +67,7 @@ struct Reference {
 }
 
 /// Relative L2 norm of F − F_ref over the reference's contact interval.
-fn force_l2(run: &Run, r: &Reference) -> f64 {
+fn force_l2(run: &RunResult, r: &Reference) -> f64 {
     let (mut num, mut den) = (0.0, 0.0);
     for (&t, &f) in r.t.iter().zip(&r.f).filter(|(t, _)| **t <= r.duration) {
         let d = interp(&run.series.time, &run.series.force, t) - f;
@@ -77,16 +77,16 @@ fn force_l2(run: &Run, r: &Reference) -> f64 {
     (num / den).sqrt()
 }
 
-fn duration(run: &Run) -> f64 {
+fn duration(run: &RunResult) -> f64 {
     run.summary.contact.duration.unwrap_or(f64::NAN)
 }
 
-fn peak(run: &Run) -> f64 {
+fn peak(run: &RunResult) -> f64 {
     run.summary.contact.peak_force
 }
 
 /// Runs once to warm up, then `repeats` times; the last run and the median wall time.
-fn timed(model: &Model, opts: &RunOptions, repeats: usize) -> Result<(Run, f64), SolveError> {
+fn timed(model: &Model, opts: &RunOptions, repeats: usize) -> Result<(RunResult, f64), SolveError> {
     let mut walls = Vec::new();
     let mut last = None;
     for k in 0..=repeats {
@@ -100,7 +100,7 @@ fn timed(model: &Model, opts: &RunOptions, repeats: usize) -> Result<(Run, f64),
     Ok((last.expect("at least one run"), median(walls)))
 }
 
-fn row(problem: &str, mesh: usize, run: &Run, wall: f64, r: &Reference, strain: f64) -> Row {
+fn row(problem: &str, mesh: usize, run: &RunResult, wall: f64, r: &Reference, strain: f64) -> Row {
     Row {
         problem: problem.into(),
         scheme: run.scheme,
@@ -147,18 +147,76 @@ fn rod_model(n: usize) -> Result<Model, Error> {
 
 /// The rod sweeps: schemes × Δt on the paper's 144 elements, and schemes × mesh at the
 /// paper's Δt.
+/// The rod's time step and mesh at the paper's settings: the semi-infinite rod (the
+/// continuum) and a converged run of the same mesh (the step error alone) as references.
 fn rod_rows(repeats: usize, progress: &dyn Fn(&str)) -> Result<Vec<Row>, Error> {
-    let base = rod_model(144)?;
-    let rod = base.rod.expect("a rod");
-    let (tr, ev, lc) = crate::physics::references::semi_infinite(&base)?;
-    let reference = Reference {
-        t: tr.time.clone(),
-        f: tr.force.clone(),
-        duration: ev.contact_end,
-        peak: ev.peak_force,
-    };
-    let ea = rod.e * rod.area;
-    let strain_error = |m: &Model, run: &Run| -> f64 {
+    let r = RodStudy::new()?;
+    let mut rows = r.dt_sweep(repeats, progress)?;
+    rows.extend(r.mesh_sweep(repeats, progress)?);
+    Ok(rows)
+}
+
+/// The rod study's model and references.
+struct RodStudy {
+    base: Model,
+    rod: crate::model::RodInfo,
+    trace: analytic::Trace,
+    events: analytic::Events,
+    lc: f64,
+    reference: Reference,
+    discrete: Reference,
+}
+
+/// The paper's step.
+const ROD_DT: f64 = 2e-7;
+/// Past the contact, before the reflection returns (360 µs).
+const ROD_T_END: f64 = 150e-6;
+
+impl RodStudy {
+    fn new() -> Result<Self, Error> {
+        let base = rod_model(144)?;
+        let rod = base.rod.expect("a rod");
+        let (tr, ev, lc) = crate::physics::references::semi_infinite(&base)?;
+        let reference = Reference {
+            t: tr.time.clone(),
+            f: tr.force.clone(),
+            duration: ev.contact_end,
+            peak: ev.peak_force,
+        };
+        // The discrete reference for the time-step error alone: the same 144-element
+        // rod, energy scheme at Δt/16.
+        let (dt0, t_end) = (ROD_DT, ROD_T_END);
+        let fine_dt = dt0 / 16.0;
+        let fine = run_model(
+            &base,
+            &RunOptions {
+                scheme: Scheme::Energy,
+                dt: Some(fine_dt),
+                steps: Some((t_end / fine_dt).ceil() as usize),
+                ..Default::default()
+            },
+        )?;
+        let discrete = Reference {
+            t: fine.series.time.clone(),
+            f: fine.series.force.clone(),
+            duration: duration(&fine),
+            peak: peak(&fine),
+        };
+        Ok(RodStudy {
+            base,
+            rod,
+            trace: tr,
+            events: ev,
+            lc,
+            reference,
+            discrete,
+        })
+    }
+
+    /// Strain error of the mid-rod element against d'Alembert, relative to the peak.
+    fn strain_error(&self, m: &Model, run: &RunResult) -> f64 {
+        let (rod, ev, lc, tr) = (&self.rod, &self.events, self.lc, &self.trace);
+        let ea = rod.e * rod.area;
         let n = m
             .elements
             .iter()
@@ -173,84 +231,79 @@ fn rod_rows(repeats: usize, progress: &dyn Fn(&str)) -> Result<Vec<Row>, Error> 
         run.history
             .iter()
             .filter(|h| h[0] / lc < 1.45)
-            .map(|h| (h[j] - analytic::dalembert_strain(&tr, xc, rod.wave_speed, ea, h[0])).abs() / peak)
+            .map(|h| (h[j] - analytic::dalembert_strain(tr, xc, rod.wave_speed, ea, h[0])).abs() / peak)
             .fold(0.0, f64::max)
-    };
-    let mut rows = Vec::new();
-    let dt0 = 2e-7;
-    let t_end = 150e-6; // past the contact, before the reflection returns (360 µs)
-                        // The discrete reference for the time-step error alone: the same 144-element rod,
-                        // energy scheme at Δt/16.
-    let fine_dt = dt0 / 16.0;
-    let fine = run_model(
-        &base,
-        &RunOptions {
-            scheme: Scheme::Energy,
-            dt: Some(fine_dt),
-            steps: Some((t_end / fine_dt).ceil() as usize),
-            ..Default::default()
-        },
-    )?;
-    let discrete = Reference {
-        t: fine.series.time.clone(),
-        f: fine.series.force.clone(),
-        duration: duration(&fine),
-        peak: peak(&fine),
-    };
-    let sys = crate::assembly::assemble(&base);
-    let crit = crate::integrate::central::critical_step(&base, &sys).ok();
-    for scheme in Scheme::ALL {
-        for f in DT_FACTORS {
-            let dt = dt0 * f;
-            progress(&format!("rod {} dt {dt:.3e}", scheme.name()));
-            if scheme == Scheme::Central && crit.is_some_and(|c| dt > c) {
-                rows.push(skipped(
-                    "rod",
-                    scheme,
-                    dt,
-                    144,
-                    format!("unstable: dt > critical {:.4e}", crit.unwrap_or(0.0)),
-                ));
-                continue;
-            }
-            let opts = RunOptions {
-                scheme,
-                dt: Some(dt),
-                steps: Some((t_end / dt).ceil() as usize),
-                ..Default::default()
-            };
-            let mut m = base.clone();
-            m.time.every = 1;
-            let (run, wall) = timed(&m, &opts, repeats)?;
-            rows.push(row("rod", 144, &run, wall, &reference, strain_error(&m, &run)));
-            rows.push(row("rod-dt", 144, &run, wall, &discrete, f64::NAN));
-        }
     }
-    for n in [36, 72, 144, 288] {
-        let m = rod_model(n)?;
+
+    /// Every scheme over the Δt factors on the 144-element rod.
+    fn dt_sweep(&self, repeats: usize, progress: &dyn Fn(&str)) -> Result<Vec<Row>, Error> {
+        let (base, dt0, t_end) = (&self.base, ROD_DT, ROD_T_END);
+        let (reference, discrete) = (&self.reference, &self.discrete);
+        let strain_error = |m: &Model, run: &RunResult| self.strain_error(m, run);
+        let mut rows = Vec::new();
+        let sys = crate::assembly::assemble(base);
+        let crit = crate::integrate::central::critical_step(base, &sys).ok();
         for scheme in Scheme::ALL {
-            progress(&format!("rod mesh {n} {}", scheme.name()));
-            let sys = crate::assembly::assemble(&m);
-            let crit = crate::integrate::central::critical_step(&m, &sys).ok();
-            // Explicit: the largest stable step not above the paper's.
-            let dt = if scheme == Scheme::Central {
-                crit.map_or(dt0, |c| c.min(dt0))
-            } else {
-                dt0
-            };
-            let opts = RunOptions {
-                scheme,
-                dt: Some(dt),
-                steps: Some((t_end / dt).ceil() as usize),
-                ..Default::default()
-            };
-            let (run, wall) = timed(&m, &opts, repeats)?;
-            let mut r = row("rod-mesh", n, &run, wall, &reference, strain_error(&m, &run));
-            r.note = "mesh sweep".into();
-            rows.push(r);
+            for f in DT_FACTORS {
+                let dt = dt0 * f;
+                progress(&format!("rod {} dt {dt:.3e}", scheme.name()));
+                if scheme == Scheme::Central && crit.is_some_and(|c| dt > c) {
+                    rows.push(skipped(
+                        "rod",
+                        scheme,
+                        dt,
+                        144,
+                        format!("unstable: dt > critical {:.4e}", crit.unwrap_or(0.0)),
+                    ));
+                    continue;
+                }
+                let opts = RunOptions {
+                    scheme,
+                    dt: Some(dt),
+                    steps: Some((t_end / dt).ceil() as usize),
+                    ..Default::default()
+                };
+                let mut m = base.clone();
+                m.time.every = 1;
+                let (run, wall) = timed(&m, &opts, repeats)?;
+                rows.push(row("rod", 144, &run, wall, reference, strain_error(&m, &run)));
+                rows.push(row("rod-dt", 144, &run, wall, discrete, f64::NAN));
+            }
         }
+        Ok(rows)
     }
-    Ok(rows)
+
+    /// Every scheme on 36 … 288 elements at the paper's step (central: its largest
+    /// stable step not above it).
+    fn mesh_sweep(&self, repeats: usize, progress: &dyn Fn(&str)) -> Result<Vec<Row>, Error> {
+        let (dt0, t_end, reference) = (ROD_DT, ROD_T_END, &self.reference);
+        let mut rows = Vec::new();
+        for n in [36, 72, 144, 288] {
+            let m = rod_model(n)?;
+            for scheme in Scheme::ALL {
+                progress(&format!("rod mesh {n} {}", scheme.name()));
+                let sys = crate::assembly::assemble(&m);
+                let crit = crate::integrate::central::critical_step(&m, &sys).ok();
+                // Explicit: the largest stable step not above the paper's.
+                let dt = if scheme == Scheme::Central {
+                    crit.map_or(dt0, |c| c.min(dt0))
+                } else {
+                    dt0
+                };
+                let opts = RunOptions {
+                    scheme,
+                    dt: Some(dt),
+                    steps: Some((t_end / dt).ceil() as usize),
+                    ..Default::default()
+                };
+                let (run, wall) = timed(&m, &opts, repeats)?;
+                let mut r = row("rod-mesh", n, &run, wall, reference, self.strain_error(&m, &run));
+                r.note = "mesh sweep".into();
+                rows.push(r);
+            }
+        }
+        Ok(rows)
+    }
 }
 
 /// The plate sweeps (see the module doc).
@@ -258,7 +311,7 @@ fn plate_rows(repeats: usize, meshes: &[usize], progress: &dyn Fn(&str)) -> Resu
     let mut rows = Vec::new();
     let dt0 = 1e-7;
     let t_end = 230e-6;
-    let gage_a = |n: usize, run: &Run| -> f64 {
+    let gage_a = |n: usize, run: &RunResult| -> f64 {
         let mesh = crate::mesh::PlateMesh::new(n).expect("odd n");
         let [a, _] = mesh.gage_elements();
         let c = crate::run::Column::shell_strain(a as i64, crate::elements::Fibre::Z2, crate::elements::Plane::Yy);

@@ -6,7 +6,7 @@
 use crate::mesh::plate_model;
 use crate::model::Model;
 use crate::numerics::slope;
-use crate::run::{run_model, Run};
+use crate::run::{run_model, RunResult};
 use crate::verify::{case_model, case_options, check, Case, CaseOutcome, CheckResult, CheckSpec, Quantity};
 use std::time::Instant;
 
@@ -64,7 +64,7 @@ pub fn evaluate_all(cases: &[Case], jobs: usize) -> Vec<(String, Result<CaseOutc
 }
 
 /// The checks that need a family of runs.
-fn convergence(case: &Case, model: &Model, run: &Run, spec: &CheckSpec) -> Result<CheckResult, crate::Error> {
+fn convergence(case: &Case, model: &Model, run: &RunResult, spec: &CheckSpec) -> Result<CheckResult, crate::Error> {
     let result = |check, value, reference, tolerance, passed, detail| {
         CheckResult::new(case, check, value, reference, tolerance, passed, detail)
     };
@@ -114,7 +114,7 @@ fn convergence(case: &Case, model: &Model, run: &Run, spec: &CheckSpec) -> Resul
 fn dt_family(
     case: &Case,
     model: &Model,
-    run: &Run,
+    run: &RunResult,
     quantity: Quantity,
     runs: usize,
 ) -> Result<(Vec<f64>, Vec<f64>), crate::Error> {

@@ -10,7 +10,7 @@ use crate::error::Error;
 use crate::integrate::Scheme;
 use crate::mesh::{plate_model, PlateMesh};
 use crate::numerics::median;
-use crate::run::{run_model, Column, Run, RunOptions};
+use crate::run::{run_model, Column, RunOptions, RunResult};
 use serde::Serialize;
 use std::fmt::Write as _;
 
@@ -22,7 +22,7 @@ pub struct Extreme {
 }
 
 /// Signed extreme of a history column, if the run wrote it.
-pub fn history_extreme(run: &Run, c: &Column) -> Option<Extreme> {
+pub fn history_extreme(run: &RunResult, c: &Column) -> Option<Extreme> {
     let j = run.column(c)?;
     run.history
         .iter()
@@ -38,7 +38,7 @@ pub fn history_extreme(run: &Run, c: &Column) -> Option<Extreme> {
 
 /// Largest local maximum of the contact force in the latter half of the first contact
 /// interval: the "secondary impact" the paper reads off Figure 6 (t ≈ 175 µs).
-pub fn secondary_peak(run: &Run) -> Option<Extreme> {
+pub fn secondary_peak(run: &RunResult) -> Option<Extreme> {
     let (t, f) = (&run.series.time, &run.series.force);
     let (intervals, _) = crate::run::contact_intervals(t, &run.series.alpha);
     let [t0, t1] = *intervals.first()?;

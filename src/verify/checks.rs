@@ -9,7 +9,7 @@ use crate::model::Model;
 use crate::numerics::argmax;
 use crate::physics::analytic;
 use crate::physics::references::{infinite_plate, rod_params, semi_infinite, ReferenceError};
-use crate::run::{Column, Run};
+use crate::run::{Column, RunResult};
 
 /// A check that cannot be evaluated on its run.
 #[derive(Debug, thiserror::Error)]
@@ -37,7 +37,7 @@ pub enum CheckError {
 struct Cx<'a> {
     case: &'a Case,
     model: &'a Model,
-    run: &'a Run,
+    run: &'a RunResult,
 }
 
 impl Cx<'_> {
@@ -75,7 +75,7 @@ fn or_nan(v: Option<f64>) -> f64 {
 
 /// Evaluates one check of a case on its run; `None` for the kinds that need a family
 /// of runs.
-pub fn check(case: &Case, model: &Model, run: &Run, spec: &CheckSpec) -> Result<Option<CheckResult>, CheckError> {
+pub fn check(case: &Case, model: &Model, run: &RunResult, spec: &CheckSpec) -> Result<Option<CheckResult>, CheckError> {
     let cx = Cx { case, model, run };
     Ok(Some(match spec {
         CheckSpec::EnergyBalance { max } => energy_balance(&cx, *max),

@@ -20,7 +20,7 @@ pub use case::{
 pub use checks::{check, CheckError};
 
 use crate::model::Model;
-use crate::run::Run;
+use crate::run::RunResult;
 use serde::Serialize;
 use std::path::PathBuf;
 
@@ -67,7 +67,7 @@ impl CheckResult {
 pub struct CaseOutcome {
     pub case: Case,
     pub model: Model,
-    pub run: Run,
+    pub run: RunResult,
     pub checks: Vec<CheckResult>,
     /// Wall-clock seconds of the case's run.
     pub wall_s: f64,

@@ -3,7 +3,7 @@
 
 use impactlab::integrate::Scheme;
 use impactlab::model::Model;
-use impactlab::run::{run_model, Run, RunOptions};
+use impactlab::run::{run_model, RunOptions, RunResult};
 use std::path::PathBuf;
 
 pub fn root() -> PathBuf {
@@ -21,7 +21,7 @@ pub fn rod_model() -> Model {
         .0
 }
 
-pub fn run(model: &Model, scheme: Scheme, dt: Option<f64>, steps: Option<usize>) -> Run {
+pub fn run(model: &Model, scheme: Scheme, dt: Option<f64>, steps: Option<usize>) -> RunResult {
     run_model(
         model,
         &RunOptions {
