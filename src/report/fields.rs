@@ -144,7 +144,7 @@ impl<'m> Mesh<'m> {
             });
         }
         Vtk {
-            version: Version::new((1, 0)),
+            version: Version::new_xml(1, 0),
             title: format!("{} t = {t:e}", model.name),
             byte_order: ByteOrder::LittleEndian,
             file_path: None,
