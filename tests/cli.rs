@@ -206,3 +206,36 @@ fn bench_runs_from_any_directory() {
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(out.contains("plate 49x49 (6913 solved DOF)"), "{out}");
 }
+
+/// Goal: the CSV files hold every digit: each value reads back to the same f64
+/// (shortest round-trip form), so `audit` sees any change. Also the GLSTAT-style
+/// `energy_ratio` = total/(initial + external work) is there and equals
+/// 1 + error·U0/(U0 + W_ext).
+#[test]
+fn csv_numbers_round_trip_and_energy_ratio_is_written() {
+    let model = rod_model();
+    let run = common::run(&model, impactlab::integrate::Scheme::Newmark, None, Some(400));
+    let dir = tempfile::tempdir().unwrap();
+    impactlab::output::write_dir_atomically(dir.path(), &impactlab::output::run_files(&model, &run)).unwrap();
+    let (_, rows) = impactlab::verify::gold::read(&dir.path().join("history.csv")).unwrap();
+    assert_eq!(rows.len(), run.history.len());
+    for (a, b) in rows.iter().zip(&run.history) {
+        for (x, y) in a.iter().zip(b) {
+            assert_eq!(x.to_bits(), y.to_bits(), "{x:e} vs {y:e}");
+        }
+    }
+    let (header, rows) = impactlab::verify::gold::read(&dir.path().join("energy.csv")).unwrap();
+    let col = |n: &str| {
+        header
+            .iter()
+            .position(|h| h == n)
+            .unwrap_or_else(|| panic!("{n} in {header:?}"))
+    };
+    let (ratio, error, work) = (col("energy_ratio"), col("error"), col("external_work"));
+    let u0 = run.energy[0].total;
+    for (r, e) in rows.iter().zip(&run.energy) {
+        assert_eq!(r[ratio].to_bits(), e.energy_ratio.to_bits());
+        let expected = 1.0 + r[error] * u0 / (u0 + r[work]);
+        assert!((r[ratio] - expected).abs() < 1e-14, "{} vs {expected}", r[ratio]);
+    }
+}

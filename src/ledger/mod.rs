@@ -16,6 +16,7 @@
 //! - W_ext: work of the loads that derive from no potential (the non-conservative
 //!   remainder of the NOLIN3 loads), accumulated with the scheme's own step load;
 //! - error = (U_t − U_0 − W_ext)/U_0;
+//! - energy ratio = U_t/(U_0 + W_ext), as LS-DYNA's GLSTAT prints it (1 when balanced);
 //! - momentum: Σ (Mv)_i over the DOFs of the impact direction.
 
 use crate::assembly::System;
@@ -34,10 +35,11 @@ pub struct EnergyRow {
     pub total: f64,
     pub external_work: f64,
     pub error: f64,
+    pub energy_ratio: f64,
     pub momentum: f64,
 }
 
-pub const COLUMNS: [&str; 10] = [
+pub const COLUMNS: [&str; 11] = [
     "time",
     "ke_impactor",
     "se_impactor",
@@ -47,11 +49,12 @@ pub const COLUMNS: [&str; 10] = [
     "total",
     "external_work",
     "error",
+    "energy_ratio",
     "momentum",
 ];
 
 impl EnergyRow {
-    pub fn values(&self) -> [f64; 10] {
+    pub fn values(&self) -> [f64; 11] {
         [
             self.time,
             self.ke_impactor,
@@ -62,6 +65,7 @@ impl EnergyRow {
             self.total,
             self.external_work,
             self.error,
+            self.energy_ratio,
             self.momentum,
         ]
     }
@@ -144,6 +148,7 @@ impl<'a> Ledger<'a> {
             total,
             external_work: self.external_work,
             error: if u0 > 0.0 { balance / u0 } else { balance },
+            energy_ratio: ratio(total, u0 + self.external_work),
             momentum: p,
         }
     }
@@ -181,4 +186,15 @@ pub fn ke_eq16(elements: &Eq16Elements, v: &[f64]) -> f64 {
         ke += 0.5 * me * (vm[0] * vm[0] + vm[1] * vm[1] + vm[2] * vm[2]);
     }
     ke
+}
+
+/// U_t/(U_0 + W_ext): 1 for a balanced ledger; 1 too when there is no energy at all.
+fn ratio(total: f64, available: f64) -> f64 {
+    if available != 0.0 {
+        total / available
+    } else if total == 0.0 {
+        1.0
+    } else {
+        f64::INFINITY
+    }
 }

@@ -84,7 +84,8 @@ pub fn csv_bytes(header: &[String], rows: impl Iterator<Item = Vec<f64>>) -> Vec
     let mut w = csv::Writer::from_writer(Vec::new());
     w.write_record(header).expect("writing to memory");
     for r in rows {
-        w.write_record(r.iter().map(|v| format!("{v:.12e}")))
+        // `{:e}` is the shortest form that reads back to the same f64.
+        w.write_record(r.iter().map(|v| format!("{v:e}")))
             .expect("writing to memory");
     }
     w.into_inner().expect("writing to memory")
@@ -98,7 +99,7 @@ pub fn energy_columns(m: &Model) -> Vec<String> {
         .iter()
         .map(|c| match *c {
             "time" => format!("time [{}]", u.time),
-            "error" => "error [-]".to_string(),
+            "error" | "energy_ratio" => format!("{c} [-]"),
             "momentum" => format!("momentum [{}*{}]", u.force, u.time),
             other => format!("{other} [{e}]"),
         })
