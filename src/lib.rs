@@ -59,6 +59,13 @@ pub fn load_deck(
 
 /// Builds the model of a deck held in memory (a generated mesh or a scene's deck);
 /// warnings are dropped, errors name `name` as the file.
+///
+/// ```
+/// let model = impactlab::model_from_text("rod", impactlab::paper::ROD_DECK)?;
+/// assert_eq!(model.units.length, "in");
+/// assert_eq!(model.elements.len(), 145); // 144 CRODs and the ball's CONM2
+/// # Ok::<(), impactlab::Error>(())
+/// ```
 pub fn model_from_text(name: &str, text: &str) -> Result<model::Model, Error> {
     let d = deck::parse_deck_str(name, text, deck::ReadOptions::default())?;
     Ok(model::build_model(&d)?.0)

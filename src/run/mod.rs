@@ -248,6 +248,16 @@ fn history_row(m: &Model, s: &StepState, force: f64) -> Vec<f64> {
 }
 
 /// Runs a model: assembles it, drops its inert DOFs when asked, integrates.
+///
+/// ```
+/// use impactlab::run::{run_model, RunOptions};
+/// let model = impactlab::paper::rod_model()?;
+/// let run = run_model(&model, &RunOptions::default())?;
+/// let s = &run.summary;
+/// assert_eq!(s.contact.intervals.len(), 1);
+/// assert!((s.rod.as_ref().unwrap().contact_end_tcl.unwrap() - 0.4134).abs() < 1e-3);
+/// # Ok::<(), impactlab::Error>(())
+/// ```
 pub fn run_model(model: &Model, opts: &RunOptions) -> Result<RunResult, SolveError> {
     let t0 = std::time::Instant::now();
     let sys = assemble(model);
