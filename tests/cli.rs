@@ -239,3 +239,22 @@ fn csv_numbers_round_trip_and_energy_ratio_is_written() {
         assert!((r[ratio] - expected).abs() < 1e-14, "{} vs {expected}", r[ratio]);
     }
 }
+
+/// Goal: a deck that cannot be read is one error naming its path (exit 2), not a
+/// cascade of "no CEND card" and "missing BEGIN BULK" on top of it.
+#[test]
+fn an_unreadable_deck_is_one_error_naming_its_path() {
+    let dir = tempfile::tempdir().unwrap();
+    let deck = dir.path().join("not-a-file.bdf");
+    std::fs::create_dir(&deck).unwrap();
+    let o = impactlab(&[
+        "run",
+        deck.to_str().unwrap(),
+        "--out",
+        dir.path().join("o").to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains(&format!("cannot read deck '{}'", deck.display())), "{err}");
+    assert!(err.contains("1 error(s) in deck") && !err.contains("CEND"), "{err}");
+}

@@ -39,8 +39,14 @@ pub struct Sections {
 /// Reads `path`, expands INCLUDEs (relative to the including file) and splits sections.
 pub fn read_sections(path: &Path, diags: &mut Diagnostics) -> Sections {
     let mut read = Read::default();
+    let errors = diags.items.iter().filter(|d| d.is_error()).count();
     expand(path, None, &mut read, diags);
-    let mut s = split(read.lines, diags);
+    if read.lines.is_empty() && diags.items.iter().filter(|d| d.is_error()).count() > errors {
+        // The deck itself could not be read: that error says it all.
+        return Sections::default();
+    }
+    let file: Arc<str> = Arc::from(path.display().to_string().as_str());
+    let mut s = split(file, read.lines, diags);
     s.sha256 = hex(read.hasher);
     s
 }
@@ -54,8 +60,8 @@ pub fn sections_from_str(name: &str, text: &str, diags: &mut Diagnostics) -> Sec
         ..Default::default()
     };
     read.hasher.update(text.as_bytes());
-    push_lines(file, text, Path::new("."), &mut read, diags);
-    let mut s = split(read.lines, diags);
+    push_lines(file.clone(), text, Path::new("."), &mut read, diags);
+    let mut s = split(file, read.lines, diags);
     s.sha256 = hex(read.hasher);
     s
 }
@@ -173,7 +179,8 @@ fn first_word(text: &str) -> String {
         .to_ascii_uppercase()
 }
 
-fn split(lines: Vec<SrcLine>, diags: &mut Diagnostics) -> Sections {
+/// The deck's lines split into sections; `file` names the deck where it has no line.
+fn split(file: Arc<str>, lines: Vec<SrcLine>, diags: &mut Diagnostics) -> Sections {
     #[derive(PartialEq)]
     enum S {
         Exec,
@@ -182,6 +189,18 @@ fn split(lines: Vec<SrcLine>, diags: &mut Diagnostics) -> Sections {
         Done,
     }
     let mut s = Sections::default();
+    if lines.is_empty() {
+        let whole = Pos {
+            file,
+            line: 0,
+            column: 0,
+        };
+        diags.push(Diagnostic::error(
+            Some(whole),
+            "the deck is empty: it needs executive control (SOL ...) ending in CEND, case control and BEGIN BULK ... ENDDATA",
+        ));
+        return s;
+    }
     let mut state = S::Exec;
     let mut last_pos = None;
     let has_cend = lines.iter().any(|l| first_word(&l.text) == "CEND");
