@@ -97,3 +97,23 @@ fn field_files_parse_back() {
     let files = write_fields(&rod, &r, &dir.path().join("rod")).unwrap();
     assert_eq!(read_back(&files[0]).unwrap(), (145, 144));
 }
+
+/// Goal: `report` draws every case: the rod with a contact that outlasts 2L/C
+/// (rod-rigid, where the semi-infinite rod does not apply) gets the two-rigid-body
+/// reference instead of the paper's figures, and no strain figure.
+#[test]
+fn rod_rigid_report_uses_the_two_rigid_body_reference() {
+    let case = read_case(&root().join("verification/rod-rigid.toml")).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let outcome = impactlab::study::cases::evaluate(&case).unwrap();
+    let r = report_case(&outcome, dir.path()).unwrap();
+    assert_eq!(r.failed, 0);
+    let names: Vec<String> = r
+        .figures
+        .iter()
+        .map(|f| f.file_name().unwrap().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(names, ["force.png", "force.svg", "energy.png", "energy.svg"]);
+    let svg = std::fs::read_to_string(dir.path().join("force.svg")).unwrap();
+    assert!(svg.contains("two rigid bodies") && !svg.contains("paper Fig"), "force.svg");
+}

@@ -75,3 +75,29 @@ pub fn infinite_plate(model: &Model) -> Result<(HertzDashpot, f64), ReferenceErr
     let z = analytic::plate_impedance(s.mass_per_area, d[(0, 0)], d[(1, 1)], d[(0, 1)], d[(2, 2)]);
     Ok((dashpot(model, z)?, z))
 }
+
+/// The impactor and the whole target as two rigid bodies in Hertz contact: a dashpot
+/// of infinite impedance (a rigid face) carrying the reduced mass μ = m M/(m + M),
+/// M the target's mass along the impact direction. Exact when the target's
+/// waves are fast next to the contact (a soft contact on a stiff rod). Returns it and μ.
+pub fn two_rigid_bodies(model: &Model) -> Result<(HertzDashpot, f64), ReferenceError> {
+    let c = model.contact.as_ref().ok_or(ReferenceError::NoContact)?;
+    let diag = crate::assembly::assemble(model).m_diag();
+    let comp = model.dofs[c.impactor.dof].comp;
+    let target: f64 = model
+        .target_mask()
+        .iter()
+        .enumerate()
+        .filter(|&(i, &t)| t && model.dofs[i].comp == comp)
+        .map(|(i, _)| diag[i])
+        .sum();
+    let mu = c.impactor.mass * target / (c.impactor.mass + target);
+    let d = HertzDashpot {
+        mass: mu,
+        v0: model.v0[c.impactor.dof].abs(),
+        stiffness: c.stiffness,
+        exponent: c.exponent,
+        impedance: f64::INFINITY,
+    };
+    Ok((d, mu))
+}

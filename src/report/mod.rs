@@ -138,13 +138,7 @@ struct Fig<'a> {
 }
 
 fn rod_figures(model: &Model, run: &RunResult, dir: &Path, footer: &str) -> Result<Vec<PathBuf>, Error> {
-    let (tr, _, lc) = crate::physics::references::semi_infinite(model)?;
-    let end = run
-        .summary
-        .rod
-        .as_ref()
-        .and_then(|r| r.contact_end_tcl)
-        .unwrap_or(f64::NAN);
+    use crate::physics::references::{semi_infinite, ReferenceError};
     let f = Fig {
         model,
         run,
@@ -152,9 +146,75 @@ fn rod_figures(model: &Model, run: &RunResult, dir: &Path, footer: &str) -> Resu
         footer,
         ax: TimeAxis::of(model),
     };
+    let (tr, _, lc) = match semi_infinite(model) {
+        Ok(r) => r,
+        // A contact that outlasts 2L/C: the rod moves as a rigid body during it, and
+        // the paper's figures and readings do not apply.
+        Err(ReferenceError::ContactDoesNotEnd) => return rigid_rod_figures(&f),
+        Err(e) => return Err(e.into()),
+    };
+    let end = run
+        .summary
+        .rod
+        .as_ref()
+        .and_then(|r| r.contact_end_tcl)
+        .unwrap_or(f64::NAN);
     let mut out = rod_force(&f, &tr, lc, end)?;
     out.extend(rod_strain(&f, &tr, lc)?);
     out.extend(rod_energy(&f, lc, end)?);
+    Ok(out)
+}
+
+/// A rod struck by a contact much softer than the rod (it outlasts 2L/C): the force
+/// against two rigid bodies in Hertz contact (reduced mass), and the energies in time.
+fn rigid_rod_figures(f: &Fig) -> Result<Vec<PathBuf>, Error> {
+    let (model, run, ax, footer, dir) = (f.model, f.run, &f.ax, f.footer, f.dir);
+    let u = &model.units;
+    let (d, mu) = crate::physics::references::two_rigid_bodies(model)?;
+    let (_, f_max, duration) = analytic::rigid_target(mu, d.v0, d.stiffness);
+    let t_end = 1.2 * duration;
+    let tr = d.integrate(t_end, duration / 2.0e4);
+    let s = &run.series;
+    let (tf, ff): (Vec<f64>, Vec<f64>) = s
+        .time
+        .iter()
+        .zip(&s.force)
+        .filter(|(t, _)| **t <= t_end)
+        .map(|(a, b)| (*a, *b))
+        .unzip();
+    let mut out = plot::line_chart(
+        &Chart {
+            title: "Impact force: a contact much softer than the rod".into(),
+            x_label: ax.label(),
+            y_label: format!("contact force [{}]", u.force),
+            footer: footer.into(),
+            lines: vec![
+                Line::new("impactlab (FE rod)", ax.map(&tf), ff, 0),
+                Line::new(
+                    format!("two rigid bodies, reduced mass {mu:.4e} (peak {f_max:.4e})"),
+                    ax.map(&tr.time.iter().step_by(20).copied().collect::<Vec<_>>()),
+                    tr.force.iter().step_by(20).copied().collect(),
+                    1,
+                )
+                .dashed(),
+            ],
+            headroom: 0.25,
+            ..Default::default()
+        },
+        &dir.join("force"),
+    )?;
+    out.extend(plot::line_chart(
+        &Chart {
+            title: "Energy distribution, impactor and rod".into(),
+            x_label: ax.label(),
+            y_label: format!("energy [{}·{}]", u.force, u.length),
+            footer: footer.into(),
+            lines: energy_lines(&run.energy, |t| t * ax.scale),
+            headroom: 0.45,
+            ..Default::default()
+        },
+        &dir.join("energy"),
+    )?);
     Ok(out)
 }
 

@@ -8,7 +8,7 @@ use crate::ledger::EnergyRow;
 use crate::model::Model;
 use crate::numerics::argmax;
 use crate::physics::analytic;
-use crate::physics::references::{infinite_plate, rod_params, semi_infinite, ReferenceError};
+use crate::physics::references::{infinite_plate, rod_params, semi_infinite, two_rigid_bodies, ReferenceError};
 use crate::run::{Column, RunResult};
 
 /// A check that cannot be evaluated on its run.
@@ -346,16 +346,7 @@ fn rigid_target(cx: &Cx, tol: &Tol) -> Result<CheckResult, CheckError> {
         case: cx.case.name.clone(),
         check: "rigid_target",
     })?;
-    let diag = crate::assembly::assemble(model).m_diag();
-    let comp = model.dofs[c.impactor.dof].comp;
-    let target: f64 = model
-        .target_mask()
-        .iter()
-        .enumerate()
-        .filter(|&(i, &t)| t && model.dofs[i].comp == comp)
-        .map(|(i, _)| diag[i])
-        .sum();
-    let mu = c.impactor.mass * target / (c.impactor.mass + target);
+    let (_, mu) = cx.reference("rigid_target", two_rigid_bodies(model))?;
     let (_, f, dur) = analytic::rigid_target(mu, model.v0[c.impactor.dof], c.stiffness);
     let s = &cx.run.summary;
     let (vd, vf) = (or_nan(s.contact.duration), s.contact.peak_force);
