@@ -115,5 +115,8 @@ fn rod_rigid_report_uses_the_two_rigid_body_reference() {
         .collect();
     assert_eq!(names, ["force.png", "force.svg", "energy.png", "energy.svg"]);
     let svg = std::fs::read_to_string(dir.path().join("force.svg")).unwrap();
-    assert!(svg.contains("two rigid bodies") && !svg.contains("paper Fig"), "force.svg");
+    assert!(
+        svg.contains("two rigid bodies") && !svg.contains("paper Fig"),
+        "force.svg"
+    );
 }
