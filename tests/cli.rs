@@ -210,7 +210,8 @@ fn bench_runs_from_any_directory() {
 /// Goal: the CSV files hold every digit: each value reads back to the same f64
 /// (shortest round-trip form), so `audit` sees any change. Also the GLSTAT-style
 /// `energy_ratio` = total/(initial + external work) is there and equals
-/// 1 + error·U0/(U0 + W_ext).
+/// 1 + error·U0/(U0 + W_ext), to 1e-14 (round-off of the two divisions; the values
+/// are of order 1).
 #[test]
 fn csv_numbers_round_trip_and_energy_ratio_is_written() {
     let model = rod_model();
