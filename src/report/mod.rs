@@ -128,6 +128,16 @@ fn energy_lines(e: &[EnergyRow], x: impl Fn(f64) -> f64) -> Vec<Line> {
     ]
 }
 
+/// The samples (t, y) with t ≤ `t_end`, every `every`-th one.
+fn samples_until(t: &[f64], y: &[f64], t_end: f64, every: usize) -> (Vec<f64>, Vec<f64>) {
+    t.iter()
+        .zip(y)
+        .filter(|(t, _)| **t <= t_end)
+        .step_by(every)
+        .map(|(a, b)| (*a, *b))
+        .unzip()
+}
+
 /// What every figure of a case reads.
 struct Fig<'a> {
     model: &'a Model,
@@ -174,14 +184,9 @@ fn rigid_rod_figures(f: &Fig) -> Result<Vec<PathBuf>, Error> {
     let (_, f_max, duration) = analytic::rigid_target(mu, d.v0, d.stiffness);
     let t_end = 1.2 * duration;
     let tr = d.integrate(t_end, duration / 2.0e4);
+    let (ta, fa) = samples_until(&tr.time, &tr.force, f64::INFINITY, 20);
     let s = &run.series;
-    let (tf, ff): (Vec<f64>, Vec<f64>) = s
-        .time
-        .iter()
-        .zip(&s.force)
-        .filter(|(t, _)| **t <= t_end)
-        .map(|(a, b)| (*a, *b))
-        .unzip();
+    let (tf, ff) = samples_until(&s.time, &s.force, t_end, 1);
     let mut out = plot::line_chart(
         &Chart {
             title: "Impact force: a contact much softer than the rod".into(),
@@ -192,8 +197,8 @@ fn rigid_rod_figures(f: &Fig) -> Result<Vec<PathBuf>, Error> {
                 Line::new("impactlab (FE rod)", ax.map(&tf), ff, 0),
                 Line::new(
                     format!("two rigid bodies, reduced mass {mu:.4e} (peak {f_max:.4e})"),
-                    ax.map(&tr.time.iter().step_by(20).copied().collect::<Vec<_>>()),
-                    tr.force.iter().step_by(20).copied().collect(),
+                    ax.map(&ta),
+                    fa,
                     1,
                 )
                 .dashed(),
@@ -223,21 +228,8 @@ fn rod_force(f: &Fig, tr: &analytic::Trace, lc: f64, end: f64) -> Result<Vec<Pat
     let (u, s, ax, footer, dir) = (&f.model.units, &f.run.series, &f.ax, f.footer, f.dir);
     let mut out = Vec::new();
     let t_end = 1.2 * end * lc;
-    let (tf, ff): (Vec<f64>, Vec<f64>) = s
-        .time
-        .iter()
-        .zip(&s.force)
-        .filter(|(t, _)| **t <= t_end)
-        .map(|(a, b)| (*a, *b))
-        .unzip();
-    let (ta, fa): (Vec<f64>, Vec<f64>) = tr
-        .time
-        .iter()
-        .zip(&tr.force)
-        .filter(|(t, _)| **t <= t_end)
-        .step_by(50)
-        .map(|(a, b)| (*a, *b))
-        .unzip();
+    let (tf, ff) = samples_until(&s.time, &s.force, t_end, 1);
+    let (ta, fa) = samples_until(&tr.time, &tr.force, t_end, 50);
     out.extend(plot::line_chart(
         &Chart {
             title: "Impact force history (paper Fig. 2)".into(),
@@ -385,20 +377,8 @@ fn plate_force(f: &Fig) -> Result<Vec<PathBuf>, Error> {
     let (p, _) = crate::physics::references::infinite_plate(model)?;
     let end = run.summary.contact.intervals.first().map_or(250e-6, |i| i[1]);
     let tr = p.integrate(80e-6, 1e-9);
-    let (ta, fa): (Vec<f64>, Vec<f64>) = tr
-        .time
-        .iter()
-        .zip(&tr.force)
-        .step_by(100)
-        .map(|(a, b)| (*a, *b))
-        .unzip();
-    let (tf, ff): (Vec<f64>, Vec<f64>) = s
-        .time
-        .iter()
-        .zip(&s.force)
-        .filter(|(t, _)| **t <= 1.15 * end)
-        .map(|(a, b)| (*a, *b))
-        .unzip();
+    let (ta, fa) = samples_until(&tr.time, &tr.force, f64::INFINITY, 100);
+    let (tf, ff) = samples_until(&s.time, &s.force, 1.15 * end, 1);
     out.extend(plot::line_chart(
         &Chart {
             title: "Impact force history (paper Fig. 6)".into(),
