@@ -147,15 +147,21 @@ struct Fig<'a> {
     ax: TimeAxis,
 }
 
+impl<'a> Fig<'a> {
+    fn new(model: &'a Model, run: &'a RunResult, dir: &'a Path, footer: &'a str) -> Self {
+        Fig {
+            model,
+            run,
+            dir,
+            footer,
+            ax: TimeAxis::of(model),
+        }
+    }
+}
+
 fn rod_figures(model: &Model, run: &RunResult, dir: &Path, footer: &str) -> Result<Vec<PathBuf>, Error> {
     use crate::physics::references::{semi_infinite, ReferenceError};
-    let f = Fig {
-        model,
-        run,
-        dir,
-        footer,
-        ax: TimeAxis::of(model),
-    };
+    let f = Fig::new(model, run, dir, footer);
     let (tr, _, lc) = match semi_infinite(model) {
         Ok(r) => r,
         // A contact that outlasts 2L/C: the rod moves as a rigid body during it, and
@@ -355,13 +361,7 @@ fn rod_energy(f: &Fig, lc: f64, end: f64) -> Result<Vec<PathBuf>, Error> {
 }
 
 fn plate_figures(model: &Model, run: &RunResult, dir: &Path, footer: &str) -> Result<Vec<PathBuf>, Error> {
-    let f = Fig {
-        model,
-        run,
-        dir,
-        footer,
-        ax: TimeAxis::of(model),
-    };
+    let f = Fig::new(model, run, dir, footer);
     let mut out = plate_force(&f)?;
     out.extend(plate_displacement(&f)?);
     out.extend(plate_gages(&f)?);
