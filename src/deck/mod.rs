@@ -37,10 +37,15 @@ impl Units {
         self.time != Self::UNSPECIFIED
     }
 
+    /// True when the deck's time unit is the second (the paper's).
+    pub fn in_seconds(&self) -> bool {
+        self.time == "s"
+    }
+
     /// A scale and a label for printing times of the order of a contact: microseconds
     /// when the deck's time unit is the second, the deck's own unit otherwise.
     pub fn short_time(&self) -> (f64, String) {
-        if self.time == "s" {
+        if self.in_seconds() {
             (1e6, "µs".into())
         } else {
             (1.0, self.time.clone())

@@ -68,11 +68,6 @@ impl Scheme {
         Scheme::ALL.into_iter().find(|s| s.name() == name)
     }
 
-    /// True for the schemes that factorise a matrix and solve each step.
-    pub fn implicit(self) -> bool {
-        self != Scheme::Central
-    }
-
     /// The scheme's stepper for a model, step size and system.
     fn stepper<'a>(self, model: &'a Model, sys: &'a System, dt: f64) -> Result<Box<dyn Stepper + 'a>, SolveError> {
         Ok(match self {

@@ -54,6 +54,8 @@ impl<'a> ThreePoint<'a> {
     /// Factorises M/Δt² + βK, starts from u(−1) = u(0) − Δt v(0) and solves for u(1).
     pub fn new(model: &'a Model, sys: &'a System, dt: f64, params: ThreePointParams) -> Result<Self, SolveError> {
         let n = model.n();
+        // The first solve (for u(1)) comes before the driver sees state 0: a bad initial
+        // state is reported at step 0 here, not as a NaN at step 1.
         check_finite(model, 0, 0.0, &model.u0)?;
         check_finite(model, 0, 0.0, &model.v0)?;
         let a = sys.combine(1.0 / (dt * dt), params.beta);

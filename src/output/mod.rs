@@ -127,9 +127,9 @@ pub fn human_summary(model: &Model, run: &RunResult) -> String {
     let (scale, tu) = u.short_time();
     let num = |v: Option<f64>| v.map(|x| format!("{x:.4e}")).unwrap_or_else(|| "-".into());
     let time = |v: Option<f64>| {
-        v.map(|x| match scale {
-            1.0 => format!("{x:.4e} {tu}"),
-            _ => format!("{:.2} {tu}", x * scale),
+        v.map(|x| match u.in_seconds() {
+            true => format!("{:.2} {tu}", x * scale),
+            false => format!("{x:.4e} {tu}"),
         })
         .unwrap_or_else(|| "-".into())
     };

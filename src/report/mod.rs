@@ -97,22 +97,24 @@ pub fn report_case(outcome: &CaseOutcome, dir: &Path) -> Result<CaseReport, Erro
 struct TimeAxis {
     scale: f64,
     unit: String,
+    /// The deck's times are seconds, as the paper's published times are.
+    seconds: bool,
 }
 
 impl TimeAxis {
     fn of(model: &Model) -> Self {
         let (scale, unit) = model.units.short_time();
-        TimeAxis { scale, unit }
+        TimeAxis {
+            scale,
+            unit,
+            seconds: model.units.in_seconds(),
+        }
     }
     fn map(&self, t: &[f64]) -> Vec<f64> {
         t.iter().map(|x| x * self.scale).collect()
     }
     fn label(&self) -> String {
         format!("time [{}]", self.unit)
-    }
-    /// True when the deck's times are seconds, as the paper's published times are.
-    fn seconds(&self) -> bool {
-        self.unit == "µs"
     }
 }
 
@@ -396,7 +398,7 @@ fn plate_force(f: &Fig) -> Result<Vec<PathBuf>, Error> {
                 .dashed(),
             ],
             // The paper's times are seconds: marked only on a deck in seconds.
-            vlines: if ax.seconds() {
+            vlines: if ax.seconds {
                 vec![
                     (204.0, "measured contact time, 204 µs".into()),
                     (175.0, "paper: secondary impact, 175 µs".into()),

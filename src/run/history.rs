@@ -1,6 +1,6 @@
 //! The columns of `history.csv`: typed, turned into header text only when written.
 
-use crate::deck::Units;
+use super::UnitSystem;
 use crate::elements::{Fibre, Measure, Plane, Recovered};
 use crate::model::DofLabel;
 
@@ -74,7 +74,7 @@ impl Column {
     }
 
     /// The column's unit in the deck's unit system.
-    pub fn unit(&self, u: &Units) -> String {
+    pub fn unit(&self, u: &UnitSystem) -> String {
         let (l, f, t) = (&u.length, &u.force, &u.time);
         let dof = |d: &DofLabel| {
             if (4..=6).contains(&d.comp) {
@@ -98,7 +98,7 @@ impl Column {
     }
 
     /// The header text: `name [unit]`.
-    pub fn header(&self, u: &Units) -> String {
+    pub fn header(&self, u: &UnitSystem) -> String {
         format!("{} [{}]", self.name(), self.unit(u))
     }
 }
@@ -106,15 +106,16 @@ impl Column {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::deck::Units;
 
     /// Goal: headers carry the deck's units, rotations in rad, strains dimensionless.
     #[test]
     fn headers_carry_the_decks_units() {
-        let u = Units {
+        let u = UnitSystem::of(&Units {
             length: "mm".into(),
             force: "kN".into(),
             time: "ms".into(),
-        };
+        });
         let d = |point, comp| DofLabel { point, comp };
         assert_eq!(Column::Time.header(&u), "time [ms]");
         assert_eq!(Column::Velo(d(73, 5)).header(&u), "velo_73_R2 [rad/ms]");

@@ -91,8 +91,6 @@ pub struct RunResult {
     pub series: Series,
     pub energy: Vec<EnergyRow>,
     pub history_columns: Vec<Column>,
-    /// The deck's units, for the history's header.
-    pub units: crate::deck::Units,
     pub history: Vec<Vec<f64>>,
     pub summary: Summary,
     /// The solved DOFs of the run (inert DOFs dropped), for reading snapshots.
@@ -170,7 +168,10 @@ impl RunResult {
 
     /// The header of `history.csv`: each column's name with its unit.
     pub fn history_header(&self) -> Vec<String> {
-        self.history_columns.iter().map(|c| c.header(&self.units)).collect()
+        self.history_columns
+            .iter()
+            .map(|c| c.header(&self.summary.units))
+            .collect()
     }
 
     /// The names of the history's columns (headers without units).
@@ -320,7 +321,6 @@ pub fn run_system(model: &Model, sys: &System, opts: &RunOptions) -> Result<RunR
         series: rec.series,
         energy: rec.energy,
         history_columns: history_columns(model),
-        units: model.units.clone(),
         history: rec.history,
         summary: Summary::default(),
         dofs: model.dofs.clone(),

@@ -77,6 +77,27 @@ fn force_l2(run: &RunResult, r: &Reference) -> f64 {
     (num / den).sqrt()
 }
 
+/// A converged run of `model` (energy scheme at Δt/16 over `t_end`) and its force
+/// history as a reference: what a scheme's step alone costs in accuracy is measured
+/// against it.
+fn converged(model: &Model, dt0: f64, t_end: f64) -> Result<(RunResult, Reference), Error> {
+    let dt = dt0 / 16.0;
+    let opts = RunOptions {
+        scheme: Scheme::Energy,
+        dt: Some(dt),
+        steps: Some((t_end / dt).ceil() as usize),
+        ..Default::default()
+    };
+    let run = run_model(model, &opts)?;
+    let reference = Reference {
+        t: run.series.time.clone(),
+        f: run.series.force.clone(),
+        duration: duration(&run),
+        peak: peak(&run),
+    };
+    Ok((run, reference))
+}
+
 fn duration(run: &RunResult) -> f64 {
     run.summary.contact.duration.unwrap_or(f64::NAN)
 }
@@ -183,25 +204,8 @@ impl RodStudy {
             duration: ev.contact_end,
             peak: ev.peak_force,
         };
-        // The discrete reference for the time-step error alone: the same 144-element
-        // rod, energy scheme at Δt/16.
-        let (dt0, t_end) = (ROD_DT, ROD_T_END);
-        let fine_dt = dt0 / 16.0;
-        let fine = run_model(
-            &base,
-            &RunOptions {
-                scheme: Scheme::Energy,
-                dt: Some(fine_dt),
-                steps: Some((t_end / fine_dt).ceil() as usize),
-                ..Default::default()
-            },
-        )?;
-        let discrete = Reference {
-            t: fine.series.time.clone(),
-            f: fine.series.force.clone(),
-            duration: duration(&fine),
-            peak: peak(&fine),
-        };
+        // The discrete reference for the time-step error alone: the same 144-element rod.
+        let (_, discrete) = converged(&base, ROD_DT, ROD_T_END)?;
         Ok(RodStudy {
             base,
             rod,
@@ -319,22 +323,7 @@ fn plate_rows(repeats: usize, meshes: &[usize], progress: &dyn Fn(&str)) -> Resu
     };
     let m25 = plate_model(25)?;
     progress("plate reference: energy scheme, dt/16");
-    let ref_dt = dt0 / 16.0;
-    let rrun = run_model(
-        &m25,
-        &RunOptions {
-            scheme: Scheme::Energy,
-            dt: Some(ref_dt),
-            steps: Some((t_end / ref_dt).ceil() as usize),
-            ..Default::default()
-        },
-    )?;
-    let reference = Reference {
-        t: rrun.series.time.clone(),
-        f: rrun.series.force.clone(),
-        duration: duration(&rrun),
-        peak: peak(&rrun),
-    };
+    let (rrun, reference) = converged(&m25, dt0, t_end)?;
     let ref_gage = gage_a(25, &rrun);
     for scheme in Scheme::ALL {
         for f in DT_FACTORS {

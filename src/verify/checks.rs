@@ -131,7 +131,7 @@ fn energy_balance(cx: &Cx, max: f64) -> CheckResult {
         0.0,
         format!("≤ {max:.1e}"),
         v <= max,
-        format!("largest at t = {:.4e} {}", e[k].time, cx.run.units.time),
+        format!("largest at t = {:.4e} {}", e[k].time, cx.run.summary.units.time),
     )
 }
 
@@ -149,7 +149,7 @@ fn momentum(cx: &Cx, max: f64) -> Result<CheckResult, CheckError> {
         0.0,
         format!("≤ {max:.1e}"),
         v <= max,
-        format!("largest at t = {:.4e} {}", e[k].time, cx.run.units.time),
+        format!("largest at t = {:.4e} {}", e[k].time, cx.run.summary.units.time),
     ))
 }
 
@@ -173,7 +173,7 @@ fn contact_complementarity(cx: &Cx) -> CheckResult {
         "0 violations".into(),
         bad == 0,
         first.map_or("F ≥ 0, F > 0 and SE_i > 0 exactly when α > 0".into(), |t| {
-            format!("first violation at t = {t:.4e} {}", cx.run.units.time)
+            format!("first violation at t = {t:.4e} {}", cx.run.summary.units.time)
         }),
     )
 }
@@ -335,7 +335,7 @@ fn infinite_plate_force(cx: &Cx, until: f64, max: f64) -> Result<CheckResult, Ch
         v <= max,
         format!(
             "impedance 8√(ρh D*) = {z:.4e}; largest at t = {:.4e} {}",
-            sr.time[k], cx.run.units.time
+            sr.time[k], cx.run.summary.units.time
         ),
     ))
 }
