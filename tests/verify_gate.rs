@@ -328,3 +328,130 @@ tol = { rel = 1e-3 }
     );
     assert_eq!(e.exit_code(), 2);
 }
+
+/// Goal: the comparison with NASTRAN-95's history catches a change the size of the
+/// reference's printed digits: the impact velocity moved by 1e-5 fails the rod's
+/// 1e-6-of-peak check, and the detail names the worst column. Reference:
+/// reference-data/nastran95/rod_history.csv (every step).
+#[test]
+fn external_solver_comparison_catches_a_small_change() {
+    let dir = tempfile::tempdir().unwrap();
+    let reference = root().join("reference-data/nastran95/rod_history.csv");
+    let body = |scale: &str| {
+        format!(
+            r#"name = "nastran95"
+deck = "DECK"
+scheme = "nastran"
+dt = 2e-7
+steps = 2500
+every_step = true
+modify = {{ velocity_scale = {scale} }}
+[[check]]
+kind = "external"
+file = "{}"
+solver = "NASTRAN-95"
+what = "force"
+time = "time_s"
+max = 1e-6
+[check.columns]
+contact_force = "contact_force_lbf"
+impactor_disp = "impactor_disp_in"
+"#,
+            reference.display()
+        )
+    };
+    let judge = |scale: &str| {
+        let case = verify::read_case(&temp_case(dir.path(), &body(scale))).unwrap();
+        impactlab::study::cases::evaluate(&case).unwrap().checks.remove(0)
+    };
+    let same = judge("1.0");
+    assert!(same.passed, "{}", same.detail);
+    assert!(same.value < 1e-6 && same.value > 0.0, "{}", same.value);
+    let moved = judge("1.00001");
+    assert!(!moved.passed, "{}", moved.detail);
+    assert!(moved.detail.contains("worst contact_force") || moved.detail.contains("worst impactor_disp"));
+}
+
+/// Goal: an external column the run does not have fails the check (never a pass over
+/// nothing compared), naming the column.
+#[test]
+fn external_comparison_without_the_column_fails() {
+    let dir = tempfile::tempdir().unwrap();
+    let reference = root().join("reference-data/nastran95/rod_history.csv");
+    let p = temp_case(
+        dir.path(),
+        &format!(
+            r#"name = "nocolumn"
+deck = "DECK"
+steps = 20
+[[check]]
+kind = "external"
+file = "{}"
+solver = "NASTRAN-95"
+what = "a column we do not record"
+time = "time_s"
+max = 1e-6
+[check.columns]
+disp_145_T1 = "far_end_disp_in"
+"#,
+            reference.display()
+        ),
+    );
+    let case = verify::read_case(&p).unwrap();
+    let r = impactlab::study::cases::evaluate(&case).unwrap().checks.remove(0);
+    assert!(!r.passed);
+    assert_eq!(r.detail, "the run has no history column disp_145_T1");
+}
+
+/// Goal: verify.json is machine-readable: a top-level verdict and counts, the
+/// program's version, numeric tolerances, `null` where a check has no reference, and
+/// each check's own time; a failing check makes `passed` false.
+#[test]
+fn verify_json_carries_a_machine_readable_verdict() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = temp_case(
+        dir.path(),
+        r#"name = "json"
+deck = "DECK"
+dt = 2e-7
+steps = 500
+[[check]]
+kind = "energy_balance"
+max = 1e-3
+[[check]]
+kind = "summary"
+key = "contact.peak_force"
+reference = 219.9
+tol = { rel = 1e-3 }
+source = "NASTRAN-95"
+[[check]]
+kind = "summary"
+key = "contact.peak_force"
+reference = 100.0
+tol = { abs = 1.0 }
+source = "a wrong number"
+"#,
+    );
+    let out = dir.path().join("o");
+    let o = impactlab(&["verify", p.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+    let j: serde_json::Value = serde_json::from_slice(&std::fs::read(out.join("verify.json")).unwrap()).unwrap();
+    assert_eq!(j["passed"], false);
+    assert_eq!(
+        j["counts"],
+        serde_json::json!({"checks": 3, "passed": 2, "failed": 1, "cases_in_error": 0})
+    );
+    assert_eq!(j["impactlab_version"], env!("CARGO_PKG_VERSION"));
+    let r = j["results"].as_array().unwrap();
+    assert!(r[0]["reference"].is_null());
+    assert_eq!(r[0]["atol"], 1e-3);
+    assert!(r[0]["rtol"].is_null());
+    assert_eq!(r[1]["reference"], 219.9);
+    assert_eq!(r[1]["rtol"], 1e-3);
+    assert_eq!(r[2]["atol"], 1.0);
+    assert_eq!(r[2]["passed"], false);
+    for c in r {
+        assert!(c["time_s"].as_f64().unwrap() >= 0.0);
+        assert!(c["tolerance"].is_string());
+    }
+}

@@ -685,8 +685,8 @@ fn checks_table(m: &mut String, case: &Case, checks: &[CheckResult]) {
             "| {} | {} | {} | {} | {} |",
             c.check.replace('|', "/"),
             sig(c.value, 6),
-            sig(c.reference, 6),
-            c.tolerance,
+            c.reference.map_or("-".into(), |r| sig(r, 6)),
+            c.bound.text,
             if c.passed { "pass" } else { "**FAIL**" }
         );
     }

@@ -7,7 +7,7 @@ use crate::mesh::plate_model;
 use crate::model::Model;
 use crate::numerics::slope;
 use crate::run::{run_model, RunResult};
-use crate::verify::{case_model, case_options, check, Case, CaseOutcome, CheckResult, CheckSpec, Quantity};
+use crate::verify::{case_model, case_options, check, Bound, Case, CaseOutcome, CheckResult, CheckSpec, Quantity};
 use std::time::Instant;
 
 /// Runs a case and evaluates all its checks, timing each check on its own (a
@@ -81,8 +81,8 @@ fn convergence(case: &Case, model: &Model, run: &RunResult, spec: &CheckSpec) ->
             Ok(result(
                 format!("dt_convergence {}", quantity.name()),
                 p,
-                *expected_order,
-                format!("± {tol}"),
+                Some(*expected_order),
+                Bound::within(*tol, format!("± {tol}")),
                 (p - expected_order).abs() <= *tol,
                 format!("values {}", list(&values)),
             ))
@@ -99,8 +99,11 @@ fn convergence(case: &Case, model: &Model, run: &RunResult, spec: &CheckSpec) ->
             Ok(result(
                 format!("mesh_convergence {}", quantity.name()),
                 last,
-                0.0,
-                format!("≤ {max:.1e}, decreasing"),
+                None,
+                Bound {
+                    text: format!("≤ {max:.1e}, decreasing"),
+                    ..Bound::at_most(*max)
+                },
                 last <= *max && decreasing,
                 format!("meshes {meshes:?}: {}", list(&values)),
             ))

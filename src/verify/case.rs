@@ -2,10 +2,12 @@
 //! apply, read and validated with file and line.
 
 use super::gold::GoldTol;
+use super::Bound;
 use crate::integrate::Scheme;
 use crate::model::{Model, Modify};
 use crate::run::{RunOptions, Summary};
 use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 /// A case file that cannot be used.
@@ -88,12 +90,17 @@ impl Tol {
         let d = (value - reference).abs();
         d <= self.abs || d <= self.rel * reference.abs()
     }
-    /// The tolerance in words, for tables.
-    pub fn text(&self) -> String {
-        match (self.rel > 0.0, self.abs > 0.0) {
-            (true, true) => format!("rel {:.1e} or abs {:.1e}", self.rel, self.abs),
-            (true, false) => format!("rel {:.1e}", self.rel),
-            _ => format!("abs {:.1e}", self.abs),
+    /// The tolerance as numbers and in words.
+    pub fn bound(&self) -> Bound {
+        let given = |x: f64| (x > 0.0).then_some(x);
+        Bound {
+            rtol: given(self.rel),
+            atol: given(self.abs),
+            text: match (self.rel > 0.0, self.abs > 0.0) {
+                (true, true) => format!("rel {:.1e} or abs {:.1e}", self.rel, self.abs),
+                (true, false) => format!("rel {:.1e}", self.rel),
+                _ => format!("abs {:.1e}", self.abs),
+            },
         }
     }
 }
@@ -166,6 +173,19 @@ pub enum CheckSpec {
     /// The run's history against a stored gold CSV, every column with the same
     /// relative tolerance and a floor relative to the column's peak.
     Gold { file: PathBuf, tol: GoldTol },
+    /// The run's history against another solver's results ([`super::external`]):
+    /// `columns` maps each history column (name without unit) to the external file's
+    /// column; at every time both have, |ours − theirs| ≤ max · (the external
+    /// column's peak). `time` names the external time column, `solver` who computed
+    /// it, `what` the columns compared (the check's name).
+    External {
+        file: PathBuf,
+        solver: String,
+        what: String,
+        time: String,
+        columns: BTreeMap<String, String>,
+        max: f64,
+    },
 }
 
 /// Reads and validates a case file.

@@ -3,7 +3,7 @@
 //! ([`crate::study::cases`]); [`check`] returns `None` for them.
 
 use super::case::{rel, Case, CheckSpec, RodQuantity, Tol};
-use super::{gold, CheckResult};
+use super::{external, gold, Bound, CheckResult};
 use crate::ledger::EnergyRow;
 use crate::model::Model;
 use crate::numerics::argmax;
@@ -25,6 +25,12 @@ pub enum CheckError {
     NoContact { case: String, check: &'static str },
     #[error("case {case}: the run has no history column {column}")]
     NoColumn { case: String, column: String },
+    #[error("case {case}: {source}")]
+    External {
+        case: String,
+        #[source]
+        source: gold::CsvError,
+    },
     #[error("case {case}: {source}")]
     Summary {
         case: String,
@@ -52,12 +58,12 @@ impl Cx<'_> {
         &self,
         check: String,
         value: f64,
-        reference: f64,
-        tolerance: String,
+        reference: Option<f64>,
+        bound: Bound,
         passed: bool,
         detail: String,
     ) -> CheckResult {
-        CheckResult::new(self.case, check, value, reference, tolerance, passed, detail)
+        CheckResult::new(self.case, check, value, reference, bound, passed, detail)
     }
     fn reference<T>(&self, check: &'static str, r: Result<T, ReferenceError>) -> Result<T, CheckError> {
         r.map_err(|source| CheckError::Reference {
@@ -112,12 +118,20 @@ pub fn check(case: &Case, model: &Model, run: &RunResult, spec: &CheckSpec) -> R
             cx.result(
                 format!("gold {}", file.display()),
                 out.worst,
-                0.0,
-                tol.text(),
+                None,
+                tol.bound(),
                 out.passed,
                 out.detail,
             )
         }
+        CheckSpec::External {
+            file,
+            solver,
+            what,
+            time,
+            columns,
+            max,
+        } => external_history(&cx, file, solver, what, time, columns, *max)?,
         CheckSpec::DtConvergence { .. } | CheckSpec::MeshConvergence { .. } => return Ok(None),
     }))
 }
@@ -128,8 +142,8 @@ fn energy_balance(cx: &Cx, max: f64) -> CheckResult {
     cx.result(
         "energy_balance".into(),
         v,
-        0.0,
-        format!("≤ {max:.1e}"),
+        None,
+        Bound::at_most(max),
         v <= max,
         format!("largest at t = {:.4e} {}", e[k].time, cx.run.summary.units.time),
     )
@@ -146,8 +160,8 @@ fn momentum(cx: &Cx, max: f64) -> Result<CheckResult, CheckError> {
     Ok(cx.result(
         "momentum".into(),
         v,
-        0.0,
-        format!("≤ {max:.1e}"),
+        None,
+        Bound::at_most(max),
         v <= max,
         format!("largest at t = {:.4e} {}", e[k].time, cx.run.summary.units.time),
     ))
@@ -169,8 +183,8 @@ fn contact_complementarity(cx: &Cx) -> CheckResult {
     cx.result(
         "contact_complementarity".into(),
         bad as f64,
-        0.0,
-        "0 violations".into(),
+        None,
+        Bound::within(0.0, "0 violations".into()),
         bad == 0,
         first.map_or("F ≥ 0, F > 0 and SE_i > 0 exactly when α > 0".into(), |t| {
             format!("first violation at t = {t:.4e} {}", cx.run.summary.units.time)
@@ -192,8 +206,8 @@ fn kinetic_equals_strain(cx: &Cx, from_tcl: f64, to_tcl: f64, max: f64) -> Check
     cx.result(
         format!("kinetic_equals_strain tC/L {from_tcl}..{to_tcl}"),
         v,
-        0.0,
-        format!("≤ {max:.1e}"),
+        None,
+        Bound::at_most(max),
         v <= max,
         format!("largest at tC/L = {:.4}", cx.tcl(e[k].time)),
     )
@@ -216,8 +230,8 @@ fn strain_energy_dip(cx: &Cx, near_tcl: f64, half_width: f64, [lo, hi]: [f64; 2]
     cx.result(
         format!("strain_energy_dip near tC/L {near_tcl}"),
         frac,
-        0.0,
-        format!("depth in [{lo}, {hi}] within ±{half_width}"),
+        Some(0.5 * (lo + hi)),
+        Bound::within(0.5 * (hi - lo), format!("depth in [{lo}, {hi}] within ±{half_width}")),
         ok,
         format!("minimum SE_t = {frac:.4} of its plateau at tC/L = {at:.4}"),
     )
@@ -237,8 +251,8 @@ fn eq16_deficit(cx: &Cx, after_tcl: f64, min: f64, max: f64) -> CheckResult {
     cx.result(
         "eq16_deficit".into(),
         hi,
-        0.0,
-        format!("in [{min:.1e}, {max:.1e}]"),
+        Some(0.5 * (min + max)),
+        Bound::within(0.5 * (max - min), format!("in [{min:.1e}, {max:.1e}]")),
         lo >= min && hi <= max,
         format!("(½vᵀMv − Eq.16)/½vᵀMv ranges {lo:.3e}..{hi:.3e} after tC/L = {after_tcl}"),
     )
@@ -253,8 +267,8 @@ fn summary(cx: &Cx, key: &str, reference: f64, tol: &Tol, source: &str) -> Resul
     Ok(cx.result(
         key.to_string(),
         v,
-        reference,
-        tol.text(),
+        Some(reference),
+        tol.bound(),
         tol.accepts(v, reference),
         source.to_string(),
     ))
@@ -281,8 +295,8 @@ fn semi_infinite_rod(cx: &Cx, quantity: RodQuantity, tol: &Tol) -> Result<CheckR
     Ok(cx.result(
         format!("semi_infinite_rod {}", quantity.name()),
         v,
-        r,
-        tol.text(),
+        Some(r),
+        tol.bound(),
         tol.accepts(v, r),
         "ball on a semi-infinite rod, RK4 h = L/C/2e5".into(),
     ))
@@ -308,8 +322,8 @@ fn dalembert_strain(cx: &Cx, element: i64, x: f64, until_tcl: f64, max: f64) -> 
     Ok(cx.result(
         format!("dalembert_strain element {element}"),
         v,
-        0.0,
-        format!("≤ {max:.1e} of peak"),
+        None,
+        Bound::of_peak(max),
         v <= max,
         format!("largest at tC/L = {:.4}", h[k][0] / lc),
     ))
@@ -330,8 +344,8 @@ fn infinite_plate_force(cx: &Cx, until: f64, max: f64) -> Result<CheckResult, Ch
     Ok(cx.result(
         format!("infinite_plate force to {:.0} us", until * 1e6),
         v,
-        0.0,
-        format!("≤ {max:.1e} of peak"),
+        None,
+        Bound::of_peak(max),
         v <= max,
         format!(
             "impedance 8√(ρh D*) = {z:.4e}; largest at t = {:.4e} {}",
@@ -353,9 +367,46 @@ fn rigid_target(cx: &Cx, tol: &Tol) -> Result<CheckResult, CheckError> {
     Ok(cx.result(
         "rigid_target duration".into(),
         vd,
-        dur,
-        tol.text(),
+        Some(dur),
+        tol.bound(),
         tol.accepts(vd, dur) && tol.accepts(vf, f),
         format!("peak force {vf:.5e} vs {f:.5e}; reduced mass {mu:.4e}"),
     ))
+}
+
+/// The run's history against another solver's CSV, column by column.
+fn external_history(
+    cx: &Cx,
+    file: &std::path::Path,
+    solver: &str,
+    what: &str,
+    time: &str,
+    columns: &std::collections::BTreeMap<String, String>,
+    max: f64,
+) -> Result<CheckResult, CheckError> {
+    let case = || cx.case.name.clone();
+    let series = external::load(&rel(cx.case, file), solver, time, columns)
+        .map_err(|source| CheckError::External { case: case(), source })?;
+    let name = format!("external {solver}: {what}");
+    let bound = Bound::of_peak(max);
+    Ok(
+        match external::compare(&series, &cx.run.history_names(), &cx.run.history, cx.run.dt) {
+            Ok(diffs) => {
+                let (k, worst) = argmax(diffs.iter().map(|d| d.worst));
+                let w = &diffs[k];
+                let per_column: Vec<String> = diffs.iter().map(|d| format!("{} {:.2e}", d.ours, d.worst)).collect();
+                let detail = format!(
+                    "{}: worst {} at t = {:.6e} {} ({} times compared); {}",
+                    file.display(),
+                    w.ours,
+                    w.at,
+                    cx.run.summary.units.time,
+                    w.compared,
+                    per_column.join(", ")
+                );
+                cx.result(name, worst, None, bound, worst <= max, detail)
+            }
+            Err(e) => cx.result(name, f64::INFINITY, None, bound, false, e.to_string()),
+        },
+    )
 }

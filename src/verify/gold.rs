@@ -28,9 +28,14 @@ pub struct GoldTol {
 }
 
 impl GoldTol {
-    /// The tolerance in words, for tables.
-    pub fn text(&self) -> String {
-        format!("rel {:.1e}, floor {:.1e}·peak", self.rel, self.floor)
+    /// The tolerance as numbers (`atol` is the floor, relative to each column's peak)
+    /// and in words.
+    pub fn bound(&self) -> super::Bound {
+        super::Bound {
+            rtol: Some(self.rel),
+            atol: Some(self.floor),
+            text: format!("rel {:.1e}, floor {:.1e}·peak", self.rel, self.floor),
+        }
     }
 }
 

@@ -12,6 +12,7 @@
 pub mod audit;
 pub mod case;
 pub mod checks;
+pub mod external;
 pub mod gold;
 
 pub use case::{
@@ -24,16 +25,58 @@ use crate::run::RunResult;
 use serde::Serialize;
 use std::path::PathBuf;
 
+/// What a check accepts, as numbers a program can read and as words for a table.
+///
+/// A value passes when |value − reference| ≤ max(rtol·|reference|, atol) (a check
+/// without a reference is a bound on |value|); `text` says the same for a reader,
+/// with what a number is relative to (of peak, per column) where it is not the value.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Bound {
+    pub rtol: Option<f64>,
+    pub atol: Option<f64>,
+    #[serde(rename = "tolerance")]
+    pub text: String,
+}
+
+impl Bound {
+    /// |value| ≤ max.
+    pub fn at_most(max: f64) -> Self {
+        Bound {
+            rtol: None,
+            atol: Some(max),
+            text: format!("≤ {max:.1e}"),
+        }
+    }
+    /// |value| ≤ max, the value being a difference relative to a peak.
+    pub fn of_peak(max: f64) -> Self {
+        Bound {
+            text: format!("≤ {max:.1e} of peak"),
+            ..Bound::at_most(max)
+        }
+    }
+    /// |value − reference| ≤ atol, in words.
+    pub fn within(atol: f64, text: String) -> Self {
+        Bound {
+            rtol: None,
+            atol: Some(atol),
+            text,
+        }
+    }
+}
+
 /// The verdict of one check.
 #[derive(Debug, Clone, Serialize)]
 pub struct CheckResult {
     pub case: String,
     pub check: String,
     pub value: f64,
-    pub reference: f64,
-    pub tolerance: String,
+    /// What the value is compared with; `null` for a bound on the value itself.
+    pub reference: Option<f64>,
+    #[serde(flatten)]
+    pub bound: Bound,
     pub passed: bool,
     pub detail: String,
+    /// Wall-clock seconds of this check alone (a convergence check's includes its runs).
     pub time_s: f64,
 }
 
@@ -43,8 +86,8 @@ impl CheckResult {
         case: &Case,
         check: String,
         value: f64,
-        reference: f64,
-        tolerance: String,
+        reference: Option<f64>,
+        bound: Bound,
         passed: bool,
         detail: String,
     ) -> Self {
@@ -53,7 +96,7 @@ impl CheckResult {
             check,
             value,
             reference,
-            tolerance,
+            bound,
             passed,
             detail,
             time_s: 0.0,
@@ -74,7 +117,7 @@ pub struct CaseOutcome {
 }
 
 /// The verdicts of all cases.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone)]
 pub struct Verdicts {
     pub results: Vec<CheckResult>,
     /// Cases that could not run at all, with why.
@@ -82,6 +125,16 @@ pub struct Verdicts {
 }
 
 impl Verdicts {
+    pub fn counts(&self) -> Counts {
+        let failed = self.results.iter().filter(|r| !r.passed).count();
+        Counts {
+            checks: self.results.len(),
+            passed: self.results.len() - failed,
+            failed,
+            cases_in_error: self.errors.len(),
+        }
+    }
+
     pub fn passed(&self) -> bool {
         self.errors.is_empty() && self.results.iter().all(|r| r.passed)
     }
@@ -105,40 +158,70 @@ impl Verdicts {
 /// The verdicts as a plain-text table.
 pub fn table(v: &Verdicts) -> String {
     let mut s = format!(
-        "{:<10} {:<44} {:>13} {:>13} {:<28} {}\n",
+        "{:<12} {:<50} {:>13} {:>13} {:<28} {}\n",
         "case", "check", "value", "reference", "tolerance", "verdict"
     );
     for r in &v.results {
         s += &format!(
-            "{:<10} {:<44} {:>13.6e} {:>13.6e} {:<28} {}\n",
+            "{:<12} {:<50} {:>13.6e} {:>13} {:<28} {}\n",
             r.case,
             r.check,
             r.value,
-            r.reference,
-            r.tolerance,
+            r.reference.map_or("-".into(), |x| format!("{x:.6e}")),
+            r.bound.text,
             if r.passed { "pass" } else { "FAIL" }
         );
         if !r.passed {
-            s += &format!("{:<10} {:<44} {}\n", "", "", r.detail);
+            s += &format!("{:<12} {:<50} {}\n", "", "", r.detail);
         }
     }
     for (c, e) in &v.errors {
-        s += &format!("{c:<10} {:<44} ERROR: {e}\n", "(case did not run)");
+        s += &format!("{c:<12} {:<50} ERROR: {e}\n", "(case did not run)");
     }
-    let failed = v.results.iter().filter(|r| !r.passed).count();
+    let c = v.counts();
     s += &format!(
         "{} checks, {} passed, {} failed, {} cases in error\n",
-        v.results.len(),
-        v.results.len() - failed,
-        failed,
-        v.errors.len()
+        c.checks, c.passed, c.failed, c.cases_in_error
     );
     s
 }
 
-/// `verify.json`.
+/// The counts of a verdict.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub struct Counts {
+    pub checks: usize,
+    pub passed: usize,
+    pub failed: usize,
+    pub cases_in_error: usize,
+}
+
+/// `verify.json`: the verdict first (`passed`, `counts`), then every check.
 pub fn json(v: &Verdicts) -> Vec<u8> {
-    let mut b = serde_json::to_vec_pretty(v).expect("plain data");
+    #[derive(Serialize)]
+    struct File<'a> {
+        passed: bool,
+        counts: Counts,
+        impactlab_version: &'static str,
+        results: &'a [CheckResult],
+        errors: Vec<CaseInError<'a>>,
+    }
+    #[derive(Serialize)]
+    struct CaseInError<'a> {
+        case: &'a str,
+        error: &'a str,
+    }
+    let file = File {
+        passed: v.passed(),
+        counts: v.counts(),
+        impactlab_version: env!("CARGO_PKG_VERSION"),
+        results: &v.results,
+        errors: v
+            .errors
+            .iter()
+            .map(|(case, error)| CaseInError { case, error })
+            .collect(),
+    };
+    let mut b = serde_json::to_vec_pretty(&file).expect("plain data");
     b.push(b'\n');
     b
 }
@@ -158,8 +241,10 @@ pub fn junit(v: &Verdicts) -> Vec<u8> {
             } else {
                 let mut s = TestCaseStatus::non_success(NonSuccessKind::Failure);
                 s.set_message(format!(
-                    "value {:e}, reference {:e}, tolerance {}",
-                    r.value, r.reference, r.tolerance
+                    "value {:e}, reference {}, tolerance {}",
+                    r.value,
+                    r.reference.map_or("none".into(), |x| format!("{x:e}")),
+                    r.bound.text
                 ));
                 s.set_description(r.detail.clone());
                 s
