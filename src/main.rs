@@ -40,7 +40,8 @@ pub enum Command {
     Verify(VerifyArgs),
     /// Run cases and write their reports (figures, ledger, verdicts) and an index.
     Report(ReportArgs),
-    /// Compare two runs' output directories: what moved and by how much.
+    /// Compare two runs' (or two `verify` runs') output directories: what moved and
+    /// by how much; exit 1 when anything moved beyond tolerance.
     Audit(AuditArgs),
     /// Time the paper's 49×49 plate (3000 steps) and report where the time goes.
     Bench(BenchArgs),
@@ -168,8 +169,27 @@ pub struct BenchArgs {
 
 #[derive(clap::Args)]
 pub struct AuditArgs {
+    /// A run's output directory, or a `verify` output directory.
     pub baseline: PathBuf,
+    /// The same kind of directory, from the change under review.
     pub candidate: PathBuf,
+    /// Relative tolerance: of |baseline| for a summary number, of the column's peak
+    /// |value| for a CSV column.
+    #[arg(long, default_value_t = 0.0)]
+    pub rtol: f64,
+    /// Absolute tolerance, in the quantity's own units.
+    #[arg(long, default_value_t = 0.0)]
+    pub atol: f64,
+    /// text (a table), json, or markdown (to paste into a pull request).
+    #[arg(long, value_enum, default_value_t = AuditFormat::Text)]
+    pub format: AuditFormat,
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+pub enum AuditFormat {
+    Text,
+    Json,
+    Markdown,
 }
 
 /// `--scheme`: one of [`Scheme::ALL`] by name.

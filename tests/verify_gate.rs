@@ -125,26 +125,82 @@ tol = {{ rel = 1e-7, floor = 1e-9 }}
     assert!(r[0].detail.starts_with("first difference: column "), "{}", r[0].detail);
 }
 
-/// Goal: `impactlab audit` reports nothing moved between identical runs, and the
-/// contact end and energy error as moved when Δt changes.
+/// Goal: `impactlab audit` gates. Identical runs: exit 0, nothing moved. A run with
+/// another Δt: exit 1, the contact end and energy error listed as moved. Another
+/// scheme: the changed string is reported. A tolerance wide enough passes what a
+/// tight one fails. A missing directory: exit 2 naming it. JSON and markdown formats
+/// carry the same verdict.
 #[test]
-fn audit_shows_what_a_change_moved() {
+fn audit_gates_on_what_a_change_moved() {
     let dir = tempfile::tempdir().unwrap();
     let d = |n: &str| dir.path().join(n).to_str().unwrap().to_string();
     let deck = root().join("reference-data/decks/rod.bdf");
     let deck = deck.to_str().unwrap();
-    for (name, dt) in [("a", "2e-7"), ("b", "2e-7"), ("c", "1e-7")] {
+    for (name, dt, scheme) in [
+        ("a", "2e-7", "newmark"),
+        ("b", "2e-7", "newmark"),
+        ("c", "1e-7", "newmark"),
+        ("e", "2e-7", "energy"),
+    ] {
         let steps = if dt == "2e-7" { "1000" } else { "2000" };
-        let o = impactlab(&["run", deck, "--out", &d(name), "--dt", dt, "--steps", steps]);
+        let o = impactlab(&[
+            "run",
+            deck,
+            "--out",
+            &d(name),
+            "--dt",
+            dt,
+            "--steps",
+            steps,
+            "--scheme",
+            scheme,
+        ]);
         assert!(o.status.success());
     }
     let same = impactlab(&["audit", &d("a"), &d("b")]);
     let s = String::from_utf8_lossy(&same.stdout);
-    assert!(s.contains("\n0 quantities moved"), "{s}");
+    assert_eq!(same.status.code(), Some(0), "{s}");
+    assert!(s.starts_with("unchanged: 0 of "), "{s}");
     let moved = impactlab(&["audit", &d("a"), &d("c")]);
     let s = String::from_utf8_lossy(&moved.stdout);
+    assert_eq!(moved.status.code(), Some(1), "{s}");
     assert!(s.contains("summary rod.contact_end_tcl"), "{s}");
     assert!(s.contains("summary energy.max_relative_error"), "{s}");
+    assert!(s.contains("history.csv rows"), "{s}");
+    let scheme = impactlab(&["audit", &d("a"), &d("e"), "--format", "json"]);
+    assert_eq!(scheme.status.code(), Some(1));
+    let j: serde_json::Value = serde_json::from_slice(&scheme.stdout).unwrap();
+    assert_eq!(j["passed"], false);
+    let changed: Vec<&serde_json::Value> = j["moved"].as_array().unwrap().iter().collect();
+    assert!(changed.iter().any(|c| c["kind"] == "text"
+        && c["what"] == "summary run.scheme"
+        && c["baseline"] == "\"newmark\""
+        && c["candidate"] == "\"energy\""));
+    // Newmark and the energy scheme differ by 2.6e-5 of a column's peak at most, apart
+    // from the energy error itself: an rtol of 1e-4 passes the force, not the error.
+    let loose = impactlab(&["audit", &d("a"), &d("e"), "--rtol", "1e-4", "--format", "json"]);
+    let j: serde_json::Value = serde_json::from_slice(&loose.stdout).unwrap();
+    let names = |list: &str| -> Vec<String> {
+        j[list]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|c| c["what"].as_str().unwrap().to_string())
+            .collect()
+    };
+    assert!(names("within_tolerance").contains(&"history.csv contact_force".to_string()));
+    assert!(names("moved").contains(&"energy.csv error".to_string()));
+    let md = impactlab(&["audit", &d("a"), &d("e"), "--format", "markdown"]);
+    let s = String::from_utf8_lossy(&md.stdout);
+    assert!(s.starts_with("### impactlab audit:"), "{s}");
+    assert!(
+        s.contains("| `summary run.scheme` | \"newmark\" | \"energy\" | changed |"),
+        "{s}"
+    );
+    let missing = impactlab(&["audit", &d("a"), &d("nothere")]);
+    assert_eq!(missing.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&missing.stderr);
+    assert!(err.contains(&d("nothere")), "{err}");
 }
 
 /// Rounds to `digits` significant digits; values below `floor` in magnitude are 0.

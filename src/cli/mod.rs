@@ -2,7 +2,7 @@
 //! files, and return the exit code (0 success, 1 verification failed); errors map to
 //! theirs in `main`. Progress bars are made here.
 
-use crate::{AuditArgs, BenchArgs, MeshKind, ReportArgs, RunArgs, SceneArgs, StudyKind, VerifyArgs};
+use crate::{AuditArgs, AuditFormat, BenchArgs, MeshKind, ReportArgs, RunArgs, SceneArgs, StudyKind, VerifyArgs};
 use impactlab::run::RunOptions;
 use impactlab::{deck, output, verify, Error};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -236,11 +236,22 @@ pub fn report(a: ReportArgs) -> Result<u8, Error> {
     Ok(0)
 }
 
-/// `impactlab audit`: what moved between two runs.
+/// `impactlab audit`: what moved between two runs; exit 1 when anything moved
+/// beyond tolerance.
 pub fn audit(a: AuditArgs) -> Result<u8, Error> {
-    let moved = impactlab::verify::audit::audit(&a.baseline, &a.candidate)?;
-    say(&impactlab::verify::audit::audit_text(&moved));
-    Ok(0)
+    use impactlab::verify::audit::{audit, render, AuditTol, Format};
+    let tol = AuditTol {
+        rtol: a.rtol,
+        atol: a.atol,
+    };
+    let report = audit(&a.baseline, &a.candidate, tol)?;
+    let format = match a.format {
+        AuditFormat::Text => Format::Text,
+        AuditFormat::Json => Format::Json,
+        AuditFormat::Markdown => Format::Markdown,
+    };
+    say(&render(&report, format));
+    Ok(if report.passed { 0 } else { 1 })
 }
 
 /// `impactlab bench`: where the plate's time goes.
