@@ -12,6 +12,8 @@ pub enum Error {
     Model(#[from] ModelError),
     #[error("numerical failure: {0}")]
     Solve(#[from] SolveError),
+    #[error("numerical failure: {0}")]
+    Run(#[from] crate::run::RunError),
     #[error("{0}")]
     Modify(#[from] crate::model::ModifyError),
     #[error("{0}")]
@@ -32,6 +34,9 @@ pub enum Error {
     Fields(#[from] crate::report::fields::FieldsError),
     #[error("invalid option: {0}")]
     Usage(String),
+    /// A run stopped by a guard after its partial outputs were written.
+    #[error("numerical failure: {0}")]
+    Stopped(String),
     #[error("cannot write outputs to {path}: {source}")]
     Io {
         path: String,
@@ -57,7 +62,7 @@ impl Error {
             | Error::Fields(_)
             | Error::Usage(_)
             | Error::Io { .. } => 2,
-            Error::Solve(_) => 3,
+            Error::Solve(_) | Error::Run(_) | Error::Stopped(_) => 3,
         }
     }
 }

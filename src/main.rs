@@ -105,9 +105,10 @@ pub struct RunArgs {
     /// Number of steps [default: the deck's TSTEP].
     #[arg(long)]
     pub steps: Option<usize>,
-    /// Stop with exit code 3 when the relative energy error exceeds this.
-    #[arg(long)]
-    pub max_energy_error: Option<f64>,
+    /// The energy guard: stop with exit code 3 when |relative energy error| exceeds
+    /// this, writing the outputs up to there marked incomplete; `off` disables it.
+    #[arg(long, value_parser = energy_guard_parser, default_value = "5e-2")]
+    pub max_energy_error: EnergyGuard,
     /// Unknown bulk data cards become warnings instead of errors.
     #[arg(long)]
     pub allow_unknown: bool,
@@ -190,6 +191,20 @@ pub enum AuditFormat {
     Text,
     Json,
     Markdown,
+}
+
+/// `--max-energy-error`: a limit, or none.
+#[derive(Debug, Clone, Copy)]
+pub struct EnergyGuard(pub Option<f64>);
+
+fn energy_guard_parser(s: &str) -> Result<EnergyGuard, String> {
+    if s == "off" {
+        return Ok(EnergyGuard(None));
+    }
+    match s.parse::<f64>() {
+        Ok(x) if x > 0.0 && x.is_finite() => Ok(EnergyGuard(Some(x))),
+        _ => Err(format!("expected a positive number or `off`, not `{s}`")),
+    }
 }
 
 /// `--scheme`: one of [`Scheme::ALL`] by name.

@@ -65,7 +65,8 @@ fn run_writes_history_energy_and_summary() {
     }
     // The file reads back as the typed summary, with its provenance and units.
     let typed: impactlab::run::Summary = serde_json::from_slice(&bytes).unwrap();
-    assert_eq!(typed.schema_version, 2);
+    assert_eq!(typed.schema_version, 3);
+    assert!(typed.run.complete && typed.run.stopped_by.is_none());
     assert_eq!(typed.impactlab_version, env!("CARGO_PKG_VERSION"));
     use sha2::Digest;
     let digest = sha2::Sha256::digest(std::fs::read(deck("rod.bdf")).unwrap());
@@ -162,6 +163,8 @@ fn mechanism_exits_3_naming_the_dof() {
     );
 }
 
+/// Goal: a run that fails (a mechanism) leaves the previous outputs in its output
+/// directory whole, and no staging directory behind.
 #[test]
 fn a_failed_run_leaves_the_previous_outputs_whole() {
     let dir = tempfile::tempdir().unwrap();
@@ -173,22 +176,77 @@ fn a_failed_run_leaves_the_previous_outputs_whole() {
             .success()
     );
     let before = std::fs::read(out.join("summary.json")).unwrap();
-    let o = impactlab(&[
-        "run",
-        rod.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--max-energy-error",
-        "1e-9",
-    ]);
+    let text = std::fs::read_to_string(&rod).unwrap();
+    let free = dir.path().join("free.bdf");
+    std::fs::write(&free, text.replace("SPC1,4,23456,1,THRU,145", "SPC1,4,23,1,THRU,145")).unwrap();
+    let o = impactlab(&["run", free.to_str().unwrap(), "--out", out.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(3));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("exceeds the limit 1.000e-9"));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("mechanism"));
     assert_eq!(std::fs::read(out.join("summary.json")).unwrap(), before);
-    let names: Vec<_> = std::fs::read_dir(dir.path())
+    let mut names: Vec<_> = std::fs::read_dir(dir.path())
         .unwrap()
         .map(|e| e.unwrap().file_name())
         .collect();
-    assert_eq!(names.len(), 1, "no staging directories left behind: {names:?}");
+    names.sort();
+    assert_eq!(names, ["free.bdf", "rod"], "no staging directories left behind");
+}
+
+/// Goal: the energy guard (LS-DYNA ENDENG, Radioss /STOP Emax) stops a run whose
+/// energy error exceeds it with exit 3 naming the step, time and error, and writes
+/// the outputs up to there, marked incomplete; `off` lets the same run finish. Model:
+/// the rod with a guard of 1e-6 (Newmark's error passes it within the first steps of
+/// contact; 1.58e-5 at the end).
+#[test]
+fn the_energy_guard_stops_a_run_and_keeps_its_outputs() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("rod");
+    let rod = deck("rod.bdf");
+    let run = |guard: &str| {
+        impactlab(&[
+            "run",
+            rod.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--max-energy-error",
+            guard,
+        ])
+    };
+    let o = run("1e-6");
+    assert_eq!(o.status.code(), Some(3));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("energy guard: relative energy error "), "{err}");
+    assert!(err.contains(" exceeds 1.000e-6"), "{err}");
+    assert!(err.contains(&out.display().to_string()), "{err}");
+    let s: serde_json::Value = serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(s["run"]["complete"], false);
+    let done = s["run"]["steps_done"].as_u64().unwrap();
+    assert!(done > 0 && done < 2500, "{done}");
+    assert!(err.contains(&format!("at step {done} ")), "{err}");
+    let energy = std::fs::read_to_string(out.join("energy.csv")).unwrap();
+    assert_eq!(
+        energy.lines().count() as u64,
+        1 + done + 1,
+        "one ledger row per step done"
+    );
+    let last: f64 = energy
+        .lines()
+        .last()
+        .unwrap()
+        .split(',')
+        .nth(8)
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(
+        last.abs() > 1e-6,
+        "the last row is the one that tripped the guard: {last}"
+    );
+    let o = run("off");
+    assert_eq!(o.status.code(), Some(0));
+    let s: serde_json::Value = serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(s["run"]["complete"], true);
+    assert!(s["run"]["stopped_by"].is_null());
+    assert_eq!(run("0").status.code(), Some(2), "a guard must be positive or off");
 }
 
 /// Goal: the binary needs nothing from its source tree at run time (as after `cargo

@@ -10,9 +10,10 @@ use common::{deck, rod_model};
 use impactlab::integrate::{Scheme, SolveError};
 use impactlab::model::{Model, Modify};
 use impactlab::physics::analytic::rigid_target;
+use impactlab::run::RunError;
 use impactlab::run::{run_model, RunOptions, RunResult};
 
-fn go(m: &Model, scheme: Scheme, dt: f64, steps: usize) -> Result<RunResult, SolveError> {
+fn go(m: &Model, scheme: Scheme, dt: f64, steps: usize) -> Result<RunResult, RunError> {
     run_model(
         m,
         &RunOptions {
@@ -190,14 +191,43 @@ fn impactor_mass_1000x_and_0_001x() {
 /// with the end-point contact force is stable but not energy-stable through a contact
 /// it cannot resolve: measured errors 1.5e-3, 8.1e-2 and 3.26 (energy *gained*: the
 /// impactor is found deep inside the rod at the step's end). Bounds: 5e-3, 0.2, 5.
+/// The default energy guard (5e-2) stops the last two, keeping what was recorded up
+/// to the step that tripped it; with the guard off they run to the end.
 #[test]
 fn huge_time_steps() {
     let m = rod_model();
+    let mut trips = 0;
     for (dt, newmark_bound) in [(2e-6, 5e-3), (2e-5, 0.2), (1e-4, 5.0)] {
         let steps = (2e-3 / dt) as usize;
         sane(&go(&m, Scheme::Energy, dt, steps).unwrap(), 1e-10);
-        sane(&go(&m, Scheme::Newmark, dt, steps).unwrap(), newmark_bound);
+        let unguarded = RunOptions {
+            scheme: Scheme::Newmark,
+            dt: Some(dt),
+            steps: Some(steps),
+            max_energy_error: None,
+            ..Default::default()
+        };
+        let r = run_model(&m, &unguarded).unwrap();
+        sane(&r, newmark_bound);
+        let max = r.summary.energy.max_relative_error.unwrap();
+        match go(&m, Scheme::Newmark, dt, steps) {
+            Ok(g) => {
+                assert!(max <= impactlab::run::DEFAULT_ENERGY_GUARD, "{max:e}");
+                assert!(g.summary.run.complete);
+            }
+            Err(RunError::EnergyGuard { trip, partial }) => {
+                trips += 1;
+                assert!(max > impactlab::run::DEFAULT_ENERGY_GUARD, "{max:e}");
+                assert!(trip.error.abs() > trip.limit);
+                assert!(!partial.summary.run.complete);
+                assert_eq!(partial.summary.run.steps_done, trip.step);
+                assert_eq!(partial.energy.len(), trip.step + 1);
+                assert!(partial.summary.run.stopped_by.unwrap().contains("energy guard"));
+            }
+            Err(e) => panic!("{e}"),
+        }
     }
+    assert_eq!(trips, 2, "the guard stops the runs at 2e-5 and 1e-4");
 }
 
 /// Case 6: Central differences at 0.9× and 1.0× the critical step run and keep their
@@ -358,7 +388,7 @@ fn mechanism_is_named() {
     .unwrap();
     let (m, _) = impactlab::model::build_model(&d).unwrap();
     match go(&m, Scheme::Newmark, 2e-7, 10) {
-        Err(SolveError::Mechanism { dof }) => assert!(dof.ends_with(" R2"), "{dof}"),
+        Err(RunError::Solve(SolveError::Mechanism { dof })) => assert!(dof.ends_with(" R2"), "{dof}"),
         other => panic!("expected a mechanism, got {:?}", other.map(|r| r.summary)),
     }
 }
@@ -371,7 +401,7 @@ fn nan_in_the_state_is_named() {
     let d = m.contact.as_ref().unwrap().impactor.dof;
     m.v0[d] = f64::NAN;
     match go(&m, Scheme::Newmark, 2e-7, 10) {
-        Err(SolveError::NonFinite { step, dof, .. }) => {
+        Err(RunError::Solve(SolveError::NonFinite { step, dof, .. })) => {
             assert_eq!(step, 0);
             assert_eq!(dof, "grid 999 T1");
         }

@@ -84,7 +84,7 @@ pub fn run(a: RunArgs) -> Result<u8, Error> {
     let mut opts = RunOptions {
         dt: a.dt.or(opts.dt),
         steps: a.steps.or(opts.steps),
-        max_energy_error: a.max_energy_error,
+        max_energy_error: a.max_energy_error.0,
         progress: progress(format!("{} {}", model.name, opts.scheme)),
         ..opts
     };
@@ -95,7 +95,12 @@ pub fn run(a: RunArgs) -> Result<u8, Error> {
             a.field_count,
         );
     }
-    let mut r = impactlab::run::run_model(&model, &opts)?;
+    let dir = a.out.unwrap_or_else(|| PathBuf::from("out").join(&model.name));
+    let (mut r, failure) = match impactlab::run::run_model(&model, &opts) {
+        Ok(r) => (r, None),
+        Err(impactlab::run::RunError::EnergyGuard { trip, partial }) => (*partial, Some(trip)),
+        Err(e) => return Err(e.into()),
+    };
     if let Some(s) = &scene {
         let m = &r.summary;
         r.summary.effects = Some(impactlab::scene::effects(
@@ -105,10 +110,15 @@ pub fn run(a: RunArgs) -> Result<u8, Error> {
         ));
         r.summary.contact_stiffness_source = impactlab::scene::contact_stiffness(s).map(|k| k.1).ok();
     }
-    let dir = a.out.unwrap_or_else(|| PathBuf::from("out").join(&model.name));
     output::write_dir_atomically(&dir, &output::run_files(&model, &r)).map_err(io_error(&dir))?;
     say(&output::human_summary(&model, &r));
     sayln(&format!("  outputs:  {}", dir.display()));
+    if let Some(trip) = failure {
+        return Err(Error::Stopped(format!(
+            "{trip}; the outputs up to there are in {} (summary.json: run.complete = false)",
+            dir.display()
+        )));
+    }
     if let Some(fdir) = a.fields {
         let files = impactlab::report::fields::write_fields(&model, &r, &fdir)?;
         sayln(&format!(

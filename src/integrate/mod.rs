@@ -97,17 +97,10 @@ pub enum SolveError {
          constrain it with SPC1/PS or attach stiffness or mass to it)"
     )]
     Mechanism { dof: String },
-    #[error("non-finite value (NaN or infinity) in the state at step {step} (t = {time_s:e} s), {dof}")]
-    NonFinite { step: usize, time_s: f64, dof: String },
-    #[error("relative energy error {error:.3e} at step {step} (t = {time_s:e} s) exceeds the limit {limit:.3e}")]
-    EnergyLimit {
-        step: usize,
-        time_s: f64,
-        error: f64,
-        limit: f64,
-    },
-    #[error("the contact equation did not converge at step {step} (t = {time_s:e} s)")]
-    ContactSolve { step: usize, time_s: f64 },
+    #[error("non-finite value (NaN or infinity) in the state at step {step} (t = {time:e}), {dof}")]
+    NonFinite { step: usize, time: f64, dof: String },
+    #[error("the contact equation did not converge at step {step} (t = {time:e})")]
+    ContactSolve { step: usize, time: f64 },
     #[error("explicit scheme refused: {reason}")]
     Explicit { reason: String },
     #[error("linear solver failure: {0}")]
@@ -248,7 +241,7 @@ fn check_finite(model: &Model, step: usize, time: f64, x: &[f64]) -> Result<(), 
         None => Ok(()),
         Some(i) => Err(SolveError::NonFinite {
             step,
-            time_s: time,
+            time,
             dof: model.dofs[i].to_string(),
         }),
     }

@@ -147,7 +147,7 @@ impl<'a> Newmark<'a> {
                 (dg, slope.max(0.0))
             }),
         }
-        .ok_or(SolveError::ContactSolve { step, time_s: time })?;
+        .ok_or(SolveError::ContactSolve { step, time })?;
         self.contact_iterations += its;
         Ok(match self.form {
             ContactForm::Endpoint => phi(root),

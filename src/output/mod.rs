@@ -183,6 +183,12 @@ pub fn human_summary(model: &Model, run: &RunResult) -> String {
             .unwrap_or("-".into()),
         num(s.energy.max_relative_error)
     );
+    if let Some(why) = &s.run.stopped_by {
+        out += &format!(
+            "  INCOMPLETE: stopped after {} of {} steps: {why}\n",
+            s.run.steps_done, s.run.steps
+        );
+    }
     if let Some(r) = &s.rod {
         out += &format!(
             "  rod (tC/L): contact ends {}, impactor at rest {}, peak force {}\n",

@@ -23,7 +23,10 @@ pub struct RunOptions {
     pub scheme: Scheme,
     pub dt: Option<f64>,
     pub steps: Option<usize>,
-    /// Stop with an error when |energy error| exceeds this.
+    /// The energy guard: stop when |relative energy error| exceeds this (like
+    /// LS-DYNA's ENDENG or Radioss' /STOP Emax); `None` disables it. The run then
+    /// fails with [`RunError::EnergyGuard`], which keeps what was recorded up to
+    /// there. Default [`DEFAULT_ENERGY_GUARD`].
     pub max_energy_error: Option<f64>,
     /// A progress bar to advance, created and styled by the caller (the CLI); the run
     /// sets its length to the step count and clears it at the end.
@@ -58,7 +61,7 @@ impl Default for RunOptions {
             scheme: Scheme::Newmark,
             dt: None,
             steps: None,
-            max_energy_error: None,
+            max_energy_error: Some(DEFAULT_ENERGY_GUARD),
             progress: None,
             skip_inert: true,
             snapshot_times: Vec::new(),
@@ -66,6 +69,41 @@ impl Default for RunOptions {
             stop_after_separation: None,
         }
     }
+}
+
+/// The default energy guard: a run whose relative energy error exceeds 5 % has
+/// stopped being a simulation of the model (every scheme here stays below 1e-3 on the
+/// verification cases; the worst stable cell of the stability map is 2e-2).
+pub const DEFAULT_ENERGY_GUARD: f64 = 5e-2;
+
+/// Where the energy guard stopped a run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GuardTrip {
+    pub step: usize,
+    pub time: f64,
+    pub error: f64,
+    pub limit: f64,
+}
+
+impl std::fmt::Display for GuardTrip {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "energy guard: relative energy error {:.3e} at step {} (t = {:e}) exceeds {:.3e}",
+            self.error, self.step, self.time, self.limit
+        )
+    }
+}
+
+/// A run that did not complete.
+#[derive(Debug, Clone, thiserror::Error)]
+pub enum RunError {
+    #[error(transparent)]
+    Solve(#[from] SolveError),
+    /// The energy guard stopped the run; `partial` holds everything recorded up to
+    /// and including the step that tripped it, its summary marked incomplete.
+    #[error("{trip}")]
+    EnergyGuard { trip: GuardTrip, partial: Box<RunResult> },
 }
 
 /// Per-step contact quantities, the basis of the summary.
@@ -110,6 +148,7 @@ struct Recorder<'a> {
     series: Series,
     history: Vec<Vec<f64>>,
     max_energy_error: Option<f64>,
+    tripped: Option<GuardTrip>,
     bar: ProgressBar,
     snapshot_steps: Vec<usize>,
     snapshots: Vec<(f64, Vec<f64>)>,
@@ -121,10 +160,10 @@ impl Observer for Recorder<'_> {
         if let Some(ledger) = &mut self.ledger {
             let row = ledger.record(s);
             if let Some(limit) = self.max_energy_error {
-                if row.error.abs() > limit {
-                    return Err(SolveError::EnergyLimit {
+                if row.error.abs() > limit || row.error.is_nan() {
+                    self.tripped = Some(GuardTrip {
                         step: s.step,
-                        time_s: s.time,
+                        time: s.time,
                         error: row.error,
                         limit,
                     });
@@ -156,7 +195,7 @@ impl Observer for Recorder<'_> {
             self.bar.set_position(s.step as u64);
         }
         let done = matches!((self.separated_at, self.stop_after_separation), (Some(t0), Some(w)) if s.time >= t0 + w);
-        Ok(!done)
+        Ok(!done && self.tripped.is_none())
     }
 }
 
@@ -259,7 +298,7 @@ fn history_row(m: &Model, s: &StepState, force: f64) -> Vec<f64> {
 /// assert!((s.rod.as_ref().unwrap().contact_end_tcl.unwrap() - 0.4134).abs() < 1e-3);
 /// # Ok::<(), impactlab::Error>(())
 /// ```
-pub fn run_model(model: &Model, opts: &RunOptions) -> Result<RunResult, SolveError> {
+pub fn run_model(model: &Model, opts: &RunOptions) -> Result<RunResult, RunError> {
     let t0 = std::time::Instant::now();
     let sys = assemble(model);
     // A DOF with neither stiffness nor mass is a mechanism whether or not anything
@@ -268,7 +307,8 @@ pub fn run_model(model: &Model, opts: &RunOptions) -> Result<RunResult, SolveErr
     if let Some(i) = (0..sys.n).find(|&i| kd[i] <= 0.0 && md[i] <= 0.0) {
         return Err(SolveError::Mechanism {
             dof: model.dofs[i].to_string(),
-        });
+        }
+        .into());
     }
     let reduced = if opts.skip_inert {
         drop_inert(model, &sys).map(|m| {
@@ -283,14 +323,25 @@ pub fn run_model(model: &Model, opts: &RunOptions) -> Result<RunResult, SolveErr
         Some((m, s)) => (m, s),
         None => (model, &sys),
     };
-    let mut run = run_system(model, sys, opts)?;
-    run.stats.assembly_time = assembly_time;
-    run.summary.run.assembly_s = assembly_time.as_secs_f64();
-    Ok(run)
+    let with_assembly = |run: &mut RunResult| {
+        run.stats.assembly_time = assembly_time;
+        run.summary.run.assembly_s = assembly_time.as_secs_f64();
+    };
+    match run_system(model, sys, opts) {
+        Ok(mut run) => {
+            with_assembly(&mut run);
+            Ok(run)
+        }
+        Err(RunError::EnergyGuard { trip, mut partial }) => {
+            with_assembly(&mut partial);
+            Err(RunError::EnergyGuard { trip, partial })
+        }
+        Err(e) => Err(e),
+    }
 }
 
 /// Runs a model whose system is already assembled.
-pub fn run_system(model: &Model, sys: &System, opts: &RunOptions) -> Result<RunResult, SolveError> {
+pub fn run_system(model: &Model, sys: &System, opts: &RunOptions) -> Result<RunResult, RunError> {
     let dt = opts.dt.unwrap_or(model.time.dt);
     let steps = opts.steps.unwrap_or(model.time.steps);
     let bar = opts.progress.clone().unwrap_or_else(ProgressBar::hidden);
@@ -307,6 +358,7 @@ pub fn run_system(model: &Model, sys: &System, opts: &RunOptions) -> Result<RunR
         series: Series::default(),
         history: Vec::new(),
         max_energy_error: opts.max_energy_error,
+        tripped: None,
         bar,
         snapshot_steps: opts.snapshot_times.iter().map(|t| (t / dt).round() as usize).collect(),
         snapshots: Vec::new(),
@@ -326,8 +378,14 @@ pub fn run_system(model: &Model, sys: &System, opts: &RunOptions) -> Result<RunR
         dofs: model.dofs.clone(),
         snapshots: rec.snapshots,
     };
-    run.summary = summarize(model, &run);
-    Ok(run)
+    run.summary = summarize(model, &run, rec.tripped);
+    match rec.tripped {
+        None => Ok(run),
+        Some(trip) => Err(RunError::EnergyGuard {
+            trip,
+            partial: Box::new(run),
+        }),
+    }
 }
 
 /// Contact intervals [start, end] from the indentation: contact while α > 0.
@@ -352,7 +410,7 @@ pub fn contact_intervals(t: &[f64], alpha: &[f64]) -> (Vec<[f64; 2]>, bool) {
     (out, open)
 }
 
-fn summarize(model: &Model, run: &RunResult) -> Summary {
+fn summarize(model: &Model, run: &RunResult, tripped: Option<GuardTrip>) -> Summary {
     let s = &run.series;
     let (intervals, open) = contact_intervals(&s.time, &s.alpha);
     let (kmax, fmax) = s
@@ -440,6 +498,8 @@ fn summarize(model: &Model, run: &RunResult) -> Summary {
             solve_s: run.stats.solve_time.as_secs_f64(),
             assembly_s: run.stats.assembly_time.as_secs_f64(),
             wall_s: run.stats.total_time.as_secs_f64(),
+            complete: tripped.is_none(),
+            stopped_by: tripped.map(|t| t.to_string()),
         },
         rod,
         effects: None,

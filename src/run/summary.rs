@@ -1,4 +1,4 @@
-//! The typed summary of a run (`summary.json`, schema version 2).
+//! The typed summary of a run (`summary.json`, schema version 3).
 //!
 //! Values are in the deck's units, never converted: `units` says what they are.
 //! No key names a unit, except the wall-clock costs under `run` (`wall_s`,
@@ -11,7 +11,7 @@ use crate::integrate::Scheme;
 use serde::{Deserialize, Serialize};
 
 /// The `schema_version` this build writes.
-pub const SCHEMA_VERSION: u32 = 2;
+pub const SCHEMA_VERSION: u32 = 3;
 
 /// Everything `summary.json` holds.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
@@ -134,6 +134,11 @@ pub struct RunSummary {
     pub solve_s: f64,
     pub assembly_s: f64,
     pub wall_s: f64,
+    /// False when the run stopped before its last step for a failure (the energy
+    /// guard); a scene's planned stop after separation is complete.
+    pub complete: bool,
+    /// Why an incomplete run stopped.
+    pub stopped_by: Option<String>,
 }
 
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
@@ -186,7 +191,7 @@ impl Summary {
         let mut out = Vec::new();
         let v = serde_json::to_value(Summary::template()).expect("a summary is plain data");
         walk("", &v, &mut out);
-        out.retain(|k| !matches!(k.as_str(), "effects" | "contact_stiffness_source"));
+        out.retain(|k| !matches!(k.as_str(), "effects" | "contact_stiffness_source" | "run.stopped_by"));
         out
     }
 

@@ -12,13 +12,13 @@
 
 use super::history_extreme;
 use crate::error::Error;
-use crate::integrate::{Scheme, SolveError};
+use crate::integrate::Scheme;
 use crate::mesh::plate_model;
 use crate::model::Model;
 use crate::numerics::{interp, median};
 use crate::physics::analytic;
 use crate::plot::{self, Chart, Line};
-use crate::run::{run_model, RunOptions, RunResult};
+use crate::run::{run_model, RunError, RunOptions, RunResult};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -107,7 +107,7 @@ fn peak(run: &RunResult) -> f64 {
 }
 
 /// Runs once to warm up, then `repeats` times; the last run and the median wall time.
-fn timed(model: &Model, opts: &RunOptions, repeats: usize) -> Result<(RunResult, f64), SolveError> {
+fn timed(model: &Model, opts: &RunOptions, repeats: usize) -> Result<(RunResult, f64), RunError> {
     let mut walls = Vec::new();
     let mut last = None;
     for k in 0..=repeats {

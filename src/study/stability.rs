@@ -20,7 +20,7 @@ pub struct Cell {
     pub dt_s: f64,
     pub velocity_scale: f64,
     /// Max relative energy error, or the failure.
-    pub outcome: Result<f64, crate::integrate::SolveError>,
+    pub outcome: Result<f64, crate::run::RunError>,
 }
 
 /// Runs the grid on `model` (the rod) over `t_end` seconds.
