@@ -73,7 +73,7 @@ impl Default for RunOptions {
 
 /// The default energy guard: a run whose relative energy error exceeds 5 % has
 /// stopped being a simulation of the model (every scheme here stays below 1e-3 on the
-/// verification cases; the worst stable cell of the stability map is 2e-2).
+/// verification cases).
 pub const DEFAULT_ENERGY_GUARD: f64 = 5e-2;
 
 /// Where the energy guard stopped a run.
@@ -89,7 +89,7 @@ impl std::fmt::Display for GuardTrip {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "energy guard: relative energy error {:.3e} at step {} (t = {:e}) exceeds {:.3e}",
+            "energy guard: relative energy error {:.3e} at step {} (t = {:.4e}) exceeds {:.3e}",
             self.error, self.step, self.time, self.limit
         )
     }

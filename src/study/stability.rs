@@ -1,29 +1,52 @@
 //! The stability map: for each scheme, the paper's rod over a grid of time step ×
 //! impact velocity (both log-spaced), each cell coloured by the maximum relative
-//! energy error, and marked where the run failed or was refused (the explicit scheme
-//! above its critical step).
+//! energy error and labelled with it, and marked where the run failed: refused (the
+//! explicit scheme above its critical step), or stopped by the energy guard
+//! ([`crate::run::DEFAULT_ENERGY_GUARD`]), which every run has.
+//!
+//! The map's data is `stability-map.csv`; its page and figure are made from that
+//! file alone ([`read_csv`], [`readme`], [`figure`]), so that a test can remake them
+//! from the committed CSV and find them current without running the study again.
 
 use crate::error::Error;
 use crate::integrate::Scheme;
 use crate::model::{Model, Modify};
-use crate::run::{run_model, RunOptions};
+use crate::run::{run_model, RunError, RunOptions};
 use plotters::prelude::*;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 pub const DT_FACTORS: [f64; 9] = [0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0];
 pub const VELOCITY_SCALES: [f64; 7] = [1e-4, 1e-3, 1e-2, 1e-1, 1.0, 10.0, 100.0];
+/// The paper's Δt for the rod, the map's unit of Δt (the rod deck's time unit is the second).
+pub const DT0: f64 = 2e-7;
 
-#[derive(Debug, Clone)]
+/// One run of the map, as a row of `stability-map.csv`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Cell {
     pub scheme: Scheme,
     pub dt_s: f64,
     pub velocity_scale: f64,
-    /// Max relative energy error, or the failure.
-    pub outcome: Result<f64, crate::run::RunError>,
+    /// Max |relative energy error| of a completed run; for a run the energy guard
+    /// stopped, the error at the step that tripped it. None for a refused run.
+    pub max_energy_error: Option<f64>,
+    /// Why the run failed (refused, or stopped by the energy guard).
+    pub failure: Option<String>,
 }
 
-/// Runs the grid on `model` (the rod) over `t_end` seconds.
+impl Cell {
+    pub fn failed(&self) -> bool {
+        self.failure.is_some()
+    }
+    fn stopped_by_guard(&self) -> bool {
+        self.failure.as_deref().is_some_and(|f| f.starts_with("energy guard"))
+    }
+}
+
+/// Runs the grid on `model` (the rod) over `t_end` seconds, every run with the
+/// default energy guard.
 pub fn run_map(model: &Model, dt0: f64, t_end: f64, progress: &dyn Fn(&str)) -> Result<Vec<Cell>, Error> {
     let mut cells = Vec::new();
     for scheme in Scheme::ALL {
@@ -42,12 +65,17 @@ pub fn run_map(model: &Model, dt0: f64, t_end: f64, progress: &dyn Fn(&str)) -> 
                     steps: Some((t_end / dt).ceil() as usize),
                     ..Default::default()
                 };
-                let outcome = run_model(&m, &opts).map(|r| r.summary.energy.max_relative_error.unwrap_or(f64::NAN));
+                let (max_energy_error, failure) = match run_model(&m, &opts) {
+                    Ok(r) => (r.summary.energy.max_relative_error, None),
+                    Err(RunError::EnergyGuard { trip, .. }) => (Some(trip.error.abs()), Some(trip.to_string())),
+                    Err(e) => (None, Some(e.to_string())),
+                };
                 cells.push(Cell {
                     scheme,
                     dt_s: dt,
                     velocity_scale: v,
-                    outcome,
+                    max_energy_error,
+                    failure,
                 });
             }
         }
@@ -55,29 +83,24 @@ pub fn run_map(model: &Model, dt0: f64, t_end: f64, progress: &dyn Fn(&str)) -> 
     Ok(cells)
 }
 
-pub fn csv(cells: &[Cell]) -> String {
-    let mut s = String::from("scheme,dt_s,velocity_scale,max_energy_error,failure\n");
+/// `stability-map.csv`: one row per run, numbers in their shortest round-trip form.
+pub fn csv(cells: &[Cell]) -> Vec<u8> {
+    let mut w = csv::Writer::from_writer(Vec::new());
     for c in cells {
-        let (e, f) = match &c.outcome {
-            Ok(e) => (format!("{e:.6e}"), String::new()),
-            Err(f) => (String::new(), f.to_string().replace('"', "'")),
-        };
-        let _ = writeln!(
-            s,
-            "{},{:e},{:e},{},\"{}\"",
-            c.scheme.name(),
-            c.dt_s,
-            c.velocity_scale,
-            e,
-            f
-        );
+        w.serialize(c).expect("writing plain rows to memory");
     }
-    s
+    w.into_inner().expect("writing to memory")
 }
 
+/// The cells of a `stability-map.csv`.
+pub fn read_csv(bytes: &[u8]) -> Result<Vec<Cell>, csv::Error> {
+    csv::Reader::from_reader(bytes).deserialize().collect()
+}
+
+/// Colour of a max energy error: log10 from −16 (round-off) to +2 (a hundred times
+/// the initial energy created): green → yellow → red.
 fn color(err: f64) -> RGBColor {
-    // log10 error from −16 (round-off) to 0 (everything lost): green → yellow → red.
-    let t = ((err.max(1e-16).log10() + 16.0) / 16.0).clamp(0.0, 1.0);
+    let t = ((err.max(1e-16).log10() + 16.0) / 18.0).clamp(0.0, 1.0);
     let (r, g) = if t < 0.5 {
         (2.0 * t, 1.0)
     } else {
@@ -86,34 +109,34 @@ fn color(err: f64) -> RGBColor {
     RGBColor((40.0 + 215.0 * r) as u8, (40.0 + 180.0 * g) as u8, 60)
 }
 
-/// The map: one panel per scheme.
+/// The map: one panel per scheme, and a colour bar.
 struct Map<'a> {
     cells: &'a [Cell],
-    dt0: f64,
 }
 
 impl crate::plot::Figure for Map<'_> {
     fn size(&self) -> (u32, u32) {
-        (1400, 560)
+        (1900, 640)
     }
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, plotters::coord::Shift>) -> crate::plot::Res
     where
         DB::ErrorType: 'static,
     {
-        draw(self.cells, self.dt0, root)
+        draw(self.cells, root)
     }
 }
 
 /// Draws the map (one panel per scheme) as PNG and SVG.
-pub fn figure(cells: &[Cell], dt0: f64, stem: &Path) -> Result<Vec<PathBuf>, crate::plot::PlotError> {
-    crate::plot::write_figure(&Map { cells, dt0 }, stem)
+pub fn figure(cells: &[Cell], stem: &Path) -> Result<Vec<PathBuf>, crate::plot::PlotError> {
+    crate::plot::write_figure(&Map { cells }, stem)
 }
 
-fn draw<DB: DrawingBackend>(
-    cells: &[Cell],
-    dt0: f64,
-    root: &DrawingArea<DB, plotters::coord::Shift>,
-) -> crate::plot::Res
+/// A cell's label: its error to one digit (`3e-5`).
+fn label(err: f64) -> String {
+    format!("{err:.0e}")
+}
+
+fn draw<DB: DrawingBackend>(cells: &[Cell], root: &DrawingArea<DB, plotters::coord::Shift>) -> crate::plot::Res
 where
     DB::ErrorType: 'static,
 {
@@ -122,26 +145,34 @@ where
     let root = root
         .margin(10, 0, 0, 0)
         .titled(
-            "Stability map, paper's rod: max relative energy error over Δt × impact velocity (X: run refused or failed)",
-            ("sans-serif", 20),
+            "Stability map, paper's rod: max relative energy error over Δt × impact velocity",
+            ("sans-serif", 22),
         )
         .map_err(e)?;
-    let (body, foot) = root.split_vertically(480);
+    let (body, foot) = root.split_vertically(540);
     foot.draw_text(
-        "colour: log10 of the max energy error, green 1e-16 (round-off) → yellow 1e-8 → red 1 · impactlab study stability",
+        &format!(
+            "number: max |relative energy error| of the run · grey with X: refused (explicit scheme over its critical \
+             step) or stopped by the energy guard ({:.0e}; the number is the error that stopped it) · impactlab study stability",
+            crate::run::DEFAULT_ENERGY_GUARD
+        ),
         &("sans-serif", 14).into_font().color(&RGBColor(90, 90, 90)),
         (12, 10),
     )
     .map_err(e)?;
+    let (panels, bar) = body.split_horizontally(1780);
+    // x: log2(Δt/Δt0), one unit per cell; y: log10(v0 scale), one unit per cell.
     let (lx, hx) = (
-        DT_FACTORS[0].log10() - 0.5,
-        DT_FACTORS[DT_FACTORS.len() - 1].log10() + 0.5,
+        DT_FACTORS[0].log2() - 0.5,
+        DT_FACTORS[DT_FACTORS.len() - 1].log2() + 0.5,
     );
     let (ly, hy) = (
         VELOCITY_SCALES[0].log10() - 0.5,
         VELOCITY_SCALES[VELOCITY_SCALES.len() - 1].log10() + 0.5,
     );
-    for (area, scheme) in body.split_evenly((1, Scheme::ALL.len())).iter().zip(Scheme::ALL) {
+    let dx = 0.5;
+    let small = ("sans-serif", 12).into_font();
+    for (area, scheme) in panels.split_evenly((1, Scheme::ALL.len())).iter().zip(Scheme::ALL) {
         let mut ch = ChartBuilder::on(area)
             .caption(scheme.name(), ("sans-serif", 18))
             .margin(8)
@@ -151,60 +182,94 @@ where
             .map_err(e)?;
         ch.configure_mesh()
             .disable_mesh()
-            .x_desc(format!("log10(Δt / {dt0:.0e} s)"))
-            .y_desc("log10(v0 / paper v0)")
+            .x_desc(format!("Δt / {DT0:.0e} s"))
+            .y_desc("v0 / paper's v0")
             .label_style(("sans-serif", 13))
-            .x_label_formatter(&|v| format!("{v:.1}"))
-            .y_label_formatter(&|v| format!("{v:.0}"))
+            .x_labels(DT_FACTORS.len())
+            .y_labels(VELOCITY_SCALES.len())
+            .x_label_formatter(&|v| crate::plot::fmt_tick(2f64.powf(*v)))
+            .y_label_formatter(&|v| format!("{:.0e}", 10f64.powf(*v)))
             .draw()
             .map_err(e)?;
-        let dx = 0.5 * (DT_FACTORS[1] / DT_FACTORS[0]).log10();
         for c in cells.iter().filter(|c| c.scheme == scheme) {
-            let x = (c.dt_s / dt0).log10();
+            let x = (c.dt_s / DT0).log2();
             let y = c.velocity_scale.log10();
             let rect = [(x - dx, y - 0.5), (x + dx, y + 0.5)];
-            match &c.outcome {
-                Ok(err) if err.is_finite() => {
-                    ch.draw_series(std::iter::once(Rectangle::new(rect, color(*err).filled())))
-                        .map_err(e)?;
-                }
-                _ => {
-                    ch.draw_series(std::iter::once(Rectangle::new(rect, RGBColor(230, 230, 230).filled())))
-                        .map_err(e)?;
-                    ch.draw_series(std::iter::once(Text::new(
-                        "X",
-                        (x - 0.07, y + 0.2),
-                        ("sans-serif", 16).into_font().color(&BLACK),
-                    )))
-                    .map_err(e)?;
-                }
-            }
+            let fill = match (c.failed(), c.max_energy_error) {
+                (false, Some(err)) if err.is_finite() => color(err),
+                _ => RGBColor(215, 215, 215),
+            };
+            ch.draw_series([
+                Rectangle::new(rect, fill.filled()),
+                Rectangle::new(rect, WHITE.stroke_width(1)),
+            ])
+            .map_err(e)?;
+            let text = match (c.failed(), c.max_energy_error) {
+                (true, Some(err)) => format!("X {}", label(err)),
+                (true, None) => "X".into(),
+                (false, Some(err)) => label(err),
+                (false, None) => "-".into(),
+            };
+            ch.draw_series(std::iter::once(Text::new(
+                text,
+                (x - 0.42, y + 0.12),
+                small.color(&BLACK),
+            )))
+            .map_err(e)?;
         }
     }
+    // Colour bar: log10 of the error, −16 … +2.
+    let (bx, by, h) = (14, 60, 400);
+    for k in 0..h {
+        let l = 2.0 - 18.0 * k as f64 / (h - 1) as f64;
+        bar.draw(&Rectangle::new(
+            [(bx, by + k), (bx + 22, by + k + 1)],
+            color(10f64.powf(l)).filled(),
+        ))
+        .map_err(e)?;
+    }
+    for l in [2, 0, -4, -8, -12, -16] {
+        let yk = by + ((2 - l) as f64 / 18.0 * (h - 1) as f64) as i32;
+        bar.draw_text(
+            &format!("1e{l}"),
+            &("sans-serif", 13).into_font().color(&BLACK),
+            (bx + 26, yk - 6),
+        )
+        .map_err(e)?;
+    }
+    bar.draw_text("error", &("sans-serif", 13).into_font().color(&BLACK), (bx, by - 24))
+        .map_err(e)?;
     Ok(())
 }
 
-/// `README.md` of the map: what was run, the figure, the worst cell per scheme and the
-/// refusals.
+/// `README.md` of the map, every number from the cells (read from the CSV): what was
+/// run, the figure, per scheme the runs, failures and largest error, and every failure.
 pub fn readme(cells: &[Cell]) -> String {
-    let mut s = String::from(
-        "# Stability map\n\nGenerated by `impactlab study stability`: the paper's rod (144 CRODs), 500 µs, every \
-         scheme over Δt = ¼…64 × 2e-7 s and impact velocity 1e-4…100 × 62.1 in/s. Data: \
-         `stability-map.csv`.\n\n![stability map](stability-map.png)\n\n| scheme | runs | refused or failed | \
-         largest energy error | at Δt, velocity scale |\n|---|---|---|---|---|\n",
+    let guard = crate::run::DEFAULT_ENERGY_GUARD;
+    let mut s = format!(
+        "# Stability map\n\nGenerated by `impactlab study stability` (this page and the figure are made from \
+         `stability-map.csv` alone; a test remakes them from it): the paper's rod (144 CRODs), 500 µs, every \
+         scheme over Δt = ¼…64 × {DT0:e} s and impact velocity 1e-4…100 × 62.1 in/s, every run with the default \
+         energy guard ({guard:.0e}: a run whose relative energy error exceeds it is stopped and counts as \
+         failed).\n\n![stability map](stability-map.png)\n\n| scheme | runs | completed | refused | stopped by \
+         the energy guard | largest error of a completed run | at Δt, velocity scale |\n|---|---|---|---|---|---|---|\n",
     );
     for scheme in Scheme::ALL {
         let mine: Vec<&Cell> = cells.iter().filter(|c| c.scheme == scheme).collect();
-        let failed = mine.iter().filter(|c| c.outcome.is_err()).count();
+        let guarded = mine.iter().filter(|c| c.stopped_by_guard()).count();
+        let failed = mine.iter().filter(|c| c.failed()).count();
         let worst = mine
             .iter()
-            .filter_map(|c| c.outcome.as_ref().ok().map(|e| (*e, c)))
+            .filter(|c| !c.failed())
+            .filter_map(|c| c.max_energy_error.map(|e| (e, c)))
             .max_by(|a, b| a.0.total_cmp(&b.0));
         let _ = writeln!(
             s,
-            "| {} | {} | {failed} | {} | {} |",
+            "| {} | {} | {} | {} | {guarded} | {} | {} |",
             scheme.name(),
             mine.len(),
+            mine.len() - failed,
+            failed - guarded,
             worst.map_or("—".into(), |w| format!("{:.2e}", w.0)),
             worst.map_or("—".into(), |w| format!(
                 "{:.1e} s, ×{:e}",
@@ -212,21 +277,29 @@ pub fn readme(cells: &[Cell]) -> String {
             )),
         );
     }
-    let refusals: Vec<String> = cells
-        .iter()
-        .filter_map(|c| {
-            c.outcome
-                .as_ref()
-                .err()
-                .map(|e| format!("- {} Δt {:.1e} s: {e}", c.scheme.name(), c.dt_s))
-        })
-        .collect::<std::collections::BTreeSet<_>>()
-        .into_iter()
-        .collect();
-    if !refusals.is_empty() {
-        s += "\nRefusals and failures (one line per distinct message):\n\n";
-        s += &refusals.join("\n");
-        s += "\n";
+    // Failures grouped by scheme, Δt and message, with the velocities they hit.
+    let mut groups: BTreeMap<(usize, u64, String), Vec<f64>> = BTreeMap::new();
+    for c in cells {
+        if let Some(f) = &c.failure {
+            let k = Scheme::ALL.iter().position(|x| *x == c.scheme).unwrap_or(0);
+            groups
+                .entry((k, c.dt_s.to_bits(), f.clone()))
+                .or_default()
+                .push(c.velocity_scale);
+        }
+    }
+    if !groups.is_empty() {
+        s += "\nFailures (scheme, Δt, the impact velocities as multiples of the paper's, and why):\n\n";
+        for ((k, dt, why), vs) in &groups {
+            let vs: Vec<String> = vs.iter().map(|v| format!("{v:e}")).collect();
+            let _ = writeln!(
+                s,
+                "- {} Δt {:.2e} s, ×{}: {why}",
+                Scheme::ALL[*k].name(),
+                f64::from_bits(*dt),
+                vs.join(", ×")
+            );
+        }
     }
     s
 }
