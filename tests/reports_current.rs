@@ -31,3 +31,64 @@ fn stability_page_and_figure_are_current() {
         "reports/stability/stability-map.svg is stale"
     );
 }
+
+/// The text of a generated file with the measured wall times masked.
+fn masked(text: &str) -> String {
+    text.lines()
+        .map(|l| if l.contains("wall time") { "(wall time)" } else { l })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// Goal: every committed case report (`reports/<case>/`: index.md, index.html and
+/// every figure's SVG) and the index `reports/README.md` are what `impactlab report`
+/// makes now, apart from measured wall times; a case report that is missing, or a
+/// file the code no longer makes, fails.
+#[test]
+fn case_reports_are_current() {
+    use impactlab::{report, study, verify};
+    let cases: Vec<verify::Case> = verify::load_cases(&[root().join("verification")])
+        .unwrap()
+        .into_iter()
+        .filter(|c| c.deck.is_some())
+        .collect();
+    let tmp = tempfile::tempdir().unwrap();
+    let mut stale = Vec::new();
+    for (name, outcome) in study::cases::evaluate_all(&cases, 2) {
+        let outcome = outcome.unwrap_or_else(|e| panic!("{name}: {e}"));
+        let fresh = tmp.path().join(&name);
+        report::report_case(&outcome, &fresh).unwrap();
+        let committed = root().join("reports").join(&name);
+        let mut files: Vec<String> = std::fs::read_dir(&fresh)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        files.sort();
+        let mut on_disk: Vec<String> = std::fs::read_dir(&committed)
+            .map(|d| {
+                d.map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+                    .collect()
+            })
+            .unwrap_or_default();
+        on_disk.sort();
+        if files != on_disk {
+            stale.push(format!("{name}: files {on_disk:?}, the code makes {files:?}"));
+            continue;
+        }
+        for f in files.iter().filter(|f| !f.ends_with(".png")) {
+            let a = std::fs::read_to_string(fresh.join(f)).unwrap();
+            let b = std::fs::read_to_string(committed.join(f)).unwrap();
+            if masked(&a) != masked(&b) {
+                stale.push(format!("{name}/{f}"));
+            }
+        }
+    }
+    let index = report::index(tmp.path());
+    if index != std::fs::read_to_string(root().join("reports/README.md")).unwrap() {
+        stale.push("README.md (the index)".into());
+    }
+    assert!(
+        stale.is_empty(),
+        "stale reports (regenerate with `cargo run --release -- report`): {stale:?}"
+    );
+}

@@ -12,7 +12,8 @@ use crate::model::Model;
 use crate::physics::analytic;
 use crate::plot::{self, Chart, Contour, Line};
 use crate::run::{Column, RunResult};
-use crate::verify::{Case, CaseOutcome, CheckResult};
+use crate::verify::external::{self, ExternalSeries};
+use crate::verify::{Case, CaseOutcome, CheckResult, CheckSpec};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -70,10 +71,12 @@ pub fn report_case(outcome: &CaseOutcome, dir: &Path) -> Result<CaseReport, Erro
         run.dt,
         run.steps
     );
+    let external = external_series(case)?;
+    let fig = Fig::new(model, run, dir, &footer, &external);
     let figures = if model.rod.is_some() {
-        rod_figures(model, run, dir, &footer)
+        rod_figures(&fig)
     } else if plate {
-        plate_figures(model, run, dir, &footer)
+        plate_figures(&fig)
     } else {
         Ok(Vec::new())
     }?;
@@ -147,28 +150,82 @@ struct Fig<'a> {
     dir: &'a Path,
     footer: &'a str,
     ax: TimeAxis,
+    /// Other solvers' results the case is checked against (its `external` checks).
+    external: &'a [ExternalSeries],
 }
 
 impl<'a> Fig<'a> {
-    fn new(model: &'a Model, run: &'a RunResult, dir: &'a Path, footer: &'a str) -> Self {
+    fn new(
+        model: &'a Model,
+        run: &'a RunResult,
+        dir: &'a Path,
+        footer: &'a str,
+        external: &'a [ExternalSeries],
+    ) -> Self {
         Fig {
             model,
             run,
             dir,
             footer,
             ax: TimeAxis::of(model),
+            external,
         }
+    }
+
+    /// The external solvers' curve of a history column up to `t_end`, its time mapped
+    /// by `x`, dotted, in `color`.
+    fn external_line(&self, ours: &str, t_end: f64, x: impl Fn(f64) -> f64, color: usize) -> Option<Line> {
+        let e = self.external.iter().find(|e| e.ours == ours)?;
+        let (t, v) = samples_until(&e.time, &e.values, t_end, 1);
+        Some(
+            Line::new(
+                format!("{} ({})", e.solver, e.theirs),
+                t.into_iter().map(x).collect(),
+                v,
+                color,
+            )
+            .dashed(),
+        )
     }
 }
 
-fn rod_figures(model: &Model, run: &RunResult, dir: &Path, footer: &str) -> Result<Vec<PathBuf>, Error> {
+/// The external series of a case's `external` checks.
+fn external_series(case: &Case) -> Result<Vec<ExternalSeries>, Error> {
+    let mut out: Vec<ExternalSeries> = Vec::new();
+    for spec in &case.checks {
+        if let CheckSpec::External {
+            file,
+            solver,
+            time,
+            columns,
+            ..
+        } = spec
+        {
+            let series =
+                external::load(&crate::verify::case::rel(case, file), solver, time, columns).map_err(|source| {
+                    crate::verify::CheckError::External {
+                        case: case.name.clone(),
+                        source,
+                    }
+                })?;
+            for s in series {
+                if !out.iter().any(|o| o.ours == s.ours) {
+                    out.push(s);
+                }
+            }
+        }
+    }
+    Ok(out)
+}
+
+fn rod_figures(f: &Fig) -> Result<Vec<PathBuf>, Error> {
     use crate::physics::references::{semi_infinite, ReferenceError};
-    let f = Fig::new(model, run, dir, footer);
+    let (model, run) = (f.model, f.run);
     let (tr, _, lc) = match semi_infinite(model) {
         Ok(r) => r,
         // A contact that outlasts 2L/C: the rod moves as a rigid body during it, and
         // the paper's figures and readings do not apply.
-        Err(ReferenceError::ContactDoesNotEnd) => return rigid_rod_figures(&f),
+        Err(ReferenceError::ContactDoesNotEnd) => return rigid_rod_figures(f),
         Err(e) => return Err(e.into()),
     };
     let end = run
@@ -177,9 +234,9 @@ fn rod_figures(model: &Model, run: &RunResult, dir: &Path, footer: &str) -> Resu
         .as_ref()
         .and_then(|r| r.contact_end_tcl)
         .unwrap_or(f64::NAN);
-    let mut out = rod_force(&f, &tr, lc, end)?;
-    out.extend(rod_strain(&f, &tr, lc)?);
-    out.extend(rod_energy(&f, lc, end)?);
+    let mut out = rod_force(f, &tr, lc, end)?;
+    out.extend(rod_strain(f, &tr, lc)?);
+    out.extend(rod_energy(f, lc, end)?);
     Ok(out)
 }
 
@@ -244,10 +301,13 @@ fn rod_force(f: &Fig, tr: &analytic::Trace, lc: f64, end: f64) -> Result<Vec<Pat
             x_label: ax.label(),
             y_label: format!("contact force [{}]", u.force),
             footer: footer.into(),
-            lines: vec![
+            lines: [
                 Line::new("impactlab (FE rod)", ax.map(&tf), ff, 0),
                 Line::new("ball on a semi-infinite rod (analytic)", ax.map(&ta), fa, 1).dashed(),
-            ],
+            ]
+            .into_iter()
+            .chain(f.external_line("contact_force", t_end, |t| t * ax.scale, 5))
+            .collect(),
             vlines: vec![(end * lc * ax.scale, format!("contact ends, tC/L = {end:.4}"))],
             headroom: 0.25,
             ..Default::default()
@@ -301,7 +361,7 @@ fn rod_strain(f: &Fig, tr: &analytic::Trace, lc: f64) -> Result<Vec<PathBuf>, Er
                 x_label: "tC/L [-]".into(),
                 y_label: "axial strain [-]".into(),
                 footer: footer.into(),
-                lines: vec![
+                lines: [
                     Line::new("impactlab", tcl(&t), strain, 0),
                     Line::new(
                         "d'Alembert −F(t − x/C)/EA, until the far-end reflection",
@@ -310,7 +370,10 @@ fn rod_strain(f: &Fig, tr: &analytic::Trace, lc: f64) -> Result<Vec<PathBuf>, Er
                         1,
                     )
                     .dashed(),
-                ],
+                ]
+                .into_iter()
+                .chain(f.external_line(&Column::rod_strain(eid).name(), f64::INFINITY, |t| t / lc, 5))
+                .collect(),
                 ..Default::default()
             },
             &dir.join("strain"),
@@ -362,12 +425,11 @@ fn rod_energy(f: &Fig, lc: f64, end: f64) -> Result<Vec<PathBuf>, Error> {
     Ok(out)
 }
 
-fn plate_figures(model: &Model, run: &RunResult, dir: &Path, footer: &str) -> Result<Vec<PathBuf>, Error> {
-    let f = Fig::new(model, run, dir, footer);
-    let mut out = plate_force(&f)?;
-    out.extend(plate_displacement(&f)?);
-    out.extend(plate_gages(&f)?);
-    out.extend(plate_energy(&f)?);
+fn plate_figures(f: &Fig) -> Result<Vec<PathBuf>, Error> {
+    let mut out = plate_force(f)?;
+    out.extend(plate_displacement(f)?);
+    out.extend(plate_gages(f)?);
+    out.extend(plate_energy(f)?);
     Ok(out)
 }
 
@@ -387,7 +449,7 @@ fn plate_force(f: &Fig) -> Result<Vec<PathBuf>, Error> {
             x_label: ax.label(),
             y_label: format!("contact force [{}]", u.force),
             footer: footer.into(),
-            lines: vec![
+            lines: [
                 Line::new("impactlab (FE plate)", ax.map(&tf), ff, 0),
                 Line::new(
                     "infinite plate, Zener/Olsson (valid before edge reflections)",
@@ -396,7 +458,10 @@ fn plate_force(f: &Fig) -> Result<Vec<PathBuf>, Error> {
                     1,
                 )
                 .dashed(),
-            ],
+            ]
+            .into_iter()
+            .chain(f.external_line("contact_force", 1.15 * end, |t| t * ax.scale, 5))
+            .collect(),
             // The paper's times are seconds: marked only on a deck in seconds.
             vlines: if ax.seconds {
                 vec![
@@ -500,6 +565,10 @@ fn plate_gages(f: &Fig) -> Result<Vec<PathBuf>, Error> {
                 let l = Line::new(format!("ε{c}, {side}"), t.clone(), v, i);
                 lines.push(if fibre == Fibre::Z1 { l.dashed() } else { l });
             }
+        }
+        for (comp, color) in [(Plane::Xx, 5), (Plane::Yy, 6)] {
+            let name = Column::shell_strain(*eid, Fibre::Z2, comp).name();
+            lines.extend(f.external_line(&name, f64::INFINITY, |t| t * ax.scale, color));
         }
         out.extend(plot::line_chart(
             &Chart {
