@@ -511,3 +511,20 @@ source = "a wrong number"
         assert!(c["tolerance"].is_string());
     }
 }
+
+/// Goal: the critical step of central differences on the paper's rod. Reference: the
+/// exact L_e/C = 0.25 in / 2e5 in/s = 1.25e-6 s of a uniform lumped-mass rod, and the
+/// Gershgorin bound the scheme uses, 2/√(3 + √2)·L_e/C (the row next to a half-mass
+/// end), to 1e-12 relative: both derived by hand, so a change to either fails.
+#[test]
+fn central_critical_step_of_the_paper_rod() {
+    let case = verify::read_case(&root().join("verification/rod-central.toml")).unwrap();
+    let out = impactlab::study::cases::evaluate(&case).unwrap();
+    let c = out.checks.iter().find(|c| c.check == "critical_step central").unwrap();
+    assert!(c.passed, "{}", c.detail);
+    let exact = c.reference.unwrap();
+    assert!((exact - 1.25e-6).abs() < 1e-12 * 1.25e-6, "{exact:e}");
+    let bound = 2.0 / (3.0 + 2f64.sqrt()).sqrt() * 1.25e-6;
+    assert!((c.value - bound).abs() < 1e-12 * bound, "{:e} vs {bound:e}", c.value);
+    assert!(out.run.dt < c.value, "the case runs below the step the scheme accepts");
+}

@@ -52,6 +52,22 @@ pub fn rod_params(model: &Model) -> Result<RodParams, ReferenceError> {
     })
 }
 
+/// The exact critical step of explicit central differences on the model's uniform
+/// lumped-mass rod: L_e/C. The chain of N elements with half masses at its free ends
+/// has ω_k = (2C/L_e)·sin(kπ/2N), k = 0…N; the highest (adjacent nodes in antiphase)
+/// is ω_max = 2C/L_e, and central differences are stable for Δt ≤ 2/ω_max = L_e/C.
+/// The impactor and the contact are left out (a free mass adds no frequency; the
+/// Hertz contact is nonlinear).
+pub fn rod_critical_step(model: &Model) -> Result<f64, ReferenceError> {
+    let r = rod_params(model)?;
+    let n = model
+        .elements
+        .iter()
+        .filter(|e| e.kind::<crate::elements::rod::Rod>().is_some())
+        .count();
+    Ok(r.length / n as f64 / r.wave_speed)
+}
+
 /// The model's ball on a semi-infinite rod, integrated over 2L/C (RK4, h = L/C/2e5):
 /// its trace, its events and L/C.
 pub fn semi_infinite(model: &Model) -> Result<(Trace, Events, f64), ReferenceError> {

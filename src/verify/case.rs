@@ -154,6 +154,10 @@ pub enum CheckSpec {
     /// Contact duration and peak force against the rigid-target closed form with the
     /// reduced mass of impactor and target.
     RigidTarget { tol: Tol },
+    /// The critical step central differences use (2/ω_max from the Gershgorin bound)
+    /// against the exact one of a uniform lumped-mass rod, L_e/C: safe (not above it)
+    /// and not over-conservative (at least `min_ratio` of it).
+    CriticalStep { min_ratio: f64 },
     /// Halving Δt: fit the order of `quantity` (energy_error: the error itself;
     /// contact_duration, peak_force: successive differences) over `runs` step sizes.
     DtConvergence {

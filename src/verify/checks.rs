@@ -8,7 +8,9 @@ use crate::ledger::EnergyRow;
 use crate::model::Model;
 use crate::numerics::argmax;
 use crate::physics::analytic;
-use crate::physics::references::{infinite_plate, rod_params, semi_infinite, two_rigid_bodies, ReferenceError};
+use crate::physics::references::{
+    infinite_plate, rod_critical_step, rod_params, semi_infinite, two_rigid_bodies, ReferenceError,
+};
 use crate::run::{Column, RunResult};
 
 /// A check that cannot be evaluated on its run.
@@ -20,6 +22,12 @@ pub enum CheckError {
         check: &'static str,
         #[source]
         source: ReferenceError,
+    },
+    #[error("case {case}: {source}")]
+    Solve {
+        case: String,
+        #[source]
+        source: crate::integrate::SolveError,
     },
     #[error("case {case}: {check} needs a model with a contact")]
     NoContact { case: String, check: &'static str },
@@ -112,6 +120,7 @@ pub fn check(case: &Case, model: &Model, run: &RunResult, spec: &CheckSpec) -> R
         } => dalembert_strain(&cx, *element, *x, *until_tcl, *max)?,
         CheckSpec::InfinitePlate { until_s, max } => infinite_plate_force(&cx, *until_s, *max)?,
         CheckSpec::RigidTarget { tol } => rigid_target(&cx, tol)?,
+        CheckSpec::CriticalStep { min_ratio } => critical_step(&cx, *min_ratio)?,
         CheckSpec::Gold { file, tol } => {
             let path = rel(case, file);
             let out = gold::compare(&path, &run.history_names(), &run.history, tol);
@@ -409,4 +418,29 @@ fn external_history(
             Err(e) => cx.result(name, f64::INFINITY, None, bound, false, e.to_string()),
         },
     )
+}
+
+fn critical_step(cx: &Cx, min_ratio: f64) -> Result<CheckResult, CheckError> {
+    let exact = cx.reference("critical_step", rod_critical_step(cx.model))?;
+    let sys = crate::assembly::assemble(cx.model);
+    let used = crate::integrate::central::critical_step(cx.model, &sys).map_err(|source| CheckError::Solve {
+        case: cx.case.name.clone(),
+        source,
+    })?;
+    let ratio = used / exact;
+    Ok(cx.result(
+        "critical_step central".into(),
+        used,
+        Some(exact),
+        Bound {
+            rtol: Some(1.0 - min_ratio),
+            atol: None,
+            text: format!("in [{min_ratio}, 1] × L_e/C"),
+        },
+        ratio <= 1.0 && ratio >= min_ratio,
+        format!(
+            "Gershgorin bound 2/ω_max = {used:.5e} = {ratio:.4} × L_e/C = {exact:.5e} {}; the run's Δt = {:.5e}",
+            cx.run.summary.units.time, cx.run.dt
+        ),
+    ))
 }
