@@ -528,3 +528,39 @@ fn central_critical_step_of_the_paper_rod() {
     assert!((c.value - bound).abs() < 1e-12 * bound, "{:e} vs {bound:e}", c.value);
     assert!(out.run.dt < c.value, "the case runs below the step the scheme accepts");
 }
+
+/// Goal: the `written_files` check reads what a run writes, so faults that leave the
+/// in-memory history intact are caught: every time shifted by one step, a summary
+/// whose peak force is not the largest force written, a time unit relabelled. The
+/// run itself passes.
+#[test]
+fn written_files_catch_what_the_in_memory_checks_cannot() {
+    use impactlab::verify::checks::written_files;
+    let case = verify::read_case(&root().join("verification/rod.toml")).unwrap();
+    let model = verify::case_model(&case).unwrap();
+    let mut o = verify::case_options(&case);
+    o.steps = Some(500);
+    let run = impactlab::run::run_model(&model, &o).unwrap();
+    let ok = written_files(&case, &model, &run);
+    assert!(ok.passed, "{}", ok.detail);
+    let mut shifted = run.clone();
+    shifted.history.iter_mut().for_each(|r| r[0] += run.dt);
+    let r = written_files(&case, &model, &shifted);
+    assert!(
+        !r.passed && r.detail.contains("history.csv: row 1 at t = "),
+        "{}",
+        r.detail
+    );
+    let mut peak = run.clone();
+    peak.summary.contact.peak_force *= 0.99;
+    let r = written_files(&case, &model, &peak);
+    assert!(!r.passed && r.detail.contains("summary peak force"), "{}", r.detail);
+    let mut relabelled = run.clone();
+    relabelled.summary.units.time = "ms".into();
+    let r = written_files(&case, &model, &relabelled);
+    assert!(
+        !r.passed && r.detail.contains("the deck's time unit is s"),
+        "{}",
+        r.detail
+    );
+}

@@ -27,6 +27,11 @@ pub fn evaluate(case: &Case) -> Result<CaseOutcome, crate::Error> {
         r.time_s = t.elapsed().as_secs_f64();
         checks.push(r);
     }
+    // Every case: what the run writes reads back to what it computed.
+    let t = Instant::now();
+    let mut r = crate::verify::checks::written_files(case, &model, &run);
+    r.time_s = t.elapsed().as_secs_f64();
+    checks.push(r);
     Ok(CaseOutcome {
         case: case.clone(),
         model,

@@ -444,3 +444,133 @@ fn critical_step(cx: &Cx, min_ratio: f64) -> Result<CheckResult, CheckError> {
         ),
     ))
 }
+
+/// The files the run writes (`history.csv`, `energy.csv`, `summary.json`, made by
+/// [`crate::output::run_files`] and read back): the headers carry the deck's units;
+/// row k of `history.csv` is at k·(output interval)·Δt and of `energy.csv` at k·Δt;
+/// every number reads back to the run's own; `summary.json` reads back to the run's
+/// summary, its peak force is the largest force written, and its contact intervals
+/// hold exactly the written rows with a positive indentation.
+pub fn written_files(case: &Case, model: &Model, run: &RunResult) -> CheckResult {
+    let problems = file_problems(model, run);
+    CheckResult::new(
+        case,
+        "written_files".into(),
+        problems.len() as f64,
+        None,
+        Bound::within(0.0, "0 problems".into()),
+        problems.is_empty(),
+        if problems.is_empty() {
+            "history.csv, energy.csv, summary.json read back: times, units, values and summary agree".into()
+        } else {
+            problems.join("; ")
+        },
+    )
+}
+
+fn file_problems(model: &Model, run: &RunResult) -> Vec<String> {
+    let mut bad = Vec::new();
+    let files = crate::output::run_files(model, run);
+    let file = |name: &str| {
+        files
+            .iter()
+            .find(|f| f.0 == name)
+            .map(|f| f.1.as_slice())
+            .unwrap_or_default()
+    };
+    let read = |name: &str| -> Result<(Vec<String>, Vec<Vec<f64>>), String> {
+        let mut r = csv::Reader::from_reader(file(name));
+        let header: Vec<String> = r
+            .headers()
+            .map_err(|e| e.to_string())?
+            .iter()
+            .map(String::from)
+            .collect();
+        let rows: Result<Vec<Vec<f64>>, String> = r
+            .records()
+            .map(|rec| {
+                let rec = rec.map_err(|e| e.to_string())?;
+                rec.iter()
+                    .map(|x| x.parse::<f64>().map_err(|e| e.to_string()))
+                    .collect()
+            })
+            .collect();
+        Ok((header, rows?))
+    };
+    // The deck's units, not the summary's: a writer that relabels is caught.
+    let units = &model.units;
+    let dt = run.dt;
+    let on_time = |t: f64, k: usize, per: usize| (t - (k * per) as f64 * dt).abs() <= 1e-9 * dt;
+    match read("history.csv") {
+        Err(e) => bad.push(format!("history.csv: {e}")),
+        Ok((header, rows)) => {
+            if header.first().map(String::as_str) != Some(&format!("time [{}]", units.time)) {
+                bad.push(format!(
+                    "history.csv: time header {:?}, the deck's time unit is {}",
+                    header.first(),
+                    units.time
+                ));
+            }
+            if header.get(1).map(String::as_str) != Some(&format!("contact_force [{}]", units.force)) {
+                bad.push(format!(
+                    "history.csv: force header {:?}, the deck's force unit is {}",
+                    header.get(1),
+                    units.force
+                ));
+            }
+            let every = model.time.every.max(1);
+            if let Some(k) = (0..rows.len()).find(|&k| !on_time(rows[k][0], k, every)) {
+                bad.push(format!(
+                    "history.csv: row {} at t = {:e}, expected {:e} (every {every} steps of {dt:e})",
+                    k + 1,
+                    rows[k][0],
+                    (k * every) as f64 * dt
+                ));
+            }
+            if rows != run.history {
+                bad.push("history.csv does not read back to the run's history".into());
+            }
+            let fmax = rows.iter().map(|r| r[1]).fold(0.0, f64::max);
+            let peak = run.summary.contact.peak_force;
+            if fmax > peak || (every == 1 && fmax != peak) {
+                bad.push(format!("summary peak force {peak:e}, history.csv's largest {fmax:e}"));
+            }
+            let inside = |t: f64| run.summary.contact.intervals.iter().any(|i| t >= i[0] && t <= i[1]);
+            if let Some(r) = rows.iter().find(|r| (r[2] > 0.0) != inside(r[0]) && r[0] > 0.0) {
+                bad.push(format!(
+                    "history.csv: indentation {:e} at t = {:e} disagrees with the summary's contact intervals",
+                    r[2], r[0]
+                ));
+            }
+        }
+    }
+    match read("energy.csv") {
+        Err(e) => bad.push(format!("energy.csv: {e}")),
+        Ok((header, rows)) => {
+            if header.first().map(String::as_str) != Some(&format!("time [{}]", units.time)) {
+                bad.push(format!("energy.csv: time header {:?}", header.first()));
+            }
+            if !run.energy.is_empty() && rows.len() != run.summary.run.steps_done + 1 {
+                bad.push(format!(
+                    "energy.csv: {} rows for {} steps",
+                    rows.len(),
+                    run.summary.run.steps_done
+                ));
+            }
+            if let Some(k) = (0..rows.len()).find(|&k| !on_time(rows[k][0], k, 1)) {
+                bad.push(format!(
+                    "energy.csv: row {} at t = {:e}, expected {:e}",
+                    k + 1,
+                    rows[k][0],
+                    k as f64 * dt
+                ));
+            }
+        }
+    }
+    match serde_json::from_slice::<crate::run::Summary>(file("summary.json")) {
+        Err(e) => bad.push(format!("summary.json: {e}")),
+        Ok(s) if s != run.summary => bad.push("summary.json does not read back to the run's summary".into()),
+        Ok(_) => {}
+    }
+    bad
+}
