@@ -207,3 +207,47 @@ pub fn plate_model(n: usize) -> Result<crate::model::Model, crate::Error> {
     let text = plate_deck(n)?;
     crate::model_from_text(&format!("plate-{n}x{n}"), &text)
 }
+
+/// A simply supported square plate side × side on an n×n CQUAD4 mesh (w = 0 on the
+/// edges, rotations free; in-plane DOFs and drilling fixed by GRDSET PS = 126), with a
+/// bending material G (MAT2, stress/strain: G11, G12, G13, G22, G23, G33), density ρ
+/// and thickness t: the Navier plate of the frequency check, built through the deck
+/// reader.
+pub fn simply_supported_plate(
+    n: usize,
+    side: f64,
+    thickness: f64,
+    g: [f64; 6],
+    rho: f64,
+) -> Result<crate::model::Model, crate::Error> {
+    let mut d = String::from("SOL 9\nCEND\nTSTEP = 1\nSPC = 1\nBEGIN BULK\nTSTEP,1,1,1.0-6,1\n");
+    let id = |r: usize, c: usize| 1000 * (r + 1) + c + 1;
+    for r in 0..=n {
+        for c in 0..=n {
+            let (x, y) = (side * c as f64 / n as f64, side * r as f64 / n as f64);
+            let _ = writeln!(d, "GRID,{},,{x:?},{y:?},0.0", id(r, c));
+            if r == 0 || c == 0 || r == n || c == n {
+                let _ = writeln!(d, "SPC1,1,3,{}", id(r, c));
+            }
+        }
+    }
+    for r in 0..n {
+        for c in 0..n {
+            let _ = writeln!(
+                d,
+                "CQUAD4,{},1,{},{},{},{}",
+                id(r, c),
+                id(r, c),
+                id(r, c + 1),
+                id(r + 1, c + 1),
+                id(r + 1, c)
+            );
+        }
+    }
+    let _ = writeln!(
+        d,
+        "GRDSET,,,,,,,126\nPSHELL,1,1,{thickness:?},1,1.0\nMAT2,1,{:?},{:?},{:?},{:?},{:?},{:?},{rho:?}\nENDDATA",
+        g[0], g[1], g[2], g[3], g[4], g[5]
+    );
+    crate::model_from_text(&format!("navier-plate-{n}x{n}"), &d)
+}

@@ -495,7 +495,8 @@ source = "a wrong number"
     assert_eq!(j["passed"], false);
     assert_eq!(
         j["counts"],
-        serde_json::json!({"checks": 3, "passed": 2, "failed": 1, "cases_in_error": 0})
+        // The three checks of the case file and the two every case gets.
+        serde_json::json!({"checks": 5, "passed": 4, "failed": 1, "cases_in_error": 0})
     );
     assert_eq!(j["impactlab_version"], env!("CARGO_PKG_VERSION"));
     let r = j["results"].as_array().unwrap();

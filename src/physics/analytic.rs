@@ -132,6 +132,23 @@ pub fn plate_impedance(mass_per_area: f64, d11: f64, d22: f64, d12: f64, d66: f6
     8.0 * (mass_per_area * d_star).sqrt()
 }
 
+/// The lowest `count` natural frequencies (rad/time) of a simply supported a × a
+/// specially orthotropic Kirchhoff plate (Navier): ω_mn² = π⁴/(ρh)·[D11 (m/a)⁴ +
+/// 2(D12 + 2D66)(m/a)²(n/a)² + D22 (n/a)⁴], over m, n = 1…8, ascending.
+pub fn navier_frequencies(side: f64, mass_per_area: f64, d: [f64; 4], count: usize) -> Vec<f64> {
+    let [d11, d22, d12, d66] = d;
+    let pi2 = std::f64::consts::PI.powi(2);
+    let mut w: Vec<f64> = (1..=8)
+        .flat_map(|m| (1..=8).map(move |n| (m as f64 / side, n as f64 / side)))
+        .map(|(p, q)| {
+            pi2 * ((d11 * p.powi(4) + 2.0 * (d12 + 2.0 * d66) * p * p * q * q + d22 * q.powi(4)) / mass_per_area).sqrt()
+        })
+        .collect();
+    w.sort_by(f64::total_cmp);
+    w.truncate(count);
+    w
+}
+
 /// The rigid-target Hertz impact (A = 3/2): m on a rigid half-space at v0, or two
 /// rigid bodies with the reduced mass m. Returns (α_max, peak force, duration).
 ///

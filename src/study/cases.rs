@@ -27,11 +27,17 @@ pub fn evaluate(case: &Case) -> Result<CaseOutcome, crate::Error> {
         r.time_s = t.elapsed().as_secs_f64();
         checks.push(r);
     }
-    // Every case: what the run writes reads back to what it computed.
-    let t = Instant::now();
-    let mut r = crate::verify::checks::written_files(case, &model, &run);
-    r.time_s = t.elapsed().as_secs_f64();
-    checks.push(r);
+    // Every case: what the run writes reads back to what it computed, and the stresses
+    // it writes follow the material law from its strains.
+    for always in [
+        crate::verify::checks::written_files,
+        crate::verify::checks::material_law,
+    ] {
+        let t = Instant::now();
+        let mut r = always(case, &model, &run);
+        r.time_s = t.elapsed().as_secs_f64();
+        checks.push(r);
+    }
     Ok(CaseOutcome {
         case: case.clone(),
         model,

@@ -154,6 +154,12 @@ pub enum CheckSpec {
     /// Contact duration and peak force against the rigid-target closed form with the
     /// reduced mass of impactor and target.
     RigidTarget { tol: Tol },
+    /// The lowest `modes` natural frequencies of a simply supported square plate of the
+    /// case's size and shell section (bending), on two meshes (n × n, the second
+    /// twice as fine), Richardson-extrapolated at order 2, against Navier's closed form:
+    /// max relative difference ≤ max. Gates the element's bending stiffness and mass
+    /// without any gold file.
+    NavierFrequencies { meshes: [usize; 2], modes: usize, max: f64 },
     /// The critical step central differences use (2/ω_max from the Gershgorin bound)
     /// against the exact one of a uniform lumped-mass rod, L_e/C: safe (not above it)
     /// and not over-conservative (at least `min_ratio` of it).
