@@ -120,3 +120,21 @@ fn rod_rigid_report_uses_the_two_rigid_body_reference() {
         "force.svg"
     );
 }
+
+/// Goal: a figure is never drawn from samples too coarse for its pulse. Model: the
+/// rod at 8× the paper's Δt written at the deck's interval (every 25 steps, 40 µs,
+/// against a 74 µs contact pulse): the report refuses, naming the figure and the fix.
+#[test]
+fn a_pulse_sampled_too_coarsely_is_not_drawn() {
+    let mut case = impactlab::verify::read_case(&root().join("verification/rod-energy-8dt.toml")).unwrap();
+    case.every_step = false;
+    let outcome = impactlab::study::cases::evaluate(&case).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let e = impactlab::report::report_case(&outcome, dir.path())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("strain.png") && e.contains("every_step = true"), "{e}");
+    case.every_step = true;
+    let outcome = impactlab::study::cases::evaluate(&case).unwrap();
+    assert!(impactlab::report::report_case(&outcome, dir.path()).is_ok());
+}

@@ -127,10 +127,40 @@ fn energy_lines(e: &[EnergyRow], x: impl Fn(f64) -> f64) -> Vec<Line> {
     vec![
         Line::new("KE impactor (Eq. 14)", t.clone(), get(|r| r.ke_impactor), 0),
         Line::new("SE impactor (Eq. 15)", t.clone(), get(|r| r.se_impactor), 1),
-        Line::new("KE target (½vᵀMv)", t.clone(), get(|r| r.ke_target), 2),
+        // Dashed: KE_t and SE_t are equal while a pulse travels, and one would hide
+        // the other.
+        Line::new("KE target (½vᵀMv)", t.clone(), get(|r| r.ke_target), 2).dashed(),
         Line::new("SE target (Eq. 17)", t.clone(), get(|r| r.se_target), 3),
+        Line::new(
+            "target total KE_t + SE_t",
+            t.clone(),
+            get(|r| r.ke_target + r.se_target),
+            4,
+        ),
         Line::new("total (Eq. 13)", t, get(|r| r.total), 5),
     ]
+}
+
+/// Refuses a history signal sampled coarser than a tenth of the contact pulse: drawn
+/// from so few points a pulse loses its peak (and a reference sampled at the same
+/// points seems to agree). The case should record every step (`every_step = true`).
+fn resolves_the_pulse(f: &Fig, stem: &Path) -> Result<(), Error> {
+    let h = &f.run.history;
+    let (Some(pulse), true) = (f.run.summary.contact.duration, h.len() > 1) else {
+        return Ok(());
+    };
+    let sample = h[1][0] - h[0][0];
+    if sample > pulse / 10.0 {
+        return Err(crate::plot::PlotError {
+            path: stem.with_extension("png").display().to_string(),
+            source: crate::plot::err(format!(
+                "the history is written every {sample:.4e}, coarser than a tenth of the contact pulse ({pulse:.4e}): \
+                 record every step (every_step = true in the case file)"
+            )),
+        }
+        .into());
+    }
+    Ok(())
 }
 
 /// The samples (t, y) with t ≤ `t_end`, every `every`-th one.
@@ -337,6 +367,7 @@ fn rod_strain(f: &Fig, tr: &analytic::Trace, lc: f64) -> Result<Vec<PathBuf>, Er
                 .total_cmp(&(b.1 - rod.length / 2.0).abs())
         });
     if let Some((eid, xc, strain)) = mid {
+        resolves_the_pulse(f, &dir.join("strain"))?;
         let t: Vec<f64> = run.history.iter().map(|r| r[0]).collect();
         let x0 = model
             .elements
@@ -543,6 +574,9 @@ fn plate_gages(f: &Fig) -> Result<Vec<PathBuf>, Error> {
         .into_iter()
         .collect();
     let t: Vec<f64> = run.history.iter().map(|r| r[0] * ax.scale).collect();
+    if !mesh_gages.is_empty() {
+        resolves_the_pulse(f, &dir.join("gage-a"))?;
+    }
     for (k, eid) in mesh_gages.iter().skip(1).take(2).enumerate() {
         let (fig, gage) = if k == 0 { ("Fig. 8", "A") } else { ("Fig. 9", "B") };
         let mut lines = Vec::new();
