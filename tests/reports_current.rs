@@ -87,8 +87,77 @@ fn case_reports_are_current() {
     if index != std::fs::read_to_string(root().join("reports/README.md")).unwrap() {
         stale.push("README.md (the index)".into());
     }
+    // index.html and the study pages' HTML, from the committed markdown.
+    for (rel, html) in report::html_pages(&root().join("reports"), &index) {
+        if std::fs::read_to_string(root().join("reports").join(&rel))
+            .ok()
+            .as_deref()
+            != Some(html.as_str())
+        {
+            stale.push(rel.display().to_string());
+        }
+    }
     assert!(
         stale.is_empty(),
         "stale reports (regenerate with `cargo run --release -- report`): {stale:?}"
     );
+}
+
+/// Goal: every page under `reports/` links only to what is there: each relative
+/// `href` and `src` of every HTML page names an existing file, every image is a PNG
+/// or SVG that exists, and the top-level `index.html` reaches every case and study page.
+#[test]
+fn every_link_and_image_of_the_report_pages_exists() {
+    fn html_files(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
+        for e in std::fs::read_dir(dir).unwrap().flatten() {
+            let p = e.path();
+            if p.is_dir() {
+                html_files(&p, out);
+            } else if p.extension().is_some_and(|x| x == "html") {
+                out.push(p);
+            }
+        }
+    }
+    let reports = root().join("reports");
+    let mut pages = Vec::new();
+    html_files(&reports, &mut pages);
+    assert!(pages.len() >= 10, "{pages:?}");
+    let mut broken = Vec::new();
+    for page in &pages {
+        let text = std::fs::read_to_string(page).unwrap();
+        assert!(
+            text.starts_with("<!DOCTYPE html>") && text.trim_end().ends_with("</html>"),
+            "{page:?}"
+        );
+        for attr in ["href=\"", "src=\""] {
+            for part in text.split(attr).skip(1) {
+                let target = part.split('"').next().unwrap();
+                if target.starts_with("http") || target.starts_with('#') || target.is_empty() {
+                    continue;
+                }
+                let path = page.parent().unwrap().join(target.split('#').next().unwrap());
+                if !path.is_file() {
+                    broken.push(format!("{}: {target}", page.strip_prefix(&reports).unwrap().display()));
+                }
+            }
+        }
+    }
+    assert!(broken.is_empty(), "broken links: {broken:?}");
+    let index = std::fs::read_to_string(reports.join("index.html")).unwrap();
+    for e in std::fs::read_dir(&reports)
+        .unwrap()
+        .flatten()
+        .filter(|e| e.path().is_dir())
+    {
+        let name = e.file_name().to_string_lossy().into_owned();
+        let page = if e.path().join("index.html").exists() {
+            "index.html"
+        } else {
+            "README.html"
+        };
+        assert!(
+            index.contains(&format!("href=\"{name}/{page}\"")),
+            "index.html does not link {name}/{page}"
+        );
+    }
 }

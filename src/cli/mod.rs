@@ -242,8 +242,13 @@ pub fn report(a: ReportArgs) -> Result<u8, Error> {
         ));
     }
     let index = a.out.join("README.md");
-    output::write_file_atomically(&index, report::index(&a.out).as_bytes()).map_err(io_error(&index))?;
-    sayln(&format!("index: {}", index.display()));
+    let index_md = report::index(&a.out);
+    output::write_file_atomically(&index, index_md.as_bytes()).map_err(io_error(&index))?;
+    for (rel, html) in report::html_pages(&a.out, &index_md) {
+        let p = a.out.join(rel);
+        output::write_file_atomically(&p, html.as_bytes()).map_err(io_error(&p))?;
+    }
+    sayln(&format!("index: {} and index.html", index.display()));
     Ok(0)
 }
 

@@ -816,6 +816,33 @@ fn html(title: &str, markdown: &str) -> String {
     )
 }
 
+/// A markdown page as HTML, its links to `.md` pages pointing at their `.html` twins.
+pub fn page_html(title: &str, markdown: &str) -> String {
+    html(title, &markdown.replace(".md)", ".html)"))
+}
+
+/// The HTML pages of a reports directory besides the case pages: `index.html` from
+/// the index, and `README.html` beside each study's `README.md` (a subdirectory with a
+/// README.md and no case report), each with its path relative to `dir`.
+pub fn html_pages(dir: &Path, index_md: &str) -> Vec<(PathBuf, String)> {
+    let mut out = vec![(PathBuf::from("index.html"), page_html("impactlab reports", index_md))];
+    let mut studies: Vec<(String, String)> = std::fs::read_dir(dir)
+        .into_iter()
+        .flatten()
+        .flatten()
+        .filter(|e| !e.path().join("index.md").exists())
+        .filter_map(|e| {
+            let md = std::fs::read_to_string(e.path().join("README.md")).ok()?;
+            Some((e.file_name().to_string_lossy().into_owned(), md))
+        })
+        .collect();
+    studies.sort();
+    for (name, md) in studies {
+        out.push((PathBuf::from(&name).join("README.html"), page_html(&name, &md)));
+    }
+    out
+}
+
 /// `reports/README.md`: one line per case report found in `dir` (a subdirectory with
 /// an `index.md`), with its verdict counts read from that report, so regenerating one
 /// case keeps the others listed.
@@ -846,7 +873,8 @@ pub fn index(dir: &Path) -> String {
     let _ = writeln!(
         m,
         "\nStudies: [accuracy](accuracy/README.md) (what accuracy costs in time), \
-         [stability](stability/README.md) (the stability map), [scenes](scenes/README.md) (what each effect costs)."
+         [stability](stability/README.md) (the stability map), [scenes](scenes/README.md) (what each effect costs), \
+         [mutants](mutants/README.md) (whether the gate catches injected faults)."
     );
     m
 }
