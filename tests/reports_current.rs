@@ -161,3 +161,66 @@ fn every_link_and_image_of_the_report_pages_exists() {
         );
     }
 }
+
+/// Goal: every page under `reports/` renders in a real browser (headless Chromium,
+/// Debian's `chromium`): each loads from its file and is drawn to a screenshot of the
+/// window's size. Missing images and broken links are the test above. Skipped, and
+/// says so, where no Chromium is installed, except under CI (`.ci/run` installs it),
+/// where a missing browser fails.
+#[test]
+fn every_report_page_renders_in_headless_chromium() {
+    let Some(browser) = ["chromium", "chromium-browser"].into_iter().find(|b| {
+        std::process::Command::new(b)
+            .arg("--version")
+            .output()
+            .is_ok_and(|o| o.status.success())
+    }) else {
+        assert!(
+            std::env::var_os("CI").is_none(),
+            "CI must install chromium (.ci/run does)"
+        );
+        eprintln!("skipped: no chromium on this machine (apt-get install chromium)");
+        return;
+    };
+    let reports = root().join("reports");
+    let tmp = tempfile::tempdir().unwrap();
+    let mut pages: Vec<std::path::PathBuf> = vec![reports.join("index.html")];
+    for e in std::fs::read_dir(&reports).unwrap().flatten() {
+        for page in ["index.html", "README.html"] {
+            if e.path().join(page).is_file() {
+                pages.push(e.path().join(page));
+            }
+        }
+    }
+    for (i, page) in pages.iter().enumerate() {
+        let shot = tmp.path().join(format!("{i}.png"));
+        let o = std::process::Command::new("timeout")
+            .args([
+                "60",
+                browser,
+                "--headless",
+                "--no-sandbox",
+                "--disable-gpu",
+                "--hide-scrollbars",
+            ])
+            .arg("--window-size=1200,1600")
+            .arg(format!("--screenshot={}", shot.display()))
+            .arg(format!("file://{}", page.display()))
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{page:?}: {}", String::from_utf8_lossy(&o.stderr));
+        let png = std::fs::read(&shot).unwrap_or_else(|e| panic!("{page:?}: no screenshot: {e}"));
+        assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n", "{page:?}");
+        let (w, h) = (
+            u32::from_be_bytes(png[16..20].try_into().unwrap()),
+            u32::from_be_bytes(png[20..24].try_into().unwrap()),
+        );
+        assert_eq!((w, h), (1200, 1600), "{page:?}");
+        // A blank white page compresses to a few kB; a drawn one does not.
+        assert!(
+            png.len() > 20_000,
+            "{page:?}: the screenshot is blank ({} bytes)",
+            png.len()
+        );
+    }
+}

@@ -865,10 +865,7 @@ pub fn index(dir: &Path) -> String {
     for (name, md) in &cases {
         let passed = md.matches("| pass |").count();
         let failed = md.matches("| **FAIL** |").count();
-        let _ = writeln!(
-            m,
-            "| {name} | {passed} | {failed} | [{name}/index.md]({name}/index.md) |"
-        );
+        let _ = writeln!(m, "| {name} | {passed} | {failed} | [report]({name}/index.md) |");
     }
     let _ = writeln!(
         m,
