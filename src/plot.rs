@@ -77,6 +77,10 @@ pub struct Chart {
     pub log_y: bool,
     /// Extra room above the data, as a fraction of its range, for the legend.
     pub headroom: f64,
+    /// A panel under the chart with each other line minus the first (interpolated
+    /// on the other line's points): the difference of a reference from the result.
+    /// Linear axes only.
+    pub difference: Option<String>,
 }
 
 /// A plotters failure while drawing, with its message.
@@ -152,7 +156,7 @@ pub fn write_figure(fig: &impl Figure, stem: &Path) -> Result<Vec<PathBuf>, Plot
 
 impl Figure for Chart {
     fn size(&self) -> (u32, u32) {
-        (1000, 640)
+        (1000, if self.difference.is_some() { 900 } else { 640 })
     }
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Res
     where
@@ -173,6 +177,14 @@ where
 {
     root.fill(&WHITE).map_err(err)?;
     let (upper, lower) = root.split_vertically(610);
+    let lower = match &c.difference {
+        Some(label) if !c.log_x && !c.log_y => {
+            let (panel, foot) = lower.split_vertically(260);
+            draw_difference(c, label, &panel)?;
+            foot
+        }
+        _ => lower,
+    };
     lower
         .draw_text(
             &c.footer,
@@ -268,6 +280,65 @@ where
         (true, false) => body!(b
             .build_cartesian_2d((xs.0..xs.1).log_scale(), ys.0..ys.1)
             .map_err(err)?),
+    }
+    Ok(())
+}
+
+/// The difference panel: every line after the first minus the first, at the other
+/// line's points within the first's range.
+fn draw_difference<DB: DrawingBackend>(c: &Chart, label: &str, area: &DrawingArea<DB, Shift>) -> Res
+where
+    DB::ErrorType: 'static,
+{
+    let Some(base) = c.lines.first() else {
+        return Ok(());
+    };
+    let (lo, hi) = (
+        base.x.iter().cloned().fold(f64::INFINITY, f64::min),
+        base.x.iter().cloned().fold(f64::NEG_INFINITY, f64::max),
+    );
+    let diffs: Vec<(&Line, Vec<(f64, f64)>)> = c.lines[1..]
+        .iter()
+        .map(|l| {
+            let pts =
+                l.x.iter()
+                    .zip(&l.y)
+                    .filter(|(x, y)| x.is_finite() && y.is_finite() && **x >= lo && **x <= hi)
+                    .map(|(x, y)| (*x, y - crate::numerics::interp(&base.x, &base.y, *x)))
+                    .collect();
+            (l, pts)
+        })
+        .collect();
+    let xs = range(c.lines.iter().flat_map(|l| l.x.iter().cloned()), false);
+    let ys = range(diffs.iter().flat_map(|d| d.1.iter().map(|p| p.1)).chain([0.0]), false);
+    let mut ch = ChartBuilder::on(area)
+        .margin_left(14)
+        .margin_right(14)
+        .x_label_area_size(30)
+        .y_label_area_size(90)
+        .build_cartesian_2d(xs.0..xs.1, ys.0..ys.1)
+        .map_err(err)?;
+    ch.configure_mesh()
+        .y_desc(label)
+        .label_style(("sans-serif", 13))
+        .axis_desc_style(("sans-serif", 15))
+        .x_label_formatter(&|v| fmt_tick(*v))
+        .y_label_formatter(&|v| fmt_tick(*v))
+        .light_line_style(RGBColor(235, 235, 235))
+        .draw()
+        .map_err(err)?;
+    ch.draw_series(std::iter::once(PathElement::new(
+        vec![(xs.0, 0.0), (xs.1, 0.0)],
+        ShapeStyle::from(&PALETTE[base.color % PALETTE.len()]).stroke_width(1),
+    )))
+    .map_err(err)?;
+    for (l, pts) in diffs {
+        let style = ShapeStyle::from(&PALETTE[l.color % PALETTE.len()]).stroke_width(2);
+        if l.dashed {
+            ch.draw_series(DashedLineSeries::new(pts, 8, 5, style)).map_err(err)?;
+        } else {
+            ch.draw_series(LineSeries::new(pts, style)).map_err(err)?;
+        }
     }
     Ok(())
 }

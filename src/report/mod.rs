@@ -299,6 +299,7 @@ fn rigid_rod_figures(f: &Fig) -> Result<Vec<PathBuf>, Error> {
                 .dashed(),
             ],
             headroom: 0.25,
+            difference: Some(format!("reference − impactlab [{}]", u.force)),
             ..Default::default()
         },
         &dir.join("force"),
@@ -340,6 +341,7 @@ fn rod_force(f: &Fig, tr: &analytic::Trace, lc: f64, end: f64) -> Result<Vec<Pat
             .collect(),
             vlines: vec![(end * lc * ax.scale, format!("contact ends, tC/L = {end:.4}"))],
             headroom: 0.25,
+            difference: Some(format!("reference − impactlab [{}]", u.force)),
             ..Default::default()
         },
         &dir.join("force"),
@@ -405,6 +407,7 @@ fn rod_strain(f: &Fig, tr: &analytic::Trace, lc: f64) -> Result<Vec<PathBuf>, Er
                 .into_iter()
                 .chain(f.external_line(&Column::rod_strain(eid).name(), f64::INFINITY, |t| t / lc, 5))
                 .collect(),
+                difference: Some("reference − impactlab [-]".into()),
                 ..Default::default()
             },
             &dir.join("strain"),
@@ -503,6 +506,7 @@ fn plate_force(f: &Fig) -> Result<Vec<PathBuf>, Error> {
                 Vec::new()
             },
             headroom: 0.3,
+            difference: Some(format!("reference − impactlab [{}]", u.force)),
             ..Default::default()
         },
         &dir.join("force"),
