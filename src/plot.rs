@@ -364,6 +364,8 @@ pub struct Contour {
     pub unit: String,
     /// Cells: corner coordinates (x, y) and value.
     pub cells: Vec<([(f64, f64); 4], f64)>,
+    /// Points marked on the map, with their labels (an impact point, gages).
+    pub marks: Vec<((f64, f64), String)>,
 }
 
 fn colormap(t: f64) -> RGBColor {
@@ -431,16 +433,16 @@ where
     )
     .map_err(err)?;
     let (maps, bar) = body.split_horizontally(380 * panels.len() as u32);
-    let vmax = panels
-        .iter()
-        .flat_map(|p| p.cells.iter().map(|c| c.1.abs()))
-        .fold(0.0f64, f64::max)
-        .max(1e-300);
     for (area, p) in maps.split_evenly((1, panels.len())).iter().zip(panels) {
+        // One scale per panel: each is coloured by its own largest |value|.
+        let vmax = p.cells.iter().map(|c| c.1.abs()).fold(0.0f64, f64::max).max(1e-300);
         let xs = range(p.cells.iter().flat_map(|c| c.0.iter().map(|q| q.0)), false);
         let ys = range(p.cells.iter().flat_map(|c| c.0.iter().map(|q| q.1)), false);
         let mut ch = ChartBuilder::on(area)
-            .caption(&p.title, ("sans-serif", 17))
+            .caption(
+                format!("{}, |max| {} {}", p.title, fmt_tick(vmax), p.unit),
+                ("sans-serif", 17),
+            )
             .margin(8)
             .x_label_area_size(36)
             .y_label_area_size(44)
@@ -461,6 +463,12 @@ where
                 .map(|(q, v)| Polygon::new(q.to_vec(), colormap(0.5 + 0.5 * v / vmax).filled())),
         )
         .map_err(err)?;
+        ch.draw_series(p.marks.iter().map(|(pt, label)| {
+            EmptyElement::at(*pt)
+                + Cross::new((0, 0), 6, BLACK.stroke_width(2))
+                + Text::new(label.clone(), (9, -18), ("sans-serif", 14).into_font().color(&BLACK))
+        }))
+        .map_err(err)?;
     }
     // Colour bar: value / max |value|.
     let (bx, by) = (20, 30);
@@ -473,9 +481,9 @@ where
         .map_err(err)?;
     }
     for (t, label) in [
-        (0.0, format!("{:+.2e}", vmax)),
+        (0.0, "+|max|".to_string()),
         (0.5, "0".to_string()),
-        (1.0, format!("{:+.2e}", -vmax)),
+        (1.0, "−|max|".to_string()),
     ] {
         bar.draw_text(
             &label,

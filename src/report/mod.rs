@@ -527,6 +527,20 @@ fn plate_displacement(f: &Fig) -> Result<Vec<PathBuf>, Error> {
         .filter(|(_, l)| l.comp == 3)
         .map(|(i, l)| (l.point, i))
         .collect();
+    // The recorded elements: the one under the impactor, then gages A and B (as the
+    // gage figures take them), marked at their centres.
+    let marks: Vec<((f64, f64), String)> = recorded_strain_elements(run)
+        .iter()
+        .take(3)
+        .zip(["impact", "A", "B"])
+        .filter_map(|(eid, label)| {
+            let q = model.elements.iter().find(|e| e.eid == *eid)?.kind::<Quad4>()?;
+            let c =
+                q.xy.iter()
+                    .fold((0.0, 0.0), |a, p| (a.0 + p[0] / 4.0, a.1 + p[1] / 4.0));
+            Some((c, label.to_string()))
+        })
+        .collect();
     let panels: Vec<Contour> = run
         .snapshots
         .iter()
@@ -547,6 +561,7 @@ fn plate_displacement(f: &Fig) -> Result<Vec<PathBuf>, Error> {
                     Some((xy.map(|p| (p[0], p[1])), v))
                 })
                 .collect(),
+            marks: marks.clone(),
         })
         .collect();
     if !panels.is_empty() {
@@ -563,12 +578,10 @@ fn plate_displacement(f: &Fig) -> Result<Vec<PathBuf>, Error> {
     Ok(out)
 }
 
-/// The strains at gages A and B, both fibres (paper Figs. 8 and 9).
-fn plate_gages(f: &Fig) -> Result<Vec<PathBuf>, Error> {
-    let (run, ax, footer, dir) = (f.run, &f.ax, f.footer, f.dir);
-    let mut out = Vec::new();
-    let mesh_gages: Vec<i64> = run
-        .history_columns
+/// The elements whose strains the run recorded, by id: on the paper's plate the one
+/// under the impactor, then gages A and B.
+fn recorded_strain_elements(run: &RunResult) -> Vec<i64> {
+    run.history_columns
         .iter()
         .filter_map(|c| match c {
             Column::Element { eid, value } if value.measure == Measure::Strain => Some(*eid),
@@ -576,7 +589,14 @@ fn plate_gages(f: &Fig) -> Result<Vec<PathBuf>, Error> {
         })
         .collect::<std::collections::BTreeSet<i64>>()
         .into_iter()
-        .collect();
+        .collect()
+}
+
+/// The strains at gages A and B, both fibres (paper Figs. 8 and 9).
+fn plate_gages(f: &Fig) -> Result<Vec<PathBuf>, Error> {
+    let (run, ax, footer, dir) = (f.run, &f.ax, f.footer, f.dir);
+    let mut out = Vec::new();
+    let mesh_gages = recorded_strain_elements(run);
     let t: Vec<f64> = run.history.iter().map(|r| r[0] * ax.scale).collect();
     if !mesh_gages.is_empty() {
         resolves_the_pulse(f, &dir.join("gage-a"))?;
