@@ -40,6 +40,10 @@ pub struct Line {
     pub dashed: bool,
     /// Draw markers at the points (for sparse data, e.g. one per Δt).
     pub markers: bool,
+    /// A text beside each point (empty: none), e.g. the Δt of a run.
+    pub point_labels: Vec<String>,
+    /// Points drawn with a ring around their marker, e.g. the paper's setting.
+    pub emphasis: Vec<usize>,
 }
 
 impl Line {
@@ -51,6 +55,8 @@ impl Line {
             color,
             dashed: false,
             markers: false,
+            point_labels: Vec::new(),
+            emphasis: Vec::new(),
         }
     }
     pub fn dashed(mut self) -> Self {
@@ -59,6 +65,16 @@ impl Line {
     }
     pub fn markers(mut self) -> Self {
         self.markers = true;
+        self
+    }
+    /// A text beside each point.
+    pub fn point_labels(mut self, labels: Vec<String>) -> Self {
+        self.point_labels = labels;
+        self
+    }
+    /// Rings around the points at these indices.
+    pub fn emphasis(mut self, points: Vec<usize>) -> Self {
+        self.emphasis = points;
         self
     }
 }
@@ -201,6 +217,7 @@ where
             ys.1 + c.headroom * (ys.1 - ys.0)
         };
     }
+    let corner = place_legend(c, xs, &mut ys);
     let mut b = ChartBuilder::on(&upper);
     b.caption(&c.title, ("sans-serif", 22))
         .margin(14)
@@ -214,8 +231,8 @@ where
                 .y_desc(c.y_label.as_str())
                 .label_style(("sans-serif", 15))
                 .axis_desc_style(("sans-serif", 17))
-                .x_label_formatter(&|v| fmt_tick(*v))
-                .y_label_formatter(&|v| fmt_tick(*v))
+                .x_label_formatter(&|v| axis_tick(*v, c.log_x, xs))
+                .y_label_formatter(&|v| axis_tick(*v, c.log_y, ys))
                 .light_line_style(RGBColor(235, 235, 235))
                 .draw()
                 .map_err(err)?;
@@ -259,12 +276,36 @@ where
                     ch.draw_series(pts.iter().map(|p| Circle::new(*p, 4, color.filled())))
                         .map_err(err)?;
                 }
+                let finite = |k: &usize| {
+                    let (a, b) = (l.x[*k], l.y[*k]);
+                    a.is_finite() && b.is_finite() && (!c.log_x || a > 0.0) && (!c.log_y || b > 0.0)
+                };
+                ch.draw_series(
+                    l.emphasis
+                        .iter()
+                        .filter(|k| **k < l.x.len() && finite(k))
+                        .map(|&k| Circle::new((l.x[k], l.y[k]), 9, color.stroke_width(2))),
+                )
+                .map_err(err)?;
+                ch.draw_series(
+                    (0..l.point_labels.len().min(l.x.len()))
+                        .filter(|k| finite(k) && !l.point_labels[*k].is_empty())
+                        .map(|k| {
+                            EmptyElement::at((l.x[k], l.y[k]))
+                                + Text::new(
+                                    l.point_labels[k].clone(),
+                                    (7, 3),
+                                    ("sans-serif", 12).into_font().color(&color),
+                                )
+                        }),
+                )
+                .map_err(err)?;
             }
             ch.configure_series_labels()
                 .background_style(WHITE.mix(0.85))
                 .border_style(RGBColor(180, 180, 180))
                 .label_font(("sans-serif", 15))
-                .position(SeriesLabelPosition::UpperRight)
+                .position(corner.position())
                 .draw()
                 .map_err(err)?;
         }};
@@ -282,6 +323,122 @@ where
             .map_err(err)?),
     }
     Ok(())
+}
+
+/// A corner of the plotting area for the legend.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Corner {
+    UpperRight,
+    UpperLeft,
+    LowerRight,
+    LowerLeft,
+}
+
+impl Corner {
+    fn position(self) -> SeriesLabelPosition {
+        match self {
+            Corner::UpperRight => SeriesLabelPosition::UpperRight,
+            Corner::UpperLeft => SeriesLabelPosition::UpperLeft,
+            Corner::LowerRight => SeriesLabelPosition::LowerRight,
+            Corner::LowerLeft => SeriesLabelPosition::LowerLeft,
+        }
+    }
+}
+
+/// The legend's box as fractions of the plotting area (about 880 × 500 px; entries of
+/// 15 px text, 20 px apart, a 20 px swatch and padding).
+fn legend_box(c: &Chart) -> (f64, f64) {
+    let names = c
+        .lines
+        .iter()
+        .map(|l| l.name.as_str())
+        .chain(c.vlines.iter().map(|v| v.1.as_str()));
+    let chars = names.clone().map(|n| n.chars().count()).max().unwrap_or(0);
+    let entries = names.count();
+    (
+        (chars as f64 * 8.5 + 60.0) / 880.0,
+        (entries as f64 * 21.0 + 30.0) / 500.0,
+    )
+}
+
+/// Where the legend goes so that it covers no data: the first corner (upper right,
+/// upper left, lower right, lower left) whose box holds no point of any line (nor
+/// segment, sampled), preferring one that also misses the vertical markers; when every
+/// corner holds data, the y range is raised until the top corners are clear.
+fn place_legend(c: &Chart, xs: (f64, f64), ys: &mut (f64, f64)) -> Corner {
+    let tx = |v: f64, log: bool| if log { v.ln() } else { v };
+    let norm = |v: f64, r: (f64, f64), log: bool| (tx(v, log) - tx(r.0, log)) / (tx(r.1, log) - tx(r.0, log));
+    let usable = |x: f64, y: f64| x.is_finite() && y.is_finite() && (!c.log_x || x > 0.0) && (!c.log_y || y > 0.0);
+    let mut data: Vec<(f64, f64)> = Vec::new();
+    for l in &c.lines {
+        let pts: Vec<(f64, f64)> =
+            l.x.iter()
+                .zip(&l.y)
+                .filter(|(x, y)| usable(**x, **y))
+                .map(|(x, y)| (norm(*x, xs, c.log_x), norm(*y, *ys, c.log_y)))
+                .collect();
+        data.extend(&pts);
+        for w in pts.windows(2) {
+            data.extend((1..16).map(|k| {
+                let s = k as f64 / 16.0;
+                (w[0].0 + s * (w[1].0 - w[0].0), w[0].1 + s * (w[1].1 - w[0].1))
+            }));
+        }
+    }
+    let markers: Vec<f64> = c.vlines.iter().map(|v| norm(v.0, xs, c.log_x)).collect();
+    let (w, h) = legend_box(c);
+    let inside = |corner: Corner, (x, y): (f64, f64)| {
+        let in_x = match corner {
+            Corner::UpperRight | Corner::LowerRight => x >= 1.0 - w,
+            _ => x <= w,
+        };
+        let in_y = match corner {
+            Corner::UpperRight | Corner::UpperLeft => y >= 1.0 - h,
+            _ => y <= h,
+        };
+        in_x && in_y
+    };
+    let corners = [
+        Corner::UpperRight,
+        Corner::UpperLeft,
+        Corner::LowerRight,
+        Corner::LowerLeft,
+    ];
+    let clear = |k: &Corner| !data.iter().any(|p| inside(*k, *p));
+    let misses_markers = |k: &Corner| !markers.iter().any(|x| inside(*k, (*x, 1.0 - h / 2.0)));
+    if let Some(k) = corners
+        .iter()
+        .find(|k| clear(k) && misses_markers(k))
+        .or_else(|| corners.iter().find(|k| clear(k)))
+    {
+        return *k;
+    }
+    // Raise the top so that the data stay below the legend's box.
+    let top = data.iter().map(|p| p.1).fold(0.0, f64::max);
+    let scale = top / (1.0 - h - 0.02);
+    if c.log_y {
+        ys.1 = (ys.0.ln() + scale * (ys.1.ln() - ys.0.ln())).exp();
+    } else {
+        ys.1 = ys.0 + scale * (ys.1 - ys.0);
+    }
+    Corner::UpperRight
+}
+
+/// Tick labels of an axis: [`fmt_tick`] on linear axes; on log axes only at 1, 2 and
+/// 5 times a power of ten (1 only over more than two decades), so labels never
+/// collide.
+fn axis_tick(v: f64, log: bool, range: (f64, f64)) -> String {
+    if !log || v <= 0.0 {
+        return fmt_tick(v);
+    }
+    let mantissa = v / 10f64.powf(v.log10().floor());
+    let decades = (range.1 / range.0).log10();
+    let nice: &[f64] = if decades > 2.0 { &[1.0] } else { &[1.0, 2.0, 5.0] };
+    if nice.iter().any(|m| (mantissa - m).abs() < 1e-6 * m) || (mantissa - 10.0).abs() < 1e-5 {
+        fmt_tick(v)
+    } else {
+        String::new()
+    }
 }
 
 /// The difference panel: every line after the first minus the first, at the other
@@ -357,15 +514,114 @@ pub fn fmt_tick(v: f64) -> String {
     }
 }
 
-/// A filled map of a nodal field on a structured grid of quadrilaterals: each cell
-/// coloured by the mean of its corners, with a colour bar.
+/// A map of a nodal field on a structured grid of quadrilaterals: each cell coloured by
+/// the mean of its corners, with a colour bar, and contour lines of the nodal values.
 pub struct Contour {
     pub title: String,
     pub unit: String,
     /// Cells: corner coordinates (x, y) and value.
     pub cells: Vec<([(f64, f64); 4], f64)>,
+    /// The nodal values on a uniform lattice, for the contour lines (none: fill only).
+    pub lattice: Option<Lattice>,
     /// Points marked on the map, with their labels (an impact point, gages).
     pub marks: Vec<((f64, f64), String)>,
+}
+
+/// A polyline in data coordinates.
+pub type Polyline = Vec<(f64, f64)>;
+
+/// Values at the nodes of a uniform lattice: `values[j * x.len() + i]` at `(x[i], y[j])`.
+#[derive(Debug, Clone)]
+pub struct Lattice {
+    pub x: Vec<f64>,
+    pub y: Vec<f64>,
+    pub values: Vec<f64>,
+}
+
+impl Lattice {
+    /// The lattice of scattered nodal values `(x, y, value)`, when they fill a uniform
+    /// rectangular lattice (every node once, equal spacing); `None` otherwise.
+    pub fn from_nodes(nodes: &[(f64, f64, f64)]) -> Option<Lattice> {
+        let axis = |pick: fn(&(f64, f64, f64)) -> f64| -> Option<Vec<f64>> {
+            let mut v: Vec<f64> = nodes.iter().map(pick).collect();
+            v.sort_by(f64::total_cmp);
+            let span = (v.last()? - v.first()?).abs().max(f64::MIN_POSITIVE);
+            v.dedup_by(|a, b| (*a - *b).abs() <= 1e-9 * span);
+            let step = (v[v.len() - 1] - v[0]) / (v.len() - 1).max(1) as f64;
+            let uniform = v.windows(2).all(|w| ((w[1] - w[0]) - step).abs() <= 1e-6 * step);
+            (v.len() > 1 && uniform).then_some(v)
+        };
+        let (x, y) = (axis(|n| n.0)?, axis(|n| n.1)?);
+        if nodes.len() != x.len() * y.len() {
+            return None;
+        }
+        let index = |axis: &[f64], v: f64| ((v - axis[0]) / (axis[1] - axis[0])).round() as usize;
+        let mut values = vec![f64::NAN; nodes.len()];
+        for n in nodes {
+            let (i, j) = (index(&x, n.0), index(&y, n.1));
+            let slot = values.get_mut(j * x.len() + i)?;
+            if !slot.is_nan() {
+                return None;
+            }
+            *slot = n.2;
+        }
+        values.iter().all(|v| !v.is_nan()).then_some(Lattice { x, y, values })
+    }
+
+    /// Contour lines at each level: polylines in the lattice's coordinates (marching
+    /// squares, linear interpolation along the cell edges).
+    pub fn isolines(&self, levels: &[f64]) -> Vec<(f64, Vec<Polyline>)> {
+        let (nx, ny) = (self.x.len(), self.y.len());
+        let (dx, dy) = (self.x[1] - self.x[0], self.y[1] - self.y[0]);
+        // contour places value k at pixel centre k + 0.5: shift the origin by half a step.
+        let builder = contour::ContourBuilder::new(nx, ny, true)
+            .x_origin(self.x[0] - 0.5 * dx)
+            .y_origin(self.y[0] - 0.5 * dy)
+            .x_step(dx)
+            .y_step(dy);
+        let Ok(lines) = builder.lines(&self.values, levels) else {
+            return Vec::new();
+        };
+        // A ring that reaches the lattice's edge runs half a step outside it there (the
+        // region's border, not an isoline): keep only the runs of points inside.
+        let (x0, x1, y0, y1) = (self.x[0], self.x[nx - 1], self.y[0], self.y[ny - 1]);
+        let inside = |p: &(f64, f64)| {
+            p.0 >= x0 - 1e-9 * dx.abs()
+                && p.0 <= x1 + 1e-9 * dx.abs()
+                && p.1 >= y0 - 1e-9 * dy.abs()
+                && p.1 <= y1 + 1e-9 * dy.abs()
+        };
+        lines
+            .iter()
+            .map(|l| {
+                let mut paths: Vec<Vec<(f64, f64)>> = Vec::new();
+                for ring in &l.geometry().0 {
+                    let mut run: Vec<(f64, f64)> = Vec::new();
+                    for p in ring.0.iter().map(|p| (p.x, p.y)) {
+                        if inside(&p) {
+                            run.push(p);
+                        } else if run.len() > 1 {
+                            paths.push(std::mem::take(&mut run));
+                        } else {
+                            run.clear();
+                        }
+                    }
+                    if run.len() > 1 {
+                        paths.push(run);
+                    }
+                }
+                (l.threshold(), paths)
+            })
+            .collect()
+    }
+}
+
+/// Contour levels of a field whose largest magnitude is `vmax`: ±k·vmax/5, k = 1…4.
+pub fn contour_levels(vmax: f64) -> Vec<f64> {
+    (1..5)
+        .flat_map(|k| [-(k as f64), k as f64])
+        .map(|k| k * vmax / 5.0)
+        .collect()
 }
 
 fn colormap(t: f64) -> RGBColor {
@@ -463,6 +719,19 @@ where
                 .map(|(q, v)| Polygon::new(q.to_vec(), colormap(0.5 + 0.5 * v / vmax).filled())),
         )
         .map_err(err)?;
+        if let Some(lat) = &p.lattice {
+            for (level, paths) in lat.isolines(&contour_levels(vmax)) {
+                let style = ShapeStyle::from(&RGBColor(40, 40, 40)).stroke_width(1);
+                for path in paths {
+                    // Negative levels dashed, positive solid (the usual convention).
+                    if level < 0.0 {
+                        ch.draw_series(DashedLineSeries::new(path, 4, 3, style)).map_err(err)?;
+                    } else {
+                        ch.draw_series(LineSeries::new(path, style)).map_err(err)?;
+                    }
+                }
+            }
+        }
         ch.draw_series(p.marks.iter().map(|(pt, label)| {
             EmptyElement::at(*pt)
                 + Cross::new((0, 0), 6, BLACK.stroke_width(2))
@@ -493,4 +762,118 @@ where
         .map_err(err)?;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn grid(f: impl Fn(f64, f64) -> f64) -> Vec<(f64, f64, f64)> {
+        let mut nodes = Vec::new();
+        for j in 0..=8 {
+            for i in 0..=10 {
+                let (x, y) = (-1.0 + 0.2 * i as f64, 0.5 * j as f64);
+                nodes.push((x, y, f(x, y)));
+            }
+        }
+        nodes
+    }
+
+    /// A linear field w = x: its isoline at level c is the segment x = c, across the
+    /// whole lattice and no further (no border ring).
+    #[test]
+    fn isolines_of_a_linear_field_are_straight() {
+        let lat = Lattice::from_nodes(&grid(|x, _| x)).expect("a uniform lattice");
+        let lines = lat.isolines(&[0.3, -0.5]);
+        assert_eq!(lines.len(), 2);
+        for (level, paths) in lines {
+            assert!(!paths.is_empty(), "level {level}");
+            for p in paths.iter().flatten() {
+                assert!((p.0 - level).abs() < 1e-12, "point {p:?} off x = {level}");
+                assert!((-1e-12..=4.0 + 1e-12).contains(&p.1), "point {p:?} outside the lattice");
+            }
+            let ys: Vec<f64> = paths.iter().flatten().map(|p| p.1).collect();
+            let span =
+                ys.iter().cloned().fold(f64::NEG_INFINITY, f64::max) - ys.iter().cloned().fold(f64::INFINITY, f64::min);
+            assert!(span > 3.0, "the isoline crosses the lattice (span {span})");
+        }
+    }
+
+    /// A circular bump: each isoline is a circle of the radius where the field takes
+    /// the level (to the lattice's interpolation error).
+    #[test]
+    fn isolines_of_a_cone_are_circles() {
+        let lat = Lattice::from_nodes(&grid(|x, y| 2.0 - (x * x + (y - 2.0) * (y - 2.0)).sqrt())).unwrap();
+        for (level, paths) in lat.isolines(&[1.5, 1.0]) {
+            let r = 2.0 - level;
+            assert!(!paths.is_empty(), "level {level}");
+            for p in paths.iter().flatten() {
+                let d = (p.0 * p.0 + (p.1 - 2.0) * (p.1 - 2.0)).sqrt();
+                assert!(
+                    (d - r).abs() < 0.05,
+                    "level {level}: point {p:?} at radius {d}, expected {r}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn lattice_refuses_scattered_or_repeated_nodes() {
+        let mut nodes = grid(|x, _| x);
+        nodes.pop();
+        assert!(Lattice::from_nodes(&nodes).is_none(), "a node missing");
+        let mut nodes = grid(|x, _| x);
+        nodes[3].0 += 0.05;
+        assert!(Lattice::from_nodes(&nodes).is_none(), "a node off the lattice");
+    }
+
+    fn chart(lines: Vec<Line>) -> Chart {
+        Chart {
+            lines,
+            ..Default::default()
+        }
+    }
+
+    /// A rising line fills the upper right and the lower left: the legend goes upper
+    /// left, and its box holds no point of the line.
+    #[test]
+    fn legend_takes_an_empty_corner() {
+        let x: Vec<f64> = (0..100).map(|k| k as f64).collect();
+        let c = chart(vec![Line::new("rising", x.clone(), x.clone(), 0)]);
+        let mut ys = range(x.iter().cloned(), false);
+        let xs = ys;
+        assert_eq!(place_legend(&c, xs, &mut ys), Corner::UpperLeft);
+        assert_eq!(ys, xs, "no room needed");
+    }
+
+    /// Data in every corner: the top is raised until no point lies in the legend's box.
+    #[test]
+    fn legend_over_full_data_raises_the_top() {
+        let x: Vec<f64> = (0..200).map(|k| k as f64 / 199.0).collect();
+        let y: Vec<f64> = x.iter().map(|v| (40.0 * v).sin()).collect();
+        let c = chart(vec![
+            Line::new("a", x.clone(), y.clone(), 0),
+            Line::new("b", x.clone(), y.iter().map(|v| -v).collect(), 1),
+        ]);
+        let xs = range(x.iter().cloned(), false);
+        let mut ys = range(y.iter().cloned(), false);
+        let before = ys;
+        assert_eq!(place_legend(&c, xs, &mut ys), Corner::UpperRight);
+        assert!(ys.1 > before.1);
+        let (_, h) = legend_box(&c);
+        let top = y.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+        assert!((top - ys.0) / (ys.1 - ys.0) < 1.0 - h, "the data stay below the legend");
+    }
+
+    #[test]
+    fn log_ticks_label_only_round_values() {
+        let r = (1e-5, 1e-1);
+        assert_eq!(axis_tick(1e-3, true, r), "1.0e-3");
+        assert_eq!(axis_tick(3e-3, true, r), "");
+        assert_eq!(axis_tick(5e-3, true, r), "");
+        let r = (1e-4, 2e-3);
+        assert_eq!(axis_tick(5e-4, true, r), "5.0e-4");
+        assert_eq!(axis_tick(7e-4, true, r), "");
+        assert_eq!(axis_tick(7e-4, false, r), "7.0e-4");
+    }
 }

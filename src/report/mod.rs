@@ -541,6 +541,13 @@ fn plate_displacement(f: &Fig) -> Result<Vec<PathBuf>, Error> {
             Some((c, label.to_string()))
         })
         .collect();
+    // Each grid point of the plate's elements once, with its coordinates.
+    let grid_xy: std::collections::BTreeMap<i64, (f64, f64)> = model
+        .elements
+        .iter()
+        .filter_map(|e| Some(e.grids.iter().copied().zip(e.kind::<Quad4>()?.xy.map(|p| (p[0], p[1])))))
+        .flatten()
+        .collect();
     let panels: Vec<Contour> = run
         .snapshots
         .iter()
@@ -561,6 +568,13 @@ fn plate_displacement(f: &Fig) -> Result<Vec<PathBuf>, Error> {
                     Some((xy.map(|p| (p[0], p[1])), v))
                 })
                 .collect(),
+            lattice: {
+                let nodes: Vec<(f64, f64, f64)> = grid_xy
+                    .iter()
+                    .map(|(g, (x, y))| (*x, *y, w_index.get(g).map_or(0.0, |&i| uu[i])))
+                    .collect();
+                plot::Lattice::from_nodes(&nodes)
+            },
             marks: marks.clone(),
         })
         .collect();
@@ -569,7 +583,7 @@ fn plate_displacement(f: &Fig) -> Result<Vec<PathBuf>, Error> {
             &panels,
             &dir.join("displacement"),
             &format!(
-                "Transverse displacement w [{}] (paper Fig. 7): elliptical, longer along the stiffer x",
+                "Transverse displacement w [{}] (paper Fig. 7); contours at ±1/5…4/5 of each panel's |max|, negative dashed",
                 u.length
             ),
             footer,
