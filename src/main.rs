@@ -54,9 +54,12 @@ pub enum StudyKind {
         /// Mesh sizes (elements per side, odd).
         #[arg(long, value_delimiter = ',', default_values_t = [25, 49, 61])]
         n: Vec<usize>,
-        /// Output directory for mesh-study.csv and mesh-study.json.
-        #[arg(long, default_value = "out/mesh-study")]
+        /// Output directory: mesh-study.csv, mesh-histories.csv, README.md and figures.
+        #[arg(long, default_value = "reports/mesh")]
         out: PathBuf,
+        /// Remake README.md and the figures from the CSVs in the output directory; run nothing.
+        #[arg(long)]
+        redraw: bool,
     },
     /// Stability map: the rod over Δt × impact velocity, per scheme.
     Stability {

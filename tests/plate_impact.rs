@@ -44,7 +44,7 @@ fn plate_deck_model_size_and_inert_membrane() {
 }
 
 /// Goal: contact time against the measured 204 µs [8]. Our converged answer (mesh study
-/// in reference-data/plate-mesh-study.toml) is 204.4 µs on this mesh; the measurement
+/// in reference-data/plate-mesh-study.csv) is 204.4 µs on this mesh; the measurement
 /// is quoted to 1 µs, the tolerance 1 % covers the reading and the mesh error.
 #[test]
 fn plate_contact_time_matches_measured_204_us() {

@@ -32,6 +32,41 @@ fn stability_page_and_figure_are_current() {
     );
 }
 
+/// Goal: `reports/mesh/README.md` and every figure of it are what `impactlab study
+/// mesh` makes from the committed `mesh-study.csv` and `mesh-histories.csv`.
+#[test]
+fn mesh_study_page_and_figures_are_current() {
+    use impactlab::study::mesh;
+    let dir = root().join("reports/mesh");
+    let rows_csv = std::fs::read(dir.join("mesh-study.csv")).unwrap();
+    let hist_csv = std::fs::read(dir.join("mesh-histories.csv")).unwrap();
+    let rows: Vec<mesh::MeshRow> = mesh::read_csv(&rows_csv).unwrap();
+    let samples: Vec<mesh::Sample> = mesh::read_csv(&hist_csv).unwrap();
+    assert_eq!(
+        rows.iter().map(|r| r.n).collect::<Vec<_>>(),
+        mesh::PAPER_MESHES,
+        "the paper's meshes"
+    );
+    assert_eq!(mesh::csv(&rows), rows_csv, "mesh-study.csv reads back to itself");
+    assert_eq!(mesh::csv(&samples), hist_csv, "mesh-histories.csv reads back to itself");
+    assert_eq!(
+        mesh::readme(&rows, &samples),
+        std::fs::read_to_string(dir.join("README.md")).unwrap(),
+        "reports/mesh/README.md is stale: `impactlab study mesh --redraw`"
+    );
+    let tmp = tempfile::tempdir().unwrap();
+    let figs = mesh::figures(&samples, tmp.path()).unwrap();
+    assert_eq!(figs.len(), 10, "five figures, PNG and SVG");
+    for svg in figs.iter().filter(|f| f.extension().is_some_and(|e| e == "svg")) {
+        let name = svg.file_name().unwrap();
+        assert_eq!(
+            std::fs::read_to_string(svg).unwrap(),
+            std::fs::read_to_string(dir.join(name)).unwrap_or_default(),
+            "reports/mesh/{name:?} is stale"
+        );
+    }
+}
+
 /// The text of a generated file with the measured wall times masked.
 fn masked(text: &str) -> String {
     text.lines()

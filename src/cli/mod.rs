@@ -159,12 +159,15 @@ pub fn mesh(what: MeshKind) -> Result<u8, Error> {
 /// `impactlab study mesh|stability|accuracy`.
 pub fn study(what: StudyKind) -> Result<u8, Error> {
     match what {
-        StudyKind::Mesh { n, out } => {
-            let opts = impactlab::study::mesh_study_options(progress("plate mesh study".into()));
-            let rows = impactlab::study::plate_mesh_study(&n, &opts)?;
-            let files = impactlab::study::mesh_study_files(&rows);
-            output::write_dir_atomically(&out, &files).map_err(io_error(&out))?;
-            say(&String::from_utf8_lossy(&files[0].1));
+        StudyKind::Mesh { out, redraw: true, .. } => {
+            impactlab::study::mesh::redraw(&out)?;
+            sayln(&format!("redrawn from its CSVs: {}", out.display()));
+        }
+        StudyKind::Mesh { n, out, .. } => {
+            use impactlab::study::mesh;
+            let (rows, samples) = mesh::run(&n, &mesh::options(progress("plate mesh study".into())))?;
+            mesh::write(&out, &rows, &samples)?;
+            say(&String::from_utf8_lossy(&mesh::csv(&rows)));
             sayln(&format!("outputs: {}", out.display()));
         }
         StudyKind::Stability { out } => {

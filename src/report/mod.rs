@@ -887,7 +887,8 @@ pub fn html_pages(dir: &Path, index_md: &str) -> Vec<(PathBuf, String)> {
 pub fn index(dir: &Path) -> String {
     let mut m = String::from(
         "# Reports\n\nRegenerate with `cargo run --release -- report` (all cases in `verification/` that run a \
-         deck); the studies with `impactlab study accuracy` and `impactlab study stability`.\n\n\
+         deck); the studies with `impactlab study accuracy`, `impactlab study mesh` and `impactlab study \
+         stability`.\n\n\
          | case | checks passed | failed | report |\n|---|---|---|---|\n",
     );
     let mut cases: Vec<(String, String)> = std::fs::read_dir(dir)
@@ -907,7 +908,8 @@ pub fn index(dir: &Path) -> String {
     }
     let _ = writeln!(
         m,
-        "\nStudies: [accuracy](accuracy/README.md) (what accuracy costs in time), \
+        "\nStudies: [accuracy](accuracy/README.md) (what accuracy costs in time), [mesh](mesh/README.md) (the \
+         paper's plate mesh study, 25/49/61), \
          [stability](stability/README.md) (the stability map), [scenes](scenes/README.md) (what each effect costs), \
          [mutants](mutants/README.md) (whether the gate catches injected faults)."
     );
