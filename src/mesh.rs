@@ -220,6 +220,21 @@ pub fn simply_supported_plate(
     g: [f64; 6],
     rho: f64,
 ) -> Result<crate::model::Model, crate::Error> {
+    let cards = format!(
+        "PSHELL,1,1,{thickness:?},1,1.0\nMAT2,1,{:?},{:?},{:?},{:?},{:?},{:?},{rho:?}",
+        g[0], g[1], g[2], g[3], g[4], g[5]
+    );
+    crate::model_from_text(
+        &format!("navier-plate-{n}x{n}"),
+        &square_plate_deck(n, side, "3", "126", &cards),
+    )
+}
+
+/// A deck of a square plate side × side on an n×n CQUAD4 mesh (property 1) in the
+/// z = 0 plane, grid `1000(r+1) + c + 1` at row r, column c: `edge` the SPC1
+/// components on the boundary, `ps` the GRDSET PS, `cards` the PSHELL 1 and material
+/// cards.
+pub fn square_plate_deck(n: usize, side: f64, edge: &str, ps: &str, cards: &str) -> String {
     let mut d = String::from("SOL 9\nCEND\nTSTEP = 1\nSPC = 1\nBEGIN BULK\nTSTEP,1,1,1.0-6,1\n");
     let id = |r: usize, c: usize| 1000 * (r + 1) + c + 1;
     for r in 0..=n {
@@ -227,7 +242,7 @@ pub fn simply_supported_plate(
             let (x, y) = (side * c as f64 / n as f64, side * r as f64 / n as f64);
             let _ = writeln!(d, "GRID,{},,{x:?},{y:?},0.0", id(r, c));
             if r == 0 || c == 0 || r == n || c == n {
-                let _ = writeln!(d, "SPC1,1,3,{}", id(r, c));
+                let _ = writeln!(d, "SPC1,1,{edge},{}", id(r, c));
             }
         }
     }
@@ -244,10 +259,6 @@ pub fn simply_supported_plate(
             );
         }
     }
-    let _ = writeln!(
-        d,
-        "GRDSET,,,,,,,126\nPSHELL,1,1,{thickness:?},1,1.0\nMAT2,1,{:?},{:?},{:?},{:?},{:?},{:?},{rho:?}\nENDDATA",
-        g[0], g[1], g[2], g[3], g[4], g[5]
-    );
-    crate::model_from_text(&format!("navier-plate-{n}x{n}"), &d)
+    let _ = writeln!(d, "GRDSET,,,,,,,{ps}\n{cards}\nENDDATA");
+    d
 }

@@ -9,30 +9,8 @@ use impactlab::model::{build_model, DofLabel, Model};
 /// A square plate a × a on an n × n mesh; `edge` are the SPC1 components on the boundary;
 /// `ps` the GRDSET PS; `mat` the material cards, PSHELL with MID1 = 1, MID2 = 2.
 fn square_plate(n: usize, a: f64, edge: &str, ps: &str, mat: &str, t: f64) -> Model {
-    let mut d = String::from("SOL 9\nCEND\nTSTEP = 1\nSPC = 1\nBEGIN BULK\nTSTEP,1,1,1.0-6,1\n");
-    let id = |r: usize, c: usize| 1000 * (r + 1) + c + 1;
-    for r in 0..=n {
-        for c in 0..=n {
-            let (x, y) = (a * c as f64 / n as f64, a * r as f64 / n as f64);
-            d += &format!("GRID,{},,{:?},{:?},0.0\n", id(r, c), x, y);
-            if r == 0 || c == 0 || r == n || c == n {
-                d += &format!("SPC1,1,{edge},{}\n", id(r, c));
-            }
-        }
-    }
-    for r in 0..n {
-        for c in 0..n {
-            d += &format!(
-                "CQUAD4,{},1,{},{},{},{}\n",
-                id(r, c),
-                id(r, c),
-                id(r, c + 1),
-                id(r + 1, c + 1),
-                id(r + 1, c)
-            );
-        }
-    }
-    d += &format!("GRDSET,,,,,,,{ps}\nPSHELL,1,1,{t:?},2,1.0\n{mat}\nENDDATA\n");
+    let cards = format!("PSHELL,1,1,{t:?},2,1.0\n{mat}");
+    let d = impactlab::mesh::square_plate_deck(n, a, edge, ps, &cards);
     let deck = parse_deck_str("plate.bdf", &d, ReadOptions::default()).unwrap_or_else(|e| panic!("{e}"));
     build_model(&deck).unwrap_or_else(|e| panic!("{e}")).0
 }

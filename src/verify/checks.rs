@@ -487,31 +487,13 @@ fn file_problems(model: &Model, run: &RunResult) -> Vec<String> {
             .map(|f| f.1.as_slice())
             .unwrap_or_default()
     };
-    let read = |name: &str| -> Result<(Vec<String>, Vec<Vec<f64>>), String> {
-        let mut r = csv::Reader::from_reader(file(name));
-        let header: Vec<String> = r
-            .headers()
-            .map_err(|e| e.to_string())?
-            .iter()
-            .map(String::from)
-            .collect();
-        let rows: Result<Vec<Vec<f64>>, String> = r
-            .records()
-            .map(|rec| {
-                let rec = rec.map_err(|e| e.to_string())?;
-                rec.iter()
-                    .map(|x| x.parse::<f64>().map_err(|e| e.to_string()))
-                    .collect()
-            })
-            .collect();
-        Ok((header, rows?))
-    };
+    let read = |name: &str| crate::verify::gold::read_from(file(name), name);
     // The deck's units, not the summary's: a writer that relabels is caught.
     let units = &model.units;
     let dt = run.dt;
     let on_time = |t: f64, k: usize, per: usize| (t - (k * per) as f64 * dt).abs() <= 1e-9 * dt;
     match read("history.csv") {
-        Err(e) => bad.push(format!("history.csv: {e}")),
+        Err(e) => bad.push(e.to_string()),
         Ok((header, rows)) => {
             if header.first().map(String::as_str) != Some(&format!("time [{}]", units.time)) {
                 bad.push(format!(
@@ -554,7 +536,7 @@ fn file_problems(model: &Model, run: &RunResult) -> Vec<String> {
         }
     }
     match read("energy.csv") {
-        Err(e) => bad.push(format!("energy.csv: {e}")),
+        Err(e) => bad.push(e.to_string()),
         Ok((header, rows)) => {
             if header.first().map(String::as_str) != Some(&format!("time [{}]", units.time)) {
                 bad.push(format!("energy.csv: time header {:?}", header.first()));

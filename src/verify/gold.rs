@@ -70,21 +70,33 @@ pub enum CsvError {
 /// Reads a CSV written by [`crate::output`] (header with units, numbers): the column
 /// names without units, and the rows.
 pub fn read(path: &Path) -> Result<(Vec<String>, Vec<Vec<f64>>), CsvError> {
-    let file = || path.display().to_string();
-    let read = |source| CsvError::Read { path: file(), source };
-    let mut r = csv::Reader::from_path(path).map_err(read)?;
-    let header: Vec<String> = r
-        .headers()
-        .map_err(read)?
+    let file = std::fs::File::open(path).map_err(|e| CsvError::Read {
+        path: path.display().to_string(),
+        source: e.into(),
+    })?;
+    let (header, rows) = read_from(file, &path.display().to_string())?;
+    let names = header
         .iter()
         .map(|h| h.split(' ').next().unwrap_or("").to_string())
         .collect();
+    Ok((names, rows))
+}
+
+/// Reads a CSV of numbers from any reader: the header as written (with its units) and
+/// the rows; `name` names the source in errors.
+pub fn read_from(source: impl std::io::Read, name: &str) -> Result<(Vec<String>, Vec<Vec<f64>>), CsvError> {
+    let read = |source| CsvError::Read {
+        path: name.to_string(),
+        source,
+    };
+    let mut r = csv::Reader::from_reader(source);
+    let header: Vec<String> = r.headers().map_err(read)?.iter().map(String::from).collect();
     let mut rows = Vec::new();
     for (i, rec) in r.records().enumerate() {
         let rec = rec.map_err(read)?;
         let row: Result<Vec<f64>, _> = rec.iter().map(|x| x.trim().parse::<f64>()).collect();
         rows.push(row.map_err(|e| CsvError::Number {
-            path: file(),
+            path: name.to_string(),
             row: i + 2,
             message: e.to_string(),
         })?);
