@@ -76,6 +76,9 @@ pub enum StudyKind {
         /// Plate meshes of the mesh sweep (the finest is the reference).
         #[arg(long, value_delimiter = ',', default_values_t = [13, 25, 49, 61, 97])]
         plate_meshes: Vec<usize>,
+        /// Remake README.md and the figures from work-precision.csv in the output directory; run nothing.
+        #[arg(long)]
+        redraw: bool,
     },
 }
 

@@ -67,6 +67,45 @@ fn mesh_study_page_and_figures_are_current() {
     }
 }
 
+/// Goal: `reports/accuracy/` holds exactly what `impactlab study accuracy` makes from
+/// its committed `work-precision.csv`: the README (method, conclusions, tables) and
+/// every figure, nothing else.
+#[test]
+fn accuracy_page_and_figures_are_current() {
+    use impactlab::study::accuracy;
+    let dir = root().join("reports/accuracy");
+    let csv = std::fs::read(dir.join("work-precision.csv")).unwrap();
+    let rows = accuracy::read_csv(&csv).unwrap();
+    assert_eq!(accuracy::csv(&rows), csv, "work-precision.csv reads back to itself");
+    assert_eq!(
+        accuracy::readme(&rows),
+        std::fs::read_to_string(dir.join("README.md")).unwrap(),
+        "reports/accuracy/README.md is stale: `impactlab study accuracy --redraw`"
+    );
+    let tmp = tempfile::tempdir().unwrap();
+    let figs = accuracy::figures(&rows, tmp.path()).unwrap();
+    let mut made: Vec<String> = figs
+        .iter()
+        .map(|f| f.file_name().unwrap().to_string_lossy().into_owned())
+        .chain(["README.md", "README.html", "work-precision.csv"].map(String::from))
+        .collect();
+    made.sort();
+    let mut on_disk: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    on_disk.sort();
+    assert_eq!(on_disk, made, "reports/accuracy holds exactly the study's files");
+    for svg in figs.iter().filter(|f| f.extension().is_some_and(|e| e == "svg")) {
+        let name = svg.file_name().unwrap();
+        assert_eq!(
+            std::fs::read_to_string(svg).unwrap(),
+            std::fs::read_to_string(dir.join(name)).unwrap(),
+            "reports/accuracy/{name:?} is stale"
+        );
+    }
+}
+
 /// The text of a generated file with the measured wall times masked.
 fn masked(text: &str) -> String {
     text.lines()

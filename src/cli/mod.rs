@@ -189,10 +189,15 @@ pub fn study(what: StudyKind) -> Result<u8, Error> {
                 out.display()
             ));
         }
+        StudyKind::Accuracy { out, redraw: true, .. } => {
+            impactlab::study::accuracy::redraw(&out)?;
+            sayln(&format!("redrawn from work-precision.csv: {}", out.display()));
+        }
         StudyKind::Accuracy {
             out,
             repeats,
             plate_meshes,
+            ..
         } => {
             let rows = impactlab::study::accuracy::run_study(&out, repeats.max(1), &plate_meshes, &|s| {
                 say_err(&format!("  {s}"))
