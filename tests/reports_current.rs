@@ -57,14 +57,7 @@ fn mesh_study_page_and_figures_are_current() {
     let tmp = tempfile::tempdir().unwrap();
     let figs = mesh::figures(&samples, tmp.path()).unwrap();
     assert_eq!(figs.len(), 10, "five figures, PNG and SVG");
-    for svg in figs.iter().filter(|f| f.extension().is_some_and(|e| e == "svg")) {
-        let name = svg.file_name().unwrap();
-        assert_eq!(
-            std::fs::read_to_string(svg).unwrap(),
-            std::fs::read_to_string(dir.join(name)).unwrap_or_default(),
-            "reports/mesh/{name:?} is stale"
-        );
-    }
+    assert_svgs_current(&figs, &dir);
 }
 
 /// Goal: `reports/accuracy/` holds exactly what `impactlab study accuracy` makes from
@@ -96,12 +89,18 @@ fn accuracy_page_and_figures_are_current() {
         .collect();
     on_disk.sort();
     assert_eq!(on_disk, made, "reports/accuracy holds exactly the study's files");
+    assert_svgs_current(&figs, &dir);
+}
+
+/// Every SVG among freshly drawn `figs` equals its committed twin in `dir`.
+fn assert_svgs_current(figs: &[std::path::PathBuf], dir: &std::path::Path) {
     for svg in figs.iter().filter(|f| f.extension().is_some_and(|e| e == "svg")) {
-        let name = svg.file_name().unwrap();
+        let committed = dir.join(svg.file_name().unwrap());
         assert_eq!(
             std::fs::read_to_string(svg).unwrap(),
-            std::fs::read_to_string(dir.join(name)).unwrap(),
-            "reports/accuracy/{name:?} is stale"
+            std::fs::read_to_string(&committed).unwrap_or_default(),
+            "{} is stale",
+            committed.display()
         );
     }
 }

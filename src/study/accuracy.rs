@@ -414,16 +414,12 @@ fn plate_rows(repeats: usize, meshes: &[usize], progress: &dyn Fn(&str)) -> Resu
 
 /// The rows as `work-precision.csv` (shortest round-trip floats; NaN empty).
 pub fn csv(rows: &[Row]) -> Vec<u8> {
-    let mut w = csv::Writer::from_writer(Vec::new());
-    for r in rows {
-        w.serialize(r).expect("plain rows serialise");
-    }
-    w.into_inner().expect("writing to memory")
+    super::write_rows(rows)
 }
 
 /// The rows read back from `work-precision.csv`.
 pub fn read_csv(bytes: &[u8]) -> Result<Vec<Row>, csv::Error> {
-    csv::Reader::from_reader(bytes).deserialize().collect()
+    super::read_rows(bytes)
 }
 
 /// Least-squares slope of log y on log x over finite pairs above round-off (1e-13).
@@ -666,6 +662,24 @@ fn e2(x: f64) -> String {
     }
 }
 
+/// The fitted order of each measure ([`MEASURES`]) per time-step sweep against a
+/// converged run (rod-dt, plate) and scheme.
+fn sweep_orders(rows: &[Row]) -> Vec<(&'static str, Scheme, [f64; 3])> {
+    let mut out = Vec::new();
+    for (problem, _, _) in SWEEPS.iter().take(2) {
+        for scheme in Scheme::ALL {
+            let rs = sweep(rows, problem, scheme);
+            if rs.is_empty() {
+                continue;
+            }
+            let dt: Vec<f64> = rs.iter().map(|r| r.dt_s).collect();
+            let p = MEASURES.map(|(_, _, get)| fitted_order(&dt, &rs.iter().map(|r| get(r)).collect::<Vec<_>>()));
+            out.push((*problem, scheme, p));
+        }
+    }
+    out
+}
+
 /// `README.md` of the study: the method, the conclusions and the tables, every number
 /// computed from the rows (read from `work-precision.csv`).
 pub fn readme(rows: &[Row]) -> String {
@@ -738,24 +752,9 @@ pub fn readme(rows: &[Row]) -> String {
     s += "\n## Fitted orders\n\nLeast-squares slope of log(error) on log(Δt) over the sweep (errors under 1e-13 \
           left out as round-off).\n\n| problem | scheme | contact duration | peak force | force history (L2) |\n\
           |---|---|---|---|---|\n";
-    for (problem, _, _) in SWEEPS.iter().take(2) {
-        for scheme in Scheme::ALL {
-            let rs = sweep(rows, problem, scheme);
-            if rs.is_empty() {
-                continue;
-            }
-            let dt: Vec<f64> = rs.iter().map(|r| r.dt_s).collect();
-            let p: Vec<String> = MEASURES
-                .iter()
-                .map(|(_, _, get)| {
-                    format!(
-                        "{:.2}",
-                        fitted_order(&dt, &rs.iter().map(|r| get(r)).collect::<Vec<_>>())
-                    )
-                })
-                .collect();
-            let _ = writeln!(s, "| {problem} | {} | {} |", scheme.name(), p.join(" | "));
-        }
+    for (problem, scheme, p) in sweep_orders(rows) {
+        let p: Vec<String> = p.iter().map(|p| format!("{p:.2}")).collect();
+        let _ = writeln!(s, "| {problem} | {} | {} |", scheme.name(), p.join(" | "));
     }
     s += "\n## Figures\n\nThe primary figures come first: the rod against its own converged run, then the plate; \
           the rod against the continuum and the plate's mesh error last.\n\n";
@@ -871,24 +870,12 @@ fn conclusions(rows: &[Row]) -> String {
     // 3. Orders.
     let mut second = Vec::new();
     let mut other = Vec::new();
-    for (problem, _, _) in SWEEPS.iter().take(2) {
-        for sc in Scheme::ALL {
-            let rs = sweep(rows, problem, sc);
-            if rs.is_empty() {
-                continue;
-            }
-            let dt: Vec<f64> = rs.iter().map(|r| r.dt_s).collect();
-            let p: Vec<f64> = MEASURES
-                .iter()
-                .take(2)
-                .map(|(_, _, get)| fitted_order(&dt, &rs.iter().map(|r| get(r)).collect::<Vec<_>>()))
-                .collect();
-            let text = format!("{} on {problem} ({:.2}, {:.2})", sc.name(), p[0], p[1]);
-            if p.iter().all(|p| (p - 2.0).abs() <= 0.2) {
-                second.push(text);
-            } else {
-                other.push(text);
-            }
+    for (problem, sc, p) in sweep_orders(rows) {
+        let text = format!("{} on {problem} ({:.2}, {:.2})", sc.name(), p[0], p[1]);
+        if p[..2].iter().all(|p| (p - 2.0).abs() <= 0.2) {
+            second.push(text);
+        } else {
+            other.push(text);
         }
     }
     let _ = writeln!(
@@ -982,17 +969,7 @@ pub fn run_study(
 
 /// Remakes `README.md` and the figures in `dir` from its `work-precision.csv`.
 pub fn redraw(dir: &Path) -> Result<(), Error> {
-    let path = dir.join("work-precision.csv");
-    let io = |source| Error::Io {
-        path: path.display().to_string(),
-        source,
-    };
-    let bytes = std::fs::read(&path).map_err(io)?;
-    let rows = read_csv(&bytes).map_err(|e| io(std::io::Error::new(std::io::ErrorKind::InvalidData, e)))?;
+    let rows: Vec<Row> = super::read_rows_file(&dir.join("work-precision.csv"))?;
     figures(&rows, dir)?;
-    let page = dir.join("README.md");
-    crate::output::write_file_atomically(&page, readme(&rows).as_bytes()).map_err(|source| Error::Io {
-        path: page.display().to_string(),
-        source,
-    })
+    super::write_page(&dir.join("README.md"), &readme(&rows))
 }

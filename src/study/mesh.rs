@@ -15,7 +15,7 @@ use crate::integrate::Scheme;
 use crate::mesh::{plate_model, PlateMesh};
 use crate::plot::{self, Chart, Line};
 use crate::run::{run_model, Column, RunOptions};
-use serde::{de::DeserializeOwned, Deserialize, Serialize};
+use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -133,19 +133,7 @@ pub fn run(ns: &[usize], opts: &RunOptions) -> Result<(Vec<MeshRow>, Vec<Sample>
     Ok((rows, samples))
 }
 
-/// Rows as CSV (shortest round-trip floats, empty where absent).
-pub fn csv<T: Serialize>(rows: &[T]) -> Vec<u8> {
-    let mut w = csv::Writer::from_writer(Vec::new());
-    for r in rows {
-        w.serialize(r).expect("plain rows serialise");
-    }
-    w.into_inner().expect("writing to memory")
-}
-
-/// Rows read back from CSV.
-pub fn read_csv<T: DeserializeOwned>(bytes: &[u8]) -> Result<Vec<T>, csv::Error> {
-    csv::Reader::from_reader(bytes).deserialize().collect()
-}
+pub use super::{read_rows as read_csv, write_rows as csv};
 
 /// A quantity of a sample, by name.
 type Signal = (&'static str, &'static str, fn(&Sample) -> f64);
@@ -329,27 +317,9 @@ pub fn write(dir: &Path, rows: &[MeshRow], samples: &[Sample]) -> Result<(), Err
 
 /// Remakes the page and figures in `dir` from the CSVs there.
 pub fn redraw(dir: &Path) -> Result<(), Error> {
-    let read = |name: &str| {
-        let path = dir.join(name);
-        std::fs::read(&path).map_err(|source| Error::Io {
-            path: path.display().to_string(),
-            source,
-        })
-    };
-    let bad = |name: &str| {
-        let path = dir.join(name).display().to_string();
-        move |e: csv::Error| Error::Io {
-            path,
-            source: std::io::Error::new(std::io::ErrorKind::InvalidData, e),
-        }
-    };
-    let rows: Vec<MeshRow> = read_csv(&read("mesh-study.csv")?).map_err(bad("mesh-study.csv"))?;
-    let samples: Vec<Sample> = read_csv(&read("mesh-histories.csv")?).map_err(bad("mesh-histories.csv"))?;
-    let page = dir.join("README.md");
-    crate::output::write_file_atomically(&page, readme(&rows, &samples).as_bytes()).map_err(|source| Error::Io {
-        path: page.display().to_string(),
-        source,
-    })?;
+    let rows: Vec<MeshRow> = super::read_rows_file(&dir.join("mesh-study.csv"))?;
+    let samples: Vec<Sample> = super::read_rows_file(&dir.join("mesh-histories.csv"))?;
+    super::write_page(&dir.join("README.md"), &readme(&rows, &samples))?;
     figures(&samples, dir)?;
     Ok(())
 }

@@ -8,8 +8,41 @@ pub mod mesh;
 use crate::error::Error;
 use crate::numerics::median;
 use crate::run::{run_model, Column, RunOptions, RunResult};
-use serde::Serialize;
+use serde::{de::DeserializeOwned, Serialize};
 use std::fmt::Write as _;
+use std::path::Path;
+
+/// Rows of a study as CSV (serde rows: shortest round-trip floats, `None` empty).
+pub fn write_rows<T: Serialize>(rows: &[T]) -> Vec<u8> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    for r in rows {
+        w.serialize(r).expect("plain rows serialise");
+    }
+    w.into_inner().expect("writing to memory")
+}
+
+/// Rows of a study read back from CSV.
+pub fn read_rows<T: DeserializeOwned>(bytes: &[u8]) -> Result<Vec<T>, csv::Error> {
+    csv::Reader::from_reader(bytes).deserialize().collect()
+}
+
+/// Rows of a study read from a CSV file; an error names the file.
+pub fn read_rows_file<T: DeserializeOwned>(path: &Path) -> Result<Vec<T>, Error> {
+    let io = |source| Error::Io {
+        path: path.display().to_string(),
+        source,
+    };
+    let bytes = std::fs::read(path).map_err(io)?;
+    read_rows(&bytes).map_err(|e| io(std::io::Error::new(std::io::ErrorKind::InvalidData, e)))
+}
+
+/// Writes a generated page atomically; an error names the file.
+pub fn write_page(path: &Path, text: &str) -> Result<(), Error> {
+    crate::output::write_file_atomically(path, text.as_bytes()).map_err(|source| Error::Io {
+        path: path.display().to_string(),
+        source,
+    })
+}
 
 /// Extreme (largest magnitude, signed) of a history column and its time.
 #[derive(Debug, Clone, Copy, Serialize, PartialEq)]

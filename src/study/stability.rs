@@ -85,16 +85,12 @@ pub fn run_map(model: &Model, dt0: f64, t_end: f64, progress: &dyn Fn(&str)) -> 
 
 /// `stability-map.csv`: one row per run, numbers in their shortest round-trip form.
 pub fn csv(cells: &[Cell]) -> Vec<u8> {
-    let mut w = csv::Writer::from_writer(Vec::new());
-    for c in cells {
-        w.serialize(c).expect("writing plain rows to memory");
-    }
-    w.into_inner().expect("writing to memory")
+    super::write_rows(cells)
 }
 
 /// The cells of a `stability-map.csv`.
 pub fn read_csv(bytes: &[u8]) -> Result<Vec<Cell>, csv::Error> {
-    csv::Reader::from_reader(bytes).deserialize().collect()
+    super::read_rows(bytes)
 }
 
 /// Colour of a max energy error: log10 from −16 (round-off) to +2 (a hundred times
