@@ -118,7 +118,7 @@ pub struct RunArgs {
     /// Unknown bulk data cards become warnings instead of errors.
     #[arg(long)]
     pub allow_unknown: bool,
-    /// Write displacement (and shell fibre strain) fields as VTU + a .pvd collection here.
+    /// Write fields for ParaView here: a VTU per snapshot (grid ids, displacement, velocity; element ids, strains) and a .pvd collection.
     #[arg(long)]
     pub fields: Option<PathBuf>,
     /// Number of field snapshots, evenly spread over the run.

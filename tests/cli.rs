@@ -317,3 +317,57 @@ fn an_unreadable_deck_is_one_error_naming_its_path() {
     assert!(err.contains(&format!("cannot read deck '{}'", deck.display())), "{err}");
     assert!(err.contains("1 error(s) in deck") && !err.contains("CEND"), "{err}");
 }
+
+/// A Python with pandas, or `None` (and why) where there is none; under CI
+/// (`.ci/run` installs pandas) a missing one fails.
+fn python_with(module: &str) -> Option<&'static str> {
+    let ok = Command::new("python3")
+        .args(["-c", &format!("import {module}")])
+        .output()
+        .is_ok_and(|o| o.status.success());
+    if !ok {
+        assert!(
+            std::env::var_os("CI").is_none(),
+            "CI must install {module} for python3 (.ci/run does)"
+        );
+        eprintln!("skipped: python3 with {module} not found (pip install {module})");
+    }
+    ok.then_some("python3")
+}
+
+/// Goal: `examples/pandas_outputs.py` reads a run's history.csv, energy.csv and
+/// summary.json into pandas, units parsed out of the headers, and gets the very
+/// numbers the run wrote: the peak contact force and its time equal the summary's,
+/// the last ledger row's total its final total, the largest |error| its largest
+/// relative error (exactly: CSV and JSON numbers read back to the same f64). Model:
+/// the paper's rod.
+#[test]
+fn pandas_example_reads_the_outputs_with_their_units() {
+    let Some(python) = python_with("pandas") else { return };
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("rod");
+    let o = impactlab(&["run", deck("rod.bdf").to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = Command::new(python)
+        .arg(root().join("examples/pandas_outputs.py"))
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    let value = |name: &str| -> (f64, String) {
+        let line = stdout
+            .lines()
+            .find_map(|l| l.strip_prefix(&format!("{name} = ")))
+            .unwrap_or_else(|| panic!("{name} in {stdout}"));
+        let (v, unit) = line.split_once(' ').unwrap();
+        (v.parse().unwrap(), unit.to_string())
+    };
+    let s: impactlab::run::Summary =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(value("peak_force"), (s.contact.peak_force, "lbf".into()));
+    let some = |(v, unit): (f64, String)| (Some(v), unit);
+    assert_eq!(some(value("peak_force_time")), (s.contact.peak_force_time, "s".into()));
+    assert_eq!(some(value("final_total")), (s.energy.final_total, "lbf*in".into()));
+    assert_eq!(some(value("max_abs_error")), (s.energy.max_relative_error, "-".into()));
+}

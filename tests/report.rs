@@ -66,12 +66,48 @@ fn rod_report_regenerates_and_matches_its_run() {
     insta::assert_snapshot!("rod_report", text);
 }
 
+/// A VTU read back by an independent reader (vtkio): points, cell types, and the
+/// point and cell arrays by name (as f64).
+struct Vtu {
+    points: Vec<f64>,
+    types: Vec<vtkio::model::CellType>,
+    point: std::collections::HashMap<String, Vec<f64>>,
+    cell: std::collections::HashMap<String, Vec<f64>>,
+}
+
+fn read_vtu(path: &std::path::Path) -> Vtu {
+    use vtkio::model::{Attribute, DataSet, Piece};
+    let vtk = vtkio::Vtk::import(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let DataSet::UnstructuredGrid { pieces, .. } = vtk.data else {
+        panic!("{}: not an unstructured grid", path.display())
+    };
+    let Some(Piece::Inline(p)) = pieces.into_iter().next() else {
+        panic!("{}: no inline piece", path.display())
+    };
+    let arrays = |a: &[Attribute]| {
+        a.iter()
+            .filter_map(|a| match a {
+                Attribute::DataArray(d) => Some((d.name.clone(), d.data.cast_into::<f64>().unwrap())),
+                _ => None,
+            })
+            .collect()
+    };
+    Vtu {
+        points: p.points.cast_into::<f64>().unwrap(),
+        types: p.cells.types.clone(),
+        point: arrays(&p.data.point),
+        cell: arrays(&p.data.cell),
+    }
+}
+
 /// Goal: `--fields` writes VTU files that parse back (vtkio) with the mesh's points
-/// and cells, and a .pvd collection listing each with its time. Model: the 13×13
-/// plate (196 grids, 169 CQUAD4) and the rod (145 grids, 144 CRODs).
+/// and cells, every element drawn (the ball's CONM2 as a vertex), and a .pvd
+/// collection listing each with its time. Models: the 13×13 plate (196 grids, 169
+/// CQUAD4, and the impactor) and the rod (145 grids, 144 CRODs, and the ball).
 #[test]
 fn field_files_parse_back() {
-    use impactlab::report::fields::{field_times, read_back, write_fields};
+    use impactlab::report::fields::{field_times, write_fields};
+    use vtkio::model::CellType;
     let dir = tempfile::tempdir().unwrap();
     let m = impactlab::mesh::plate_model(13).unwrap();
     let opts = impactlab::run::RunOptions {
@@ -83,7 +119,13 @@ fn field_files_parse_back() {
     let files = write_fields(&m, &r, &dir.path().join("plate")).unwrap();
     assert_eq!(files.len(), 6);
     for f in files.iter().filter(|f| f.extension().is_some_and(|e| e == "vtu")) {
-        assert_eq!(read_back(f).unwrap(), (196, 169));
+        let v = read_vtu(f);
+        assert_eq!(v.points.len(), 3 * 197);
+        assert_eq!(v.types.iter().filter(|t| **t == CellType::Quad).count(), 169);
+        assert_eq!(v.types.iter().filter(|t| **t == CellType::Vertex).count(), 1);
+        for name in ["element_id", "strain_z1", "strain_z2"] {
+            assert!(v.cell.contains_key(name), "{name} in {}", f.display());
+        }
     }
     let pvd = std::fs::read_to_string(dir.path().join("plate/fields.pvd")).unwrap();
     assert_eq!(pvd.matches("<DataSet timestep=").count(), 5);
@@ -95,7 +137,78 @@ fn field_files_parse_back() {
     };
     let r = impactlab::run::run_model(&rod, &opts).unwrap();
     let files = write_fields(&rod, &r, &dir.path().join("rod")).unwrap();
-    assert_eq!(read_back(&files[0]).unwrap(), (145, 144));
+    let v = read_vtu(&files[0]);
+    assert_eq!(v.points.len(), 3 * 146);
+    assert_eq!(v.types.iter().filter(|t| **t == CellType::Line).count(), 144);
+    assert_eq!(v.types.iter().filter(|t| **t == CellType::Vertex).count(), 1);
+}
+
+/// Goal: the paper's plate in ParaView traces back to its deck: the point with
+/// `grid_id` 2525 (the struck grid) sits where the deck's GRID card puts it, with the
+/// run's displacement and velocity; the impactor (GRID 999, CONM2 200) is its own
+/// vertex with its own displacement; array names carry no units and the field data
+/// says them (`in`, `in/s`, `s`, from the deck's units comment).
+#[test]
+fn plate_fields_trace_back_to_the_deck() {
+    use impactlab::model::DofLabel;
+    use impactlab::report::fields::write_fields;
+    let (m, _) = impactlab::load_deck(&common::deck("plate.bdf"), Default::default()).unwrap();
+    let opts = impactlab::run::RunOptions {
+        steps: Some(60),
+        snapshot_times: vec![50.0 * m.time.dt],
+        ..Default::default()
+    };
+    let r = impactlab::run::run_model(&m, &opts).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let files = write_fields(&m, &r, dir.path()).unwrap();
+    let v = read_vtu(&files[0]);
+    let snap = &r.snapshots[0];
+    let state = |point: i64, comp: u8| {
+        let i = r.dofs.iter().position(|l| *l == DofLabel { point, comp }).unwrap();
+        (snap.u[i], snap.v[i])
+    };
+    let at = |grid: f64| v.point["grid_id"].iter().position(|g| *g == grid).unwrap();
+    // GRID* 2525 in plate-mesh-49x49.bdf: x = y = -6.122448980E-02, z = 0.
+    let p = at(2525.0);
+    assert_eq!(&v.points[3 * p..3 * p + 3], &[-6.122448980e-02, -6.122448980e-02, 0.0]);
+    let (w, wdot) = state(2525, 3);
+    assert!(w > 0.0 && wdot > 0.0, "the struck grid moves: {w}, {wdot}");
+    assert_eq!(v.point["displacement"][3 * p + 2], w);
+    assert_eq!(v.point["velocity"][3 * p + 2], wdot);
+    // GRID 999: (0, 0, -0.1875), carrying CONM2 200.
+    let b = at(999.0);
+    assert_eq!(&v.points[3 * b..3 * b + 3], &[0.0, 0.0, -0.1875]);
+    assert_eq!(v.point["displacement"][3 * b + 2], state(999, 3).0);
+    let cells = &v.cell["element_id"];
+    let k = cells.iter().position(|e| *e == 200.0).unwrap();
+    assert_eq!(v.types[k], vtkio::model::CellType::Vertex);
+    assert!(v.cell["strain_z1"][3 * k].is_nan(), "a mass recovers no strain");
+    let q = cells.iter().position(|e| *e == 2525.0).unwrap();
+    // xx and yy; xy vanishes by symmetry at the centre.
+    assert!(v.cell["strain_z1"][3 * q..3 * q + 2]
+        .iter()
+        .all(|s| s.is_finite() && *s != 0.0));
+    let names: Vec<&String> = v.point.keys().chain(v.cell.keys()).collect();
+    assert!(names.iter().all(|n| !n.contains('[')), "no units in names: {names:?}");
+    let text = std::fs::read_to_string(&files[0]).unwrap();
+    for (name, unit) in [
+        ("time_unit", "s"),
+        ("displacement_unit", "in"),
+        ("velocity_unit", "in/s"),
+    ] {
+        assert_eq!(field_string(&text, name).as_deref(), Some(unit), "{name}");
+    }
+}
+
+/// A string of the VTU's field data, decoded from VTK's ASCII string encoding
+/// (character codes ended by 0).
+fn field_string(vtu: &str, name: &str) -> Option<String> {
+    let open = format!("Name=\"{name}\"");
+    let rest = &vtu[vtu.find(&open)?..];
+    let body = &rest[rest.find('>')? + 1..rest.find("</DataArray>")?];
+    let codes: Vec<u8> = body.split_whitespace().map(|c| c.parse().unwrap()).collect();
+    let (last, chars) = codes.split_last()?;
+    (*last == 0).then(|| String::from_utf8(chars.to_vec()).unwrap())
 }
 
 /// Goal: `report` draws every case: the rod with a contact that outlasts 2L/C

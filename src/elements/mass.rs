@@ -1,7 +1,7 @@
 //! CONM2: concentrated mass at a grid, in the basic system, without offset.
 //! Mass on the three translations; the inertia matrix [I11 −I21 −I31; …] on the
 //! rotations (NASTRAN's sign convention for products of inertia). No stiffness, no
-//! strain energy, nothing recovered.
+//! strain energy, nothing recovered; drawn as a vertex in field output.
 
 /// Rotational inertia matrix from (I11, I21, I22, I31, I32, I33).
 pub fn inertia_matrix(i: [f64; 6]) -> [[f64; 3]; 3] {
@@ -54,6 +54,6 @@ impl Kernel for PointMass {
         vec![self.x]
     }
     fn cell(&self) -> Option<Cell> {
-        None
+        Some(Cell::Vertex)
     }
 }

@@ -97,6 +97,8 @@ impl Recovered {
 /// The VTK cell an element draws as.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Cell {
+    /// A one-node vertex (VTK_VERTEX): a concentrated mass.
+    Vertex,
     /// A two-node line (VTK_LINE).
     Line,
     /// A four-node quadrilateral (VTK_QUAD).

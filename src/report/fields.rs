@@ -1,36 +1,32 @@
-//! Fields for ParaView: one VTU (VTK XML unstructured grid, written by vtkio) per
-//! snapshot with the nodal displacement and, for shells, the fibre strains per
-//! element, plus a `.pvd` collection giving each file its time, so the wave can be
-//! animated.
+//! Fields for ParaView: one VTU (VTK XML unstructured grid, inline binary) per snapshot and a
+//! `.pvd` collection giving each file its time, both written with quick-xml.
+//!
+//! Every value traces back to the deck. Point data: `grid_id` (the NASTRAN grid),
+//! `displacement` and `velocity` (translations). Cell data: `element_id` and the
+//! strains the element recovers (`axial_strain` for rods; `strain_z1`, `strain_z2`
+//! with components xx, yy, xy for shells), NaN where an element recovers no such
+//! value. Every element is drawn: CONM2 masses, the impactor among them, as vertices
+//! at their grid. Array names carry no units; the field data does: `TimeValue`,
+//! `time_unit`, `displacement_unit`, `velocity_unit`, with the model's name and the
+//! deck's SHA-256.
 
-use crate::elements::{Cell, Element, Fibre, Recovered};
+use crate::elements::{Cell, Element, Fibre, Plane, Recovered};
 use crate::model::{DofLabel, Model};
-use crate::run::RunResult;
+use crate::run::{Column, RunResult, Snapshot, UnitSystem};
+use quick_xml::events::{BytesDecl, BytesText, Event};
+use quick_xml::Writer;
 use std::collections::HashMap;
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
-use vtkio::model::{
-    Attribute, Attributes, ByteOrder, CellType, Cells, DataSet, ElementType, IOBuffer, Piece, UnstructuredGridPiece,
-    Version, VertexNumbers, Vtk,
-};
 
-/// Field files that cannot be written or read back.
+/// Field files that cannot be written.
 #[derive(Debug, thiserror::Error)]
-pub enum FieldsError {
-    #[error("{path}: {source}")]
-    Vtk {
-        path: String,
-        #[source]
-        source: vtkio::Error,
-    },
-    #[error("{path}: {source}")]
-    Io {
-        path: String,
-        #[source]
-        source: std::io::Error,
-    },
-    #[error("{path}: {what}")]
-    Content { path: String, what: &'static str },
+#[error("{path}: {source}")]
+pub struct FieldsError {
+    /// The directory being written.
+    pub path: String,
+    /// What failed.
+    #[source]
+    pub source: std::io::Error,
 }
 
 /// Writes `DIR/fields-NNNN.vtu` for each snapshot of `run` and `DIR/fields.pvd`, all
@@ -38,59 +34,149 @@ pub enum FieldsError {
 pub fn write_fields(model: &Model, run: &RunResult, dir: &Path) -> Result<Vec<PathBuf>, FieldsError> {
     let mesh = Mesh::of(model);
     let full: HashMap<DofLabel, usize> = model.dofs.iter().enumerate().map(|(i, l)| (*l, i)).collect();
+    let units = UnitSystem::of(&model.units);
     let mut files: Vec<(String, Vec<u8>)> = Vec::new();
-    let mut written = Vec::new();
-    let mut pvd = String::from(
-        "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n  <Collection>\n",
-    );
-    for (k, (t, u_run)) in run.snapshots.iter().enumerate() {
+    for (k, snap) in run.snapshots.iter().enumerate() {
         // The run may have solved a reduced set of DOFs: spread them back.
-        let mut u = vec![0.0; model.n()];
-        for (l, v) in run.dofs.iter().zip(u_run) {
-            if let Some(&i) = full.get(l) {
-                u[i] = *v;
+        let spread = |x: &[f64]| {
+            let mut all = vec![0.0; model.n()];
+            for (l, v) in run.dofs.iter().zip(x) {
+                if let Some(&i) = full.get(l) {
+                    all[i] = *v;
+                }
             }
-        }
-        let name = format!("fields-{k:04}.vtu");
-        let mut bytes = Vec::new();
-        mesh.snapshot(model, &full, &u, *t)
-            .write_xml(&mut bytes)
-            .map_err(|source| FieldsError::Vtk {
-                path: dir.join(&name).display().to_string(),
-                source,
-            })?;
-        let _ = writeln!(pvd, "    <DataSet timestep=\"{t:e}\" part=\"0\" file=\"{name}\"/>");
-        written.push(dir.join(&name));
-        files.push((name, bytes));
+            all
+        };
+        let state = Snapshot {
+            time: snap.time,
+            u: spread(&snap.u),
+            v: spread(&snap.v),
+        };
+        files.push((format!("fields-{k:04}.vtu"), mesh.vtu(model, &units, &full, &state)));
     }
-    pvd += "  </Collection>\n</VTKFile>\n";
-    files.push(("fields.pvd".into(), pvd.into_bytes()));
-    written.push(dir.join("fields.pvd"));
+    let pvd = collection(
+        files
+            .iter()
+            .zip(&run.snapshots)
+            .map(|((name, _), s)| (s.time, name.as_str())),
+    );
+    files.push(("fields.pvd".into(), pvd));
     let refs: Vec<(&str, Vec<u8>)> = files.iter().map(|(n, b)| (n.as_str(), b.clone())).collect();
-    crate::output::write_dir_atomically(dir, &refs).map_err(|source| FieldsError::Io {
+    crate::output::write_dir_atomically(dir, &refs).map_err(|source| FieldsError {
         path: dir.display().to_string(),
         source,
     })?;
-    Ok(written)
+    Ok(files.iter().map(|(n, _)| dir.join(n)).collect())
 }
 
-/// The drawn part of a model: every grid an element touches, and the cells.
+/// The `.pvd` collection: each file with its time.
+fn collection<'a>(files: impl Iterator<Item = (f64, &'a str)>) -> Vec<u8> {
+    let mut w = Writer::new_with_indent(Vec::new(), b' ', 2);
+    let ok = (|| {
+        w.write_event(Event::Decl(BytesDecl::new("1.0", None, None)))?;
+        w.create_element("VTKFile")
+            .with_attributes([
+                ("type", "Collection"),
+                ("version", "0.1"),
+                ("byte_order", "LittleEndian"),
+            ])
+            .write_inner_content(|w| {
+                w.create_element("Collection").write_inner_content(|w| {
+                    for (t, name) in files {
+                        let t = t.to_string();
+                        w.create_element("DataSet")
+                            .with_attributes([("timestep", t.as_str()), ("part", "0"), ("file", name)])
+                            .write_empty()?;
+                    }
+                    Ok(())
+                })?;
+                Ok(())
+            })?;
+        std::io::Result::Ok(())
+    })();
+    ok.expect("writing XML into memory cannot fail");
+    let mut bytes = w.into_inner();
+    bytes.push(b'\n');
+    bytes
+}
+
+/// One VTK data array: name, component names (one entry per component) and values.
+struct Array<'a> {
+    name: &'a str,
+    components: &'a [&'a str],
+    values: Values,
+    /// A field-data array (its tuple count stated, as VTK's reader needs).
+    field: bool,
+}
+
+enum Values {
+    F64(Vec<f64>),
+    I64(Vec<i64>),
+    U8(Vec<u8>),
+    /// One string, one tuple.
+    Text(String),
+}
+
+impl Array<'_> {
+    fn write(&self, w: &mut Writer<Vec<u8>>) -> std::io::Result<()> {
+        use base64::Engine as _;
+        // Numbers in VTK's inline binary: base64 of a UInt64 byte count followed by
+        // the little-endian values (exact, NaN included). Strings in ASCII: character
+        // codes, each string ended by a 0.
+        fn binary<const N: usize, T: Copy>(v: &[T], bytes: impl Fn(T) -> [u8; N]) -> String {
+            let mut raw = ((v.len() * N) as u64).to_le_bytes().to_vec();
+            raw.extend(v.iter().flat_map(|x| bytes(*x)));
+            base64::engine::general_purpose::STANDARD.encode(raw)
+        }
+        let (ty, format, text) = match &self.values {
+            Values::F64(v) => ("Float64", "binary", binary(v, f64::to_le_bytes)),
+            Values::I64(v) => ("Int64", "binary", binary(v, i64::to_le_bytes)),
+            Values::U8(v) => ("UInt8", "binary", binary(v, |x: u8| [x])),
+            Values::Text(s) => {
+                let codes: Vec<String> = s.bytes().chain([0]).map(|c| c.to_string()).collect();
+                ("String", "ascii", codes.join(" "))
+            }
+        };
+        let n = self.components.len().max(1).to_string();
+        let mut e = w
+            .create_element("DataArray")
+            .with_attributes([("type", ty), ("Name", self.name)]);
+        if self.components.len() > 1 {
+            e = e.with_attribute(("NumberOfComponents", n.as_str()));
+            for (i, c) in self.components.iter().enumerate() {
+                e = e.with_attribute((format!("ComponentName{i}").as_str(), *c));
+            }
+        }
+        if self.field {
+            e = e.with_attribute(("NumberOfTuples", "1"));
+        }
+        e.with_attribute(("format", format))
+            .write_text_content(BytesText::new(&text))?;
+        Ok(())
+    }
+}
+
+const XYZ: [&str; 3] = ["x", "y", "z"];
+
+/// The drawn model: every grid an element touches, and one cell per element.
 struct Mesh<'m> {
     /// Point index of each grid.
     index: HashMap<i64, usize>,
+    grids: Vec<i64>,
     points: Vec<f64>,
-    conn: Vec<u64>,
-    offsets: Vec<u64>,
-    types: Vec<CellType>,
+    conn: Vec<i64>,
+    offsets: Vec<i64>,
+    types: Vec<u8>,
     cells: Vec<&'m Element>,
     /// The strain arrays written per cell (see [`strain_layout`]).
-    layout: Vec<(String, Vec<usize>)>,
+    layout: Vec<StrainArray>,
 }
 
 impl<'m> Mesh<'m> {
     fn of(model: &'m Model) -> Self {
         let mut m = Mesh {
             index: HashMap::new(),
+            grids: Vec::new(),
             points: Vec::new(),
             conn: Vec::new(),
             offsets: Vec::new(),
@@ -101,93 +187,214 @@ impl<'m> Mesh<'m> {
         for e in &model.elements {
             let Some(cell) = e.kernel.cell() else { continue };
             for (g, x) in e.grids.iter().zip(e.kernel.points()) {
-                let points = &mut m.points;
                 let p = *m.index.entry(*g).or_insert_with(|| {
-                    points.extend_from_slice(&x);
-                    points.len() / 3 - 1
+                    m.points.extend_from_slice(&x);
+                    m.grids.push(*g);
+                    m.grids.len() - 1
                 });
-                m.conn.push(p as u64);
+                m.conn.push(p as i64);
             }
+            // VTK_VERTEX, VTK_LINE, VTK_QUAD.
             m.types.push(match cell {
-                Cell::Line => CellType::Line,
-                Cell::Quad => CellType::Quad,
+                Cell::Vertex => 1,
+                Cell::Line => 3,
+                Cell::Quad => 9,
             });
-            m.offsets.push(m.conn.len() as u64);
+            m.offsets.push(m.conn.len() as i64);
             m.cells.push(e);
         }
         m.layout = strain_layout(&m.cells);
         m
     }
 
-    /// One snapshot: nodal displacement and the cells' strains at `u` (all DOFs).
-    fn snapshot(&self, model: &Model, full: &HashMap<DofLabel, usize>, u: &[f64], t: f64) -> Vtk {
+    /// One snapshot's VTU, from the state over all of the model's DOFs.
+    fn vtu(&self, model: &Model, units: &UnitSystem, full: &HashMap<DofLabel, usize>, s: &Snapshot) -> Vec<u8> {
         let mut disp = vec![0.0; self.points.len()];
+        let mut velo = vec![0.0; self.points.len()];
         for (l, &i) in full {
             if (1..=3).contains(&l.comp) {
                 if let Some(&p) = self.index.get(&l.point) {
-                    disp[3 * p + l.comp as usize - 1] = u[i];
+                    disp[3 * p + l.comp as usize - 1] = s.u[i];
+                    velo[3 * p + l.comp as usize - 1] = s.v[i];
                 }
             }
         }
-        let mut cell_data = Vec::new();
-        let strains: Vec<Vec<f64>> = self.cells.iter().map(|e| e.recover(u, false)).collect();
-        for (name, columns) in &self.layout {
-            let v: Vec<f64> = strains.iter().flat_map(|r| columns.iter().map(|&j| r[j])).collect();
-            cell_data.push(if columns.len() == 1 {
-                Attribute::scalars(name.as_str(), 1).with_data(v)
-            } else {
-                Attribute::DataArray(vtkio::model::DataArray {
-                    name: name.clone(),
-                    elem: ElementType::Vectors,
-                    data: IOBuffer::F64(v),
+        let recovered: Vec<Vec<f64>> = self.cells.iter().map(|e| e.recover(&s.u, false)).collect();
+        let field = [
+            Array {
+                name: "TimeValue",
+                components: &[],
+                values: Values::F64(vec![s.time]),
+                field: true,
+            },
+            text("time_unit", Column::Time.unit(units)),
+            text("displacement_unit", Column::ImpactorDisp.unit(units)),
+            text("velocity_unit", Column::ImpactorVelo.unit(units)),
+            text("model", model.name.clone()),
+            text("deck_sha256", model.deck_sha256.clone()),
+        ];
+        let point = [
+            Array {
+                name: "grid_id",
+                components: &[],
+                values: Values::I64(self.grids.clone()),
+                field: false,
+            },
+            Array {
+                name: "displacement",
+                components: &XYZ,
+                values: Values::F64(disp),
+                field: false,
+            },
+            Array {
+                name: "velocity",
+                components: &XYZ,
+                values: Values::F64(velo),
+                field: false,
+            },
+        ];
+        let mut cell = vec![Array {
+            name: "element_id",
+            components: &[],
+            values: Values::I64(self.cells.iter().map(|e| e.eid).collect()),
+            field: false,
+        }];
+        for a in &self.layout {
+            let v = a
+                .columns
+                .iter()
+                .zip(&recovered)
+                .flat_map(|(cols, r)| {
+                    (0..a.components.len().max(1)).map(move |c| cols.as_ref().map_or(f64::NAN, |j| r[j[c]]))
                 })
+                .collect();
+            cell.push(Array {
+                name: &a.name,
+                components: a.components,
+                values: Values::F64(v),
+                field: false,
             });
         }
-        Vtk {
-            version: Version::new_xml(1, 0),
-            title: format!("{} t = {t:e}", model.name),
-            byte_order: ByteOrder::LittleEndian,
-            file_path: None,
-            data: DataSet::inline(UnstructuredGridPiece {
-                points: IOBuffer::F64(self.points.clone()),
-                cells: Cells {
-                    cell_verts: VertexNumbers::XML {
-                        connectivity: self.conn.clone(),
-                        offsets: self.offsets.clone(),
-                    },
-                    types: self.types.clone(),
-                },
-                data: Attributes {
-                    point: vec![Attribute::DataArray(vtkio::model::DataArray {
-                        name: format!("displacement [{}]", model.units.length),
-                        elem: ElementType::Vectors,
-                        data: IOBuffer::F64(disp),
-                    })],
-                    cell: cell_data,
-                },
-            }),
-        }
+        let geometry = Array {
+            name: "Points",
+            components: &XYZ,
+            values: Values::F64(self.points.clone()),
+            field: false,
+        };
+        let topology = [
+            Array {
+                name: "connectivity",
+                components: &[],
+                values: Values::I64(self.conn.clone()),
+                field: false,
+            },
+            Array {
+                name: "offsets",
+                components: &[],
+                values: Values::I64(self.offsets.clone()),
+                field: false,
+            },
+            Array {
+                name: "types",
+                components: &[],
+                values: Values::U8(self.types.clone()),
+                field: false,
+            },
+        ];
+        let (np, nc) = (self.grids.len().to_string(), self.cells.len().to_string());
+        let mut w = Writer::new_with_indent(Vec::new(), b' ', 2);
+        let all = |w: &mut Writer<Vec<u8>>, arrays: &[Array]| arrays.iter().try_for_each(|a| a.write(w));
+        let ok = (|| {
+            w.write_event(Event::Decl(BytesDecl::new("1.0", None, None)))?;
+            w.create_element("VTKFile")
+                .with_attributes([
+                    ("type", "UnstructuredGrid"),
+                    ("version", "1.0"),
+                    ("byte_order", "LittleEndian"),
+                    ("header_type", "UInt64"),
+                ])
+                .write_inner_content(|w| {
+                    w.create_element("UnstructuredGrid").write_inner_content(|w| {
+                        w.create_element("FieldData").write_inner_content(|w| all(w, &field))?;
+                        w.create_element("Piece")
+                            .with_attributes([("NumberOfPoints", np.as_str()), ("NumberOfCells", nc.as_str())])
+                            .write_inner_content(|w| {
+                                w.create_element("PointData")
+                                    .with_attributes([("Scalars", "grid_id"), ("Vectors", "displacement")])
+                                    .write_inner_content(|w| all(w, &point))?;
+                                w.create_element("CellData")
+                                    .with_attribute(("Scalars", "element_id"))
+                                    .write_inner_content(|w| all(w, &cell))?;
+                                w.create_element("Points").write_inner_content(|w| geometry.write(w))?;
+                                w.create_element("Cells").write_inner_content(|w| all(w, &topology))?;
+                                Ok(())
+                            })?;
+                        Ok(())
+                    })?;
+                    Ok(())
+                })?;
+            std::io::Result::Ok(())
+        })();
+        ok.expect("writing XML into memory cannot fail");
+        let mut bytes = w.into_inner();
+        bytes.push(b'\n');
+        bytes
     }
 }
 
-/// The strain arrays of the cells: a name and which recovered values it holds. Empty
-/// where the cells recover different values (a model mixing element kinds).
-fn strain_layout(cells: &[&Element]) -> Vec<(String, Vec<usize>)> {
-    let Some(first) = cells.first() else { return Vec::new() };
-    let rec: Vec<Recovered> = first.kernel.recovered(false);
-    if cells.iter().any(|e| e.kernel.recovered(false) != rec) {
-        return Vec::new();
+/// A one-string field-data array.
+fn text(name: &'static str, value: String) -> Array<'static> {
+    Array {
+        name,
+        components: &[],
+        values: Values::Text(value),
+        field: true,
     }
-    let mut out: Vec<(String, Vec<usize>)> = Vec::new();
-    for (j, r) in rec.iter().enumerate() {
-        let name = match r.at {
-            None => "axial_strain".to_string(),
-            Some((Fibre::Z1, _)) => "strain_bottom_z1 (xx, yy, xy)".to_string(),
-            Some((Fibre::Z2, _)) => "strain_top_z2 (xx, yy, xy)".to_string(),
-        };
-        match out.iter_mut().find(|(n, _)| *n == name) {
-            Some((_, cols)) => cols.push(j),
-            None => out.push((name, vec![j])),
+}
+
+/// A strain array of the cells: its name, component names, and per cell where its
+/// components are among the cell's recovered values (`None`: the cell has none).
+struct StrainArray {
+    name: String,
+    components: &'static [&'static str],
+    columns: Vec<Option<Vec<usize>>>,
+}
+
+/// The strain arrays over all cells, in the order the elements recover them.
+fn strain_layout(cells: &[&Element]) -> Vec<StrainArray> {
+    const PLANE: [&str; 3] = ["xx", "yy", "xy"];
+    let mut out: Vec<StrainArray> = Vec::new();
+    for (k, e) in cells.iter().enumerate() {
+        let rec: Vec<Recovered> = e.kernel.recovered(false);
+        for (j, r) in rec.iter().enumerate() {
+            let (name, components, c): (&str, &'static [&'static str], usize) = match r.at {
+                None => ("axial_strain", &[], 0),
+                Some((f, p)) => (
+                    match f {
+                        Fibre::Z1 => "strain_z1",
+                        Fibre::Z2 => "strain_z2",
+                    },
+                    &PLANE,
+                    match p {
+                        Plane::Xx => 0,
+                        Plane::Yy => 1,
+                        Plane::Xy => 2,
+                    },
+                ),
+            };
+            let i = match out.iter().position(|a| a.name == name) {
+                Some(i) => i,
+                None => {
+                    out.push(StrainArray {
+                        name: name.to_string(),
+                        components,
+                        columns: vec![None; cells.len()],
+                    });
+                    out.len() - 1
+                }
+            };
+            let width = components.len().max(1);
+            out[i].columns[k].get_or_insert_with(|| vec![usize::MAX; width])[c] = j;
         }
     }
     out
@@ -197,23 +404,4 @@ fn strain_layout(cells: &[&Element]) -> Vec<(String, Vec<usize>)> {
 pub fn field_times(dt: f64, steps: usize, n: usize) -> Vec<f64> {
     let n = n.max(1);
     (0..=n).map(|k| (k * steps / n) as f64 * dt).collect()
-}
-
-/// Reads a VTU back (for tests and users' checks): number of points and cells.
-pub fn read_back(path: &Path) -> Result<(usize, usize), FieldsError> {
-    let file = || path.display().to_string();
-    let vtk = Vtk::import(path).map_err(|source| FieldsError::Vtk { path: file(), source })?;
-    match vtk.data {
-        DataSet::UnstructuredGrid { pieces, .. } => match pieces.into_iter().next() {
-            Some(Piece::Inline(p)) => Ok((p.num_points(), p.cells.types.len())),
-            _ => Err(FieldsError::Content {
-                path: file(),
-                what: "no inline piece",
-            }),
-        },
-        _ => Err(FieldsError::Content {
-            path: file(),
-            what: "not an unstructured grid",
-        }),
-    }
 }

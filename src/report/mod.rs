@@ -551,8 +551,8 @@ fn plate_displacement(f: &Fig) -> Result<Vec<PathBuf>, Error> {
     let panels: Vec<Contour> = run
         .snapshots
         .iter()
-        .map(|(t, uu)| Contour {
-            title: format!("t = {:.0} {}", t * ax.scale, ax.unit),
+        .map(|snap| Contour {
+            title: format!("t = {:.0} {}", snap.time * ax.scale, ax.unit),
             unit: u.length.clone(),
             cells: model
                 .elements
@@ -562,7 +562,7 @@ fn plate_displacement(f: &Fig) -> Result<Vec<PathBuf>, Error> {
                     let v: f64 = e
                         .grids
                         .iter()
-                        .map(|g| w_index.get(g).map_or(0.0, |&i| uu[i]))
+                        .map(|g| w_index.get(g).map_or(0.0, |&i| snap.u[i]))
                         .sum::<f64>()
                         / 4.0;
                     Some((xy.map(|p| (p[0], p[1])), v))
@@ -571,7 +571,7 @@ fn plate_displacement(f: &Fig) -> Result<Vec<PathBuf>, Error> {
             lattice: {
                 let nodes: Vec<(f64, f64, f64)> = grid_xy
                     .iter()
-                    .map(|(g, (x, y))| (*x, *y, w_index.get(g).map_or(0.0, |&i| uu[i])))
+                    .map(|(g, (x, y))| (*x, *y, w_index.get(g).map_or(0.0, |&i| snap.u[i])))
                     .collect();
                 plot::Lattice::from_nodes(&nodes)
             },

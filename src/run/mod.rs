@@ -133,8 +133,20 @@ pub struct RunResult {
     pub summary: Summary,
     /// The solved DOFs of the run (inert DOFs dropped), for reading snapshots.
     pub dofs: Vec<crate::model::DofLabel>,
-    /// Displacement states at the requested snapshot times: (time, u over `dofs`).
-    pub snapshots: Vec<(f64, Vec<f64>)>,
+    /// States at the requested snapshot times.
+    pub snapshots: Vec<Snapshot>,
+}
+
+/// The state of a run at one snapshot time, over the run's solved DOFs
+/// ([`RunResult::dofs`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Snapshot {
+    /// Time of the state.
+    pub time: f64,
+    /// Displacements.
+    pub u: Vec<f64>,
+    /// Velocities.
+    pub v: Vec<f64>,
 }
 
 struct Recorder<'a> {
@@ -151,7 +163,7 @@ struct Recorder<'a> {
     tripped: Option<GuardTrip>,
     bar: ProgressBar,
     snapshot_steps: Vec<usize>,
-    snapshots: Vec<(f64, Vec<f64>)>,
+    snapshots: Vec<Snapshot>,
 }
 
 impl Observer for Recorder<'_> {
@@ -189,7 +201,11 @@ impl Observer for Recorder<'_> {
             self.history.push(history_row(m, s, force));
         }
         if self.snapshot_steps.contains(&s.step) {
-            self.snapshots.push((s.time, s.u.to_vec()));
+            self.snapshots.push(Snapshot {
+                time: s.time,
+                u: s.u.to_vec(),
+                v: s.v.to_vec(),
+            });
         }
         if s.step % 64 == 0 {
             self.bar.set_position(s.step as u64);
