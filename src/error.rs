@@ -4,42 +4,60 @@ use crate::deck::DeckError;
 use crate::integrate::SolveError;
 use crate::model::ModelError;
 
+/// Everything that can fail, by stage; [`Error::exit_code`] maps it to the program's exit code.
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
+    /// The deck could not be read.
     #[error("{0}")]
     Deck(#[from] DeckError),
+    /// The model could not be built.
     #[error("{0}")]
     Model(#[from] ModelError),
+    /// The solver failed.
     #[error("numerical failure: {0}")]
     Solve(#[from] SolveError),
+    /// A run failed.
     #[error("numerical failure: {0}")]
     Run(#[from] crate::run::RunError),
+    /// A model modification could not be made.
     #[error("{0}")]
     Modify(#[from] crate::model::ModifyError),
+    /// A verification case could not be read.
     #[error("{0}")]
     Case(#[from] crate::verify::CaseError),
+    /// A check could not be evaluated.
     #[error("{0}")]
     Check(#[from] crate::verify::CheckError),
+    /// A reference could not be computed.
     #[error("{0}")]
     Reference(#[from] crate::physics::references::ReferenceError),
+    /// A mesh could not be generated.
     #[error("{0}")]
     Mesh(#[from] crate::mesh::MeshError),
+    /// A scene could not be read or built.
     #[error("{0}")]
     Scene(#[from] crate::scene::SceneError),
+    /// A figure could not be drawn.
     #[error("{0}")]
     Plot(#[from] crate::plot::PlotError),
+    /// An audit could not read its inputs.
     #[error("{0}")]
     Audit(#[from] crate::verify::audit::AuditError),
+    /// Field files could not be written.
     #[error("{0}")]
     Fields(#[from] crate::report::fields::FieldsError),
+    /// A command-line option is invalid.
     #[error("invalid option: {0}")]
     Usage(String),
     /// A run stopped by a guard after its partial outputs were written.
     #[error("numerical failure: {0}")]
     Stopped(String),
+    /// An output could not be written.
     #[error("cannot write outputs to {path}: {source}")]
     Io {
+        /// The path being written.
         path: String,
+        /// What failed.
         #[source]
         source: std::io::Error,
     },

@@ -24,6 +24,8 @@
 //! - [`report`]: reports from case outcomes; VTU fields.
 //! - [`error`]: the program's error, one variant per stage, and its exit codes.
 
+#![warn(missing_docs)]
+
 pub mod numerics;
 pub mod plot;
 pub mod deck;
@@ -46,6 +48,17 @@ pub mod error;
 pub use error::Error;
 
 /// Reads a deck and builds its model; warnings are returned alongside.
+///
+/// ```
+/// let deck = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("reference-data/decks/plate.bdf");
+/// let (model, warnings) = impactlab::load_deck(&deck, Default::default())?;
+/// assert_eq!(model.units.length, "in");
+/// assert_eq!(model.elements.len(), 49 * 49 + 1); // the CQUAD4s and the impactor's CONM2
+/// for w in &warnings {
+///     eprintln!("{w}"); // file:line:column, card, field, message and the card quoted
+/// }
+/// # Ok::<(), impactlab::Error>(())
+/// ```
 pub fn load_deck(
     path: &std::path::Path,
     opts: deck::ReadOptions,

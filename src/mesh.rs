@@ -21,19 +21,25 @@ pub const GAGE_Y: [f64; 2] = [8.0 * 6.0 / 49.0, 16.0 * 6.0 / 49.0];
 /// A mesh size a generated deck cannot have.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum MeshError {
+    /// An even or too small plate mesh size.
     #[error("the plate mesh needs an odd N ≥ 3 (an element at the centre), not {0}")]
     Plate(usize),
+    /// An odd or too small rod element count.
     #[error("the rod mesh needs an even number of elements (at least 2), not {0}")]
     Rod(usize),
 }
 
+/// An N×N plate mesh: grid id = base·row + col (rows and columns from 1).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PlateMesh {
+    /// Elements per side.
     pub n: usize,
+    /// Row multiplier of the grid ids (100, or 1000 past 99 grids a side).
     pub base: usize,
 }
 
 impl PlateMesh {
+    /// The mesh of `n` elements a side (odd, at least 3).
     pub fn new(n: usize) -> Result<Self, MeshError> {
         if n < 3 || n % 2 == 0 {
             return Err(MeshError::Plate(n));
@@ -44,6 +50,7 @@ impl PlateMesh {
         })
     }
 
+    /// The id of the grid at `row`, `col`.
     pub fn grid(&self, row: usize, col: usize) -> usize {
         self.base * row + col
     }

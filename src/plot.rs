@@ -20,6 +20,7 @@ fn register_font() {
     });
 }
 
+/// Line colours, indexed by [`Line::color`].
 pub const PALETTE: [RGBColor; 7] = [
     RGBColor(31, 119, 180),
     RGBColor(214, 39, 40),
@@ -33,10 +34,15 @@ pub const PALETTE: [RGBColor; 7] = [
 /// One line of a chart.
 #[derive(Debug, Clone)]
 pub struct Line {
+    /// Legend entry.
     pub name: String,
+    /// Abscissae.
     pub x: Vec<f64>,
+    /// Ordinates.
     pub y: Vec<f64>,
+    /// Index into [`PALETTE`].
     pub color: usize,
+    /// Drawn dashed.
     pub dashed: bool,
     /// Draw markers at the points (for sparse data, e.g. one per Δt).
     pub markers: bool,
@@ -47,6 +53,7 @@ pub struct Line {
 }
 
 impl Line {
+    /// A solid line without markers.
     pub fn new(name: impl Into<String>, x: Vec<f64>, y: Vec<f64>, color: usize) -> Self {
         Line {
             name: name.into(),
@@ -59,10 +66,12 @@ impl Line {
             emphasis: Vec::new(),
         }
     }
+    /// Drawn dashed.
     pub fn dashed(mut self) -> Self {
         self.dashed = true;
         self
     }
+    /// With markers at the points.
     pub fn markers(mut self) -> Self {
         self.markers = true;
         self
@@ -82,14 +91,21 @@ impl Line {
 /// A line chart.
 #[derive(Debug, Clone, Default)]
 pub struct Chart {
+    /// Title above the chart.
     pub title: String,
+    /// X axis label, with its unit.
     pub x_label: String,
+    /// Y axis label, with its unit.
     pub y_label: String,
+    /// A line of text under the chart (settings, provenance).
     pub footer: String,
+    /// The lines; the first is the result the others are compared with.
     pub lines: Vec<Line>,
     /// Vertical marker lines with labels.
     pub vlines: Vec<(f64, String)>,
+    /// Logarithmic x axis.
     pub log_x: bool,
+    /// Logarithmic y axis.
     pub log_y: bool,
     /// Extra room above the data, as a fraction of its range, for the legend.
     pub headroom: f64,
@@ -108,11 +124,14 @@ pub struct DrawError(String);
 #[derive(Debug, Clone, thiserror::Error)]
 #[error("drawing {path}: {source}")]
 pub struct PlotError {
+    /// The figure's file.
     pub path: String,
+    /// What plotters reported.
     #[source]
     pub source: DrawError,
 }
 
+/// The result of drawing.
 pub type Res = Result<(), DrawError>;
 
 /// Any plotters error as a [`DrawError`].
@@ -141,6 +160,7 @@ fn range(v: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
 pub trait Figure {
     /// Size in pixels (PNG) and user units (SVG).
     fn size(&self) -> (u32, u32);
+    /// Draws the figure on `root`.
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Res
     where
         DB::ErrorType: 'static;
@@ -517,7 +537,9 @@ pub fn fmt_tick(v: f64) -> String {
 /// A map of a nodal field on a structured grid of quadrilaterals: each cell coloured by
 /// the mean of its corners, with a colour bar, and contour lines of the nodal values.
 pub struct Contour {
+    /// Title above the map.
     pub title: String,
+    /// Unit of the values, for the colour bar.
     pub unit: String,
     /// Cells: corner coordinates (x, y) and value.
     pub cells: Vec<([(f64, f64); 4], f64)>,
@@ -533,8 +555,11 @@ pub type Polyline = Vec<(f64, f64)>;
 /// Values at the nodes of a uniform lattice: `values[j * x.len() + i]` at `(x[i], y[j])`.
 #[derive(Debug, Clone)]
 pub struct Lattice {
+    /// Lattice abscissae, ascending.
     pub x: Vec<f64>,
+    /// Lattice ordinates, ascending.
     pub y: Vec<f64>,
+    /// The values, row by row.
     pub values: Vec<f64>,
 }
 

@@ -11,11 +11,15 @@ use faer::sparse::{SparseColMat, Triplet};
 /// Global stiffness and mass as triplet lists (duplicates summed when compressed).
 #[derive(Debug, Clone)]
 pub struct System {
+    /// Number of solved DOFs.
     pub n: usize,
+    /// Stiffness entries (row, column, value) of every element.
     pub k: Vec<Triplet<usize, usize, f64>>,
+    /// Mass entries (row, column, value) of every element.
     pub m: Vec<Triplet<usize, usize, f64>>,
     /// Compressed K and M, for products.
     pub k_csc: SparseColMat<usize, f64>,
+    /// Compressed M.
     pub m_csc: SparseColMat<usize, f64>,
     /// The diagonal of M when M is diagonal (lumped masses, no rotary inertia coupling).
     pub m_lumped: Option<Vec<f64>>,

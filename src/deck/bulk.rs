@@ -16,6 +16,7 @@ use std::collections::HashMap;
 pub struct Field {
     /// The token, trimmed; empty when blank.
     pub text: String,
+    /// Where the field starts.
     pub pos: Pos,
     /// NASTRAN field number on its physical line (2-9).
     pub number: usize,
@@ -24,8 +25,11 @@ pub struct Field {
 /// A logical bulk data card: name plus data fields from all its lines.
 #[derive(Debug, Clone)]
 pub struct RawCard {
+    /// Card name, upper case (`GRID`, `CQUAD4`).
     pub name: String,
+    /// Where the card's first line starts.
     pub pos: Pos,
+    /// Data fields of all lines in order (NASTRAN fields 2-9 of each line).
     pub fields: Vec<Field>,
     /// Source text of the card's lines, for quoting in messages.
     pub source: String,
@@ -34,6 +38,7 @@ pub struct RawCard {
 }
 
 impl RawCard {
+    /// Data field `k`, counted from 0 (NASTRAN field 2 of the first line).
     pub fn field(&self, k: usize) -> Option<&Field> {
         self.fields.get(k)
     }

@@ -10,8 +10,11 @@ use super::number::{parse_int, parse_real, RealToken};
 /// Where a card came from, for messages raised after reading (model building).
 #[derive(Debug, Clone)]
 pub struct CardRef {
+    /// Card name.
     pub name: String,
+    /// Where the card starts.
     pub pos: Pos,
+    /// The card's source lines, for quoting.
     pub source: String,
 }
 
@@ -29,173 +32,281 @@ impl CardRef {
 pub struct Components(pub u8);
 
 impl Components {
+    /// True when component `c` (1-6) is in the set.
     pub fn contains(self, c: usize) -> bool {
         (1..=6).contains(&c) && self.0 & (1 << (c - 1)) != 0
     }
+    /// The components in the set, ascending.
     pub fn iter(self) -> impl Iterator<Item = usize> {
         (1..=6).filter(move |&c| self.contains(c))
     }
 }
 
+/// GRID: a grid point (six DOFs) at a location.
 #[derive(Debug, Clone)]
 pub struct Grid {
+    /// Grid id (field 2).
     pub id: i64,
+    /// Coordinate system of the location, CP (field 3; only 0, the basic system).
     pub cp: i64,
+    /// Location X1, X2, X3 (fields 4-6).
     pub x: [f64; 3],
+    /// Displacement coordinate system, CD (field 7; only 0).
     pub cd: i64,
+    /// Permanent single-point constraints, PS (field 8); `None` when blank (GRDSET applies).
     pub ps: Option<Components>,
+    /// The card.
     pub at: CardRef,
 }
 
+/// GRDSET: defaults for blank GRID fields.
 #[derive(Debug, Clone, Default)]
 pub struct GrdSet {
+    /// Default CP.
     pub cp: i64,
+    /// Default CD.
     pub cd: i64,
+    /// Default PS.
     pub ps: Components,
 }
 
+/// CROD: a rod element between two grids.
 #[derive(Debug, Clone)]
 pub struct Crod {
+    /// Element id (field 2).
     pub eid: i64,
+    /// PROD id (field 3).
     pub pid: i64,
+    /// End grids G1, G2 (fields 4-5).
     pub g: [i64; 2],
+    /// The card.
     pub at: CardRef,
 }
 
+/// PROD: rod properties.
 #[derive(Debug, Clone)]
 pub struct Prod {
+    /// Property id (field 2).
     pub pid: i64,
+    /// MAT1 id (field 3).
     pub mid: i64,
+    /// Cross-section area A (field 4).
     pub a: f64,
+    /// Torsional constant J (field 5).
     pub j: f64,
+    /// Non-structural mass per unit length, NSM (field 7).
     pub nsm: f64,
+    /// The card.
     pub at: CardRef,
 }
 
+/// CQUAD4: a four-node shell element.
 #[derive(Debug, Clone)]
 pub struct Cquad4 {
+    /// Element id (field 2).
     pub eid: i64,
+    /// PSHELL id (field 3).
     pub pid: i64,
+    /// Corner grids G1-G4, counter-clockwise (fields 4-7).
     pub g: [i64; 4],
+    /// The card.
     pub at: CardRef,
 }
 
+/// PSHELL: shell properties.
 #[derive(Debug, Clone)]
 pub struct Pshell {
+    /// Property id (field 2).
     pub pid: i64,
+    /// Membrane material MID1 (field 3); `None` when blank.
     pub mid1: Option<i64>,
+    /// Thickness T (field 4).
     pub t: f64,
+    /// Bending material MID2 (field 5); `None` when blank.
     pub mid2: Option<i64>,
     /// 12 I / T^3.
     pub bend_ratio: f64,
+    /// Transverse shear material MID3 (field 7); `None` when blank.
     pub mid3: Option<i64>,
+    /// Non-structural mass per unit area, NSM (field 9).
     pub nsm: f64,
+    /// The card.
     pub at: CardRef,
 }
 
+/// MAT1: an isotropic material.
 #[derive(Debug, Clone)]
 pub struct Mat1 {
+    /// Material id (field 2).
     pub mid: i64,
+    /// Young's modulus E (field 3).
     pub e: f64,
+    /// Shear modulus G (field 4).
     pub g: f64,
+    /// Poisson's ratio NU (field 5).
     pub nu: f64,
+    /// Mass density RHO (field 6).
     pub rho: f64,
+    /// The card.
     pub at: CardRef,
 }
 
 /// Anisotropic 2-D material: `[G11 G12 G13; G12 G22 G23; G13 G23 G33]`.
 #[derive(Debug, Clone)]
 pub struct Mat2 {
+    /// Material id (field 2).
     pub mid: i64,
+    /// The symmetric material matrix, from G11, G12, G13, G22, G23, G33 (fields 3-8).
     pub g: [[f64; 3]; 3],
+    /// Mass density RHO (field 9).
     pub rho: f64,
+    /// The card.
     pub at: CardRef,
 }
 
+/// CONM2: a concentrated mass at a grid.
 #[derive(Debug, Clone)]
 pub struct Conm2 {
+    /// Element id (field 2).
     pub eid: i64,
+    /// Grid G (field 3).
     pub g: i64,
+    /// Mass M (field 5).
     pub mass: f64,
     /// I11, I21, I22, I31, I32, I33.
     pub inertia: [f64; 6],
+    /// The card.
     pub at: CardRef,
 }
 
+/// SPC1: single-point constraints of a set of components on grids.
 #[derive(Debug, Clone)]
 pub struct Spc1 {
+    /// Constraint set id (field 2).
     pub sid: i64,
+    /// Constrained components C (field 3).
     pub c: Components,
+    /// Constrained grids (fields 4 on, THRU ranges expanded).
     pub grids: Vec<i64>,
+    /// The card.
     pub at: CardRef,
 }
 
+/// One term of a TF card's continuation: a coefficient polynomial on an input DOF.
 #[derive(Debug, Clone)]
 pub struct TfTerm {
+    /// Input grid or scalar point.
     pub g: i64,
+    /// Its component (0 for a scalar point).
     pub c: usize,
+    /// A0, A1, A2: coefficients of 1, p, p².
     pub a: [f64; 3],
 }
 
+/// TF: a transfer function, B(p)·u_d + Σ A_i(p)·u_i = 0, defining a dependent DOF.
 #[derive(Debug, Clone)]
 pub struct Tf {
+    /// Set id (field 2).
     pub sid: i64,
+    /// Dependent grid or point GD (field 3).
     pub gd: i64,
+    /// Its component CD (field 4; 0 for a scalar point).
     pub cd: usize,
+    /// B0, B1, B2 (fields 5-7): coefficients of 1, p, p² on the dependent DOF.
     pub b: [f64; 3],
+    /// The input terms (continuation lines).
     pub terms: Vec<TfTerm>,
+    /// The card.
     pub at: CardRef,
 }
 
+/// TSTEP: time steps of a transient solution.
 #[derive(Debug, Clone)]
 pub struct Tstep {
+    /// Set id (field 2).
     pub sid: i64,
+    /// Number of steps N (field 3).
     pub n: usize,
+    /// Time step DT (field 4).
     pub dt: f64,
+    /// Output every NO-th step (field 5).
     pub every: usize,
+    /// The card.
     pub at: CardRef,
 }
 
+/// NOLIN3: a nonlinear load P = S·x^A on DOF (GI, CI), x the displacement of (GJ, CJ) when positive.
 #[derive(Debug, Clone)]
 pub struct Nolin3 {
+    /// Set id (field 2).
     pub sid: i64,
+    /// Loaded grid or point GI (field 3).
     pub gi: i64,
+    /// Its component CI (field 4).
     pub ci: usize,
+    /// Scale factor S (field 5).
     pub s: f64,
+    /// Driving grid or point GJ (field 6).
     pub gj: i64,
+    /// Its component CJ (field 7).
     pub cj: usize,
+    /// Exponent A (field 8).
     pub a: f64,
+    /// The card.
     pub at: CardRef,
 }
 
+/// TIC: an initial condition on one DOF.
 #[derive(Debug, Clone)]
 pub struct Tic {
+    /// Set id (field 2).
     pub sid: i64,
+    /// Grid or point G (field 3).
     pub g: i64,
+    /// Its component C (field 4).
     pub c: usize,
+    /// Initial displacement U0 (field 5).
     pub u0: f64,
+    /// Initial velocity V0 (field 6).
     pub v0: f64,
+    /// The card.
     pub at: CardRef,
 }
 
 /// All bulk data of a deck, typed.
 #[derive(Debug, Clone, Default)]
 pub struct Bulk {
+    /// GRID cards.
     pub grids: Vec<Grid>,
+    /// The GRDSET card, or its defaults.
     pub grdset: GrdSet,
+    /// EPOINT ids (extra points), each with its card.
     pub epoints: Vec<(i64, CardRef)>,
+    /// SPOINT ids (scalar points), each with its card.
     pub spoints: Vec<(i64, CardRef)>,
+    /// CROD cards.
     pub crods: Vec<Crod>,
+    /// PROD cards.
     pub prods: Vec<Prod>,
+    /// CQUAD4 cards.
     pub cquad4s: Vec<Cquad4>,
+    /// PSHELL cards.
     pub pshells: Vec<Pshell>,
+    /// MAT1 cards.
     pub mat1s: Vec<Mat1>,
+    /// MAT2 cards.
     pub mat2s: Vec<Mat2>,
+    /// CONM2 cards.
     pub conm2s: Vec<Conm2>,
+    /// SPC1 cards.
     pub spc1s: Vec<Spc1>,
+    /// TF cards.
     pub tfs: Vec<Tf>,
+    /// TSTEP cards.
     pub tsteps: Vec<Tstep>,
+    /// NOLIN3 cards.
     pub nolin3s: Vec<Nolin3>,
+    /// TIC cards.
     pub tics: Vec<Tic>,
 }
 

@@ -8,8 +8,11 @@ use std::collections::BTreeMap;
 /// Executive control: only what decides the analysis.
 #[derive(Debug, Clone, Default)]
 pub struct Executive {
+    /// ID statement's text.
     pub id: Option<String>,
+    /// Solution sequence (SOL).
     pub sol: Option<u32>,
+    /// TIME statement's text.
     pub time_limit: Option<String>,
 }
 
@@ -19,48 +22,69 @@ pub const DIRECT_TRANSIENT_SOLS: [u32; 4] = [9, 27, 109, 129];
 /// A case-control selection with where it was written.
 #[derive(Debug, Clone)]
 pub struct Selection {
+    /// The selected set id.
     pub id: i64,
+    /// Where the selection is written.
     pub pos: Pos,
 }
 
 /// What an output request selects.
 #[derive(Debug, Clone, PartialEq)]
 pub enum OutputSet {
+    /// `= ALL`.
     All,
+    /// `= NONE`.
     None,
+    /// `= n`: case-control SET n.
     Set(i64),
 }
 
+/// An output request (`DISP = 15`).
 #[derive(Debug, Clone)]
 pub struct OutputRequest {
+    /// What it selects.
     pub set: OutputSet,
+    /// Where it is written.
     pub pos: Pos,
 }
 
 /// A case-control SET: its members (THRU ranges expanded).
 #[derive(Debug, Clone)]
 pub struct SetDef {
+    /// Member ids.
     pub members: Vec<i64>,
+    /// Where the SET is written.
     pub pos: Pos,
 }
 
+/// Case control: titles, sets, selections and output requests.
 #[derive(Debug, Clone, Default)]
 pub struct CaseControl {
     /// Where case control ends (its last line), for errors about what it lacks.
     pub at: Option<Pos>,
+    /// TITLE.
     pub title: String,
+    /// SUBTITLE.
     pub subtitle: String,
+    /// LABEL.
     pub label: String,
+    /// SET definitions by id.
     pub sets: BTreeMap<i64, SetDef>,
+    /// SPC selection.
     pub spc: Option<Selection>,
+    /// IC selection (TIC cards).
     pub ic: Option<Selection>,
+    /// NONLINEAR selection (NOLIN3 cards).
     pub nonlinear: Option<Selection>,
+    /// TSTEP selection.
     pub tstep: Option<Selection>,
+    /// TFL selection (TF cards).
     pub tfl: Option<Selection>,
     /// Output requests by keyword: NLLOAD, DISP, VELO, ACCEL, STRESS, STRAIN.
     pub outputs: BTreeMap<String, OutputRequest>,
 }
 
+/// Reads executive control (ID, SOL, TIME) from its lines.
 pub fn parse_executive(lines: &[SrcLine], diags: &mut Diagnostics) -> Executive {
     let mut e = Executive::default();
     for l in lines {
@@ -168,6 +192,7 @@ const IGNORED: [&str; 8] = [
     "ECHO", "LINE", "MAXLINES", "OUTPUT", "ELFORCE", "FORCE", "OLOAD", "SPCFORCE",
 ];
 
+/// Reads case control from its lines; findings go to `diags`.
 pub fn parse_case(lines: &[SrcLine], diags: &mut Diagnostics) -> CaseControl {
     let mut cc = CaseControl::default();
     let mut i = 0;

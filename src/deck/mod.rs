@@ -23,8 +23,11 @@ use std::path::Path;
 /// impactlab never converts units: these names only label outputs.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Units {
+    /// Length unit name.
     pub length: String,
+    /// Force unit name.
     pub force: String,
+    /// Time unit name.
     pub time: String,
 }
 
@@ -66,24 +69,32 @@ impl Default for Units {
 /// A deck read without errors.
 #[derive(Debug, Clone)]
 pub struct Deck {
+    /// The deck's file stem, naming its outputs.
     pub name: String,
+    /// Executive control.
     pub executive: Executive,
+    /// Case control.
     pub case: CaseControl,
+    /// Bulk data, typed.
     pub bulk: Bulk,
+    /// The declared units (or `unspecified`).
     pub units: Units,
     /// SHA-256 (hex) of the deck's bytes followed by those of each INCLUDEd file in
     /// the order read.
     pub sha256: String,
+    /// Warnings found while reading.
     pub warnings: Vec<Diagnostic>,
 }
 
 /// Reading a deck failed: every error found, and the warnings.
 #[derive(Debug, Clone)]
 pub struct DeckError {
+    /// Errors and warnings, in the order found.
     pub diagnostics: Vec<Diagnostic>,
 }
 
 impl DeckError {
+    /// The errors.
     pub fn errors(&self) -> impl Iterator<Item = &Diagnostic> {
         self.diagnostics.iter().filter(|d| d.is_error())
     }

@@ -9,12 +9,16 @@ use std::sync::Arc;
 /// One physical line of a deck with where it came from.
 #[derive(Debug, Clone)]
 pub struct SrcLine {
+    /// The file as named when read.
     pub file: Arc<str>,
+    /// Line, from 1.
     pub line: usize,
+    /// The line's text, without its end-of-line.
     pub text: String,
 }
 
 impl SrcLine {
+    /// The position of `column` (from 1) on this line.
     pub fn pos(&self, column: usize) -> Pos {
         Pos {
             file: self.file.clone(),
@@ -27,8 +31,11 @@ impl SrcLine {
 /// The three sections of a deck, as lines.
 #[derive(Debug, Default)]
 pub struct Sections {
+    /// Executive control lines (up to CEND).
     pub executive: Vec<SrcLine>,
+    /// Case control lines (up to BEGIN BULK).
     pub case: Vec<SrcLine>,
+    /// Bulk data lines (up to ENDDATA).
     pub bulk: Vec<SrcLine>,
     /// Unit system declared in a `$ Units: length, force, time` comment, if any.
     pub units: Option<(String, String, String)>,

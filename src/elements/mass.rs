@@ -15,7 +15,9 @@ use nalgebra::DMatrix;
 /// A CONM2 at a grid.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PointMass {
+    /// Location of the grid.
     pub x: [f64; 3],
+    /// The mass, on each translation.
     pub mass: f64,
     /// (I11, I21, I22, I31, I32, I33).
     pub inertia: [f64; 6],

@@ -24,7 +24,9 @@ pub const MAX_GRIDS: usize = 4;
 /// component `at[k].1` (0..6 for T1..R3) of the element's grid `at[k].0`.
 #[derive(Debug, Clone)]
 pub struct LocalMatrix {
+    /// (grid index within the element, component 0..6) of each row and column.
     pub at: Vec<(usize, usize)>,
+    /// The matrix.
     pub values: DMatrix<f64>,
 }
 
@@ -42,22 +44,29 @@ impl LocalMatrix {
 /// Stress or strain.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Measure {
+    /// Stress (force per area).
     Stress,
+    /// Strain (dimensionless).
     Strain,
 }
 
 /// A shell fibre: Z1 = −T/2 (the struck face of the paper's plate), Z2 = +T/2.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Fibre {
+    /// The fibre at z = −T/2.
     Z1,
+    /// The fibre at z = +T/2.
     Z2,
 }
 
 /// An in-plane tensor component (xy is the engineering shear).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Plane {
+    /// Normal, x.
     Xx,
+    /// Normal, y.
     Yy,
+    /// Engineering shear, xy.
     Xy,
 }
 
@@ -65,7 +74,9 @@ pub enum Plane {
 /// (shells).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct Recovered {
+    /// Stress or strain.
     pub measure: Measure,
+    /// Where in a shell (fibre, component); `None` for a rod's axial value.
     pub at: Option<(Fibre, Plane)>,
 }
 
@@ -133,8 +144,11 @@ pub trait Kernel: fmt::Debug + Send + Sync + Any {
 /// A kernel behind a box: cloned, and seen as its concrete kind; every `Kernel` that
 /// is `Clone` is one.
 pub trait BoxedKernel: Kernel {
+    /// A boxed copy.
     fn clone_box(&self) -> Box<dyn BoxedKernel>;
+    /// The concrete kind, for [`Element::kind`].
     fn as_any(&self) -> &dyn Any;
+    /// The concrete kind, mutable.
     fn as_any_mut(&mut self) -> &mut dyn Any;
 }
 
@@ -154,9 +168,13 @@ impl<K: Kernel + Clone> BoxedKernel for K {
 /// at each grid (`None` where constrained or not solved).
 #[derive(Debug)]
 pub struct Element {
+    /// Element id from the deck.
     pub eid: i64,
+    /// Its grids, in connection order.
     pub grids: Vec<i64>,
+    /// Solved DOF index of T1..R3 at each grid.
     pub dofs: Vec<[Option<usize>; 6]>,
+    /// What the element computes.
     pub kernel: Box<dyn BoxedKernel>,
 }
 

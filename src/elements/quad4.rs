@@ -19,6 +19,7 @@
 use super::{Cell, Fibre, Kernel, LocalMatrix, Measure, Plane, Recovered};
 use nalgebra::{DMatrix, Matrix3, SMatrix, Vector3};
 
+/// Corner coordinates (x, y) of a quadrilateral, counter-clockwise.
 pub type Xy = [[f64; 2]; 4];
 
 /// 2×2 Gauss points and unit weights.
@@ -70,6 +71,7 @@ pub fn min_jacobian(xy: &Xy) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
+/// Area by 2×2 Gauss quadrature of the Jacobian (exact for a bilinear map).
 pub fn area(xy: &Xy) -> f64 {
     GAUSS.iter().map(|&(a, b)| jacobian(xy, a, b).1).sum()
 }
@@ -89,6 +91,7 @@ fn b_membrane(xy: &Xy, xi: f64, eta: f64) -> (SMatrix<f64, 3, 8>, f64) {
     (b, det)
 }
 
+/// Membrane stiffness Bᵀ A B integrated 2×2, DOFs (u1 v1 … u4 v4); `a` = G·T.
 pub fn membrane_stiffness(xy: &Xy, a: &Matrix3<f64>) -> SMatrix<f64, 8, 8> {
     let mut k = SMatrix::<f64, 8, 8>::zeros();
     for &(xi, eta) in &GAUSS {
@@ -98,6 +101,7 @@ pub fn membrane_stiffness(xy: &Xy, a: &Matrix3<f64>) -> SMatrix<f64, 8, 8> {
     k
 }
 
+/// Membrane strain (εx, εy, γxy) at the element centre.
 pub fn membrane_strain(xy: &Xy, u: &SMatrix<f64, 8, 1>) -> Vector3<f64> {
     b_membrane(xy, 0.0, 0.0).0 * u
 }
@@ -183,6 +187,7 @@ fn b_bending(xy: &Xy, xi: f64, eta: f64) -> (SMatrix<f64, 3, 12>, f64) {
     (b, det)
 }
 
+/// Bending stiffness Bᵀ D B integrated 2×2, DOFs (w, θx, θy) at each corner.
 pub fn bending_stiffness(xy: &Xy, d: &Matrix3<f64>) -> SMatrix<f64, 12, 12> {
     let mut k = SMatrix::<f64, 12, 12>::zeros();
     for &(xi, eta) in &GAUSS {
@@ -213,6 +218,7 @@ pub fn lumped_mass(xy: &Xy, mass_per_area: f64) -> [f64; 4] {
 /// A PSHELL with its materials resolved.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ShellSection {
+    /// Thickness T.
     pub thickness: f64,
     /// Membrane material matrix G(MID1) (stress/strain), if any.
     pub g_membrane: Option<Matrix3<f64>>,
@@ -240,14 +246,18 @@ impl ShellSection {
 /// costs.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Quad4 {
+    /// Corner coordinates in the element's plane.
     pub xy: Xy,
+    /// The plane's z.
     pub z: f64,
+    /// Section and materials.
     pub section: ShellSection,
     k_membrane: Option<[f64; 36]>,
     k_bending: Option<[f64; 78]>,
 }
 
 impl Quad4 {
+    /// The element, its stiffness matrices computed once.
     pub fn new(xy: Xy, z: f64, section: ShellSection) -> Self {
         Quad4 {
             k_membrane: section.a().map(|a| pack(&membrane_stiffness(&xy, &a))),

@@ -12,11 +12,17 @@ use nalgebra::{DMatrix, SMatrix, Vector3};
 /// Section and material of a rod.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RodSection {
+    /// Young's modulus E.
     pub e: f64,
+    /// Shear modulus G.
     pub g: f64,
+    /// Cross-section area A.
     pub area: f64,
+    /// Torsional constant J.
     pub torsion: f64,
+    /// Mass density ρ.
     pub rho: f64,
+    /// Non-structural mass per unit length.
     pub nsm: f64,
 }
 
@@ -79,7 +85,9 @@ pub fn axial_strain(x1: [f64; 3], x2: [f64; 3], u1: [f64; 3], u2: [f64; 3]) -> f
 /// A CROD between two grids.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Rod {
+    /// End coordinates.
     pub x: [[f64; 3]; 2],
+    /// Section and material.
     pub section: RodSection,
 }
 

@@ -17,8 +17,11 @@ pub struct Factor {
     symbolic: SymbolicCholesky<usize>,
     values: Vec<f64>,
     work: MemBuffer,
+    /// Time spent factorising.
     pub factor_time: Duration,
+    /// Time spent in solves.
     pub solve_time: Duration,
+    /// Solves done.
     pub solves: usize,
 }
 

@@ -96,13 +96,36 @@ pub enum SolveError {
         "the effective matrix is singular at {dof}: a mechanism (nothing restrains this DOF: \
          constrain it with SPC1/PS or attach stiffness or mass to it)"
     )]
-    Mechanism { dof: String },
+    /// A DOF nothing restrains.
+    Mechanism {
+        /// The DOF, as the deck names it.
+        dof: String,
+    },
+    /// A NaN or infinity appeared in the state.
     #[error("non-finite value (NaN or infinity) in the state at step {step} (t = {time:e}), {dof}")]
-    NonFinite { step: usize, time: f64, dof: String },
+    NonFinite {
+        /// The step.
+        step: usize,
+        /// Its time.
+        time: f64,
+        /// The first DOF with a non-finite value.
+        dof: String,
+    },
+    /// The scalar contact equation had no solution in its bracket.
     #[error("the contact equation did not converge at step {step} (t = {time:e})")]
-    ContactSolve { step: usize, time: f64 },
+    ContactSolve {
+        /// The step.
+        step: usize,
+        /// Its time.
+        time: f64,
+    },
+    /// The explicit scheme cannot run this model.
     #[error("explicit scheme refused: {reason}")]
-    Explicit { reason: String },
+    Explicit {
+        /// Why.
+        reason: String,
+    },
+    /// The sparse factorisation failed.
     #[error("linear solver failure: {0}")]
     Linear(String),
 }
@@ -110,9 +133,13 @@ pub enum SolveError {
 /// The state after a step, as observers see it.
 #[derive(Debug, Clone, Copy)]
 pub struct StepState<'a> {
+    /// Steps done.
     pub step: usize,
+    /// Time of the state.
     pub time: f64,
+    /// Displacements of the solved DOFs.
     pub u: &'a [f64],
+    /// Velocities of the solved DOFs.
     pub v: &'a [f64],
     /// The contact driver (indentation α).
     pub alpha: f64,
@@ -125,6 +152,7 @@ pub struct StepState<'a> {
 
 /// Receives each state; may stop the run (returns false) or fail it.
 pub trait Observer {
+    /// Sees the state after a step; `Ok(false)` stops the run.
     fn observe(&mut self, s: &StepState) -> Result<bool, SolveError>;
 }
 
@@ -133,11 +161,16 @@ pub trait Observer {
 pub struct RunStats {
     /// Steps done.
     pub steps: usize,
+    /// Factorisations of the effective matrix.
     pub factorizations: usize,
+    /// Triangular solve pairs.
     pub solves: usize,
+    /// Iterations of the scalar contact solve, over all steps.
     pub contact_iterations: usize,
+    /// Time spent factorising.
     #[serde(serialize_with = "secs")]
     pub factor_time: Duration,
+    /// Time spent in solves.
     #[serde(serialize_with = "secs")]
     pub solve_time: Duration,
     /// The whole time loop (factorisation and solves included).
@@ -156,7 +189,9 @@ fn secs<S: serde::Serializer>(d: &Duration, s: S) -> Result<S::Ok, S::Error> {
 /// The state a stepper holds after a step (or at the start).
 #[derive(Debug, Clone, Copy)]
 pub struct Current<'a> {
+    /// Displacements.
     pub u: &'a [f64],
+    /// Velocities.
     pub v: &'a [f64],
     /// The indentation α.
     pub alpha: f64,
@@ -169,10 +204,15 @@ pub struct Current<'a> {
 /// What a scheme's step costs: linear algebra and the contact solve.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct StepCosts {
+    /// Factorisations.
     pub factorizations: usize,
+    /// Triangular solve pairs.
     pub solves: usize,
+    /// Contact solve iterations.
     pub contact_iterations: usize,
+    /// Time spent factorising.
     pub factor_time: Duration,
+    /// Time spent in solves.
     pub solve_time: Duration,
 }
 

@@ -44,6 +44,7 @@ pub enum ContactForm {
 /// define.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct NewmarkParams {
+    /// How the contact load enters the step.
     pub contact: ContactForm,
 }
 

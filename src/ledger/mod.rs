@@ -26,19 +26,31 @@ use crate::model::Model;
 /// One row of the ledger.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct EnergyRow {
+    /// Time.
     pub time: f64,
+    /// KE_i = ½mv², Eq. 14.
     pub ke_impactor: f64,
+    /// SE_i = K/(A+1)·α^(A+1), the contact potential, Eq. 15.
     pub se_impactor: f64,
+    /// KE_t = ½vᵀMv over the target's DOFs.
     pub ke_target: f64,
+    /// KE_t by the paper's Eq. 16 (mean nodal velocity of each element).
     pub ke_target_eq16: f64,
+    /// SE_t = ½uᵀKu = Σ element strain energies, Eq. 17.
     pub se_target: f64,
+    /// U_t = KE_i + SE_i + KE_t + SE_t, Eq. 13.
     pub total: f64,
+    /// Work of the non-conservative loads so far.
     pub external_work: f64,
+    /// (U_t − U_0 − W)/U_0.
     pub error: f64,
+    /// U_t/(U_0 + W).
     pub energy_ratio: f64,
+    /// Σ(Mv) over the DOFs of the impact direction.
     pub momentum: f64,
 }
 
+/// The columns of `energy.csv`, in the order of [`EnergyRow::values`].
 pub const COLUMNS: [&str; 11] = [
     "time",
     "ke_impactor",
@@ -54,6 +66,7 @@ pub const COLUMNS: [&str; 11] = [
 ];
 
 impl EnergyRow {
+    /// The row's values in the order of [`COLUMNS`].
     pub fn values(&self) -> [f64; 11] {
         [
             self.time,
@@ -71,6 +84,7 @@ impl EnergyRow {
     }
 }
 
+/// Books the energies of each state of a run.
 pub struct Ledger<'a> {
     model: &'a Model,
     sys: &'a System,
@@ -84,6 +98,7 @@ pub struct Ledger<'a> {
 }
 
 impl<'a> Ledger<'a> {
+    /// A ledger for a model and its assembled system.
     pub fn new(model: &'a Model, sys: &'a System) -> Self {
         let n = model.n();
         let comp = model

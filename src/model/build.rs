@@ -14,6 +14,7 @@ use std::collections::{BTreeMap, HashMap};
 /// Building the model failed: every problem found, each tied to its card.
 #[derive(Debug, Clone)]
 pub struct ModelError {
+    /// Every problem found, each tied to its card.
     pub diagnostics: Vec<Diagnostic>,
 }
 

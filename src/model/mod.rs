@@ -20,7 +20,9 @@ use std::fmt;
 /// A DOF of the deck: point id and component (1-6 for grids, 0 for scalar points).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct DofLabel {
+    /// Grid or scalar point id.
     pub point: i64,
+    /// Component: 1-6 for a grid, 0 for a scalar point.
     pub comp: u8,
 }
 
@@ -38,6 +40,7 @@ impl fmt::Display for DofLabel {
 /// A linear functional Σ c_j u_j of solved DOFs.
 pub type Functional = Vec<(usize, f64)>;
 
+/// The functional's value at `u`.
 pub fn apply(f: &Functional, u: &[f64]) -> f64 {
     f.iter().map(|&(j, c)| c * u[j]).sum()
 }
@@ -45,26 +48,35 @@ pub fn apply(f: &Functional, u: &[f64]) -> f64 {
 /// A scalar point defined by a transfer function (B0 u_dep + Σ A0_j u_j = 0).
 #[derive(Debug, Clone)]
 pub struct DependentPoint {
+    /// The point.
     pub label: DofLabel,
+    /// Its value as a functional of the solved DOFs.
     pub functional: Functional,
+    /// The TF card defining it.
     pub at: CardRef,
 }
 
 /// One NOLIN3 load: P = S·x^A on a solved DOF.
 #[derive(Debug, Clone)]
 pub struct NonlinearLoad {
+    /// The loaded solved DOF.
     pub dof: usize,
+    /// Its label.
     pub label: DofLabel,
+    /// The scale factor S.
     pub scale: f64,
+    /// The NOLIN3 card.
     pub at: CardRef,
 }
 
 /// The rigid impactor: a point mass loaded by the contact and attached to no element.
 #[derive(Debug, Clone)]
 pub struct Impactor {
+    /// The impactor's grid.
     pub grid: i64,
     /// The solved DOF the contact load acts on (the impact direction).
     pub dof: usize,
+    /// Its mass.
     pub mass: f64,
     /// All solved DOFs of the impactor grid.
     pub dofs: Vec<usize>,
@@ -79,12 +91,17 @@ pub struct Impactor {
 /// non-conservative load whose work the ledger books separately.
 #[derive(Debug, Clone)]
 pub struct Contact {
+    /// The indentation α as a functional of the solved DOFs.
     pub driver: Functional,
+    /// The point holding α (the NOLIN3 cards' GJ, CJ).
     pub driver_label: DofLabel,
+    /// The NOLIN3 loads.
     pub loads: Vec<NonlinearLoad>,
+    /// The exponent A (1.5 for Hertz).
     pub exponent: f64,
     /// Hertz contact stiffness K of V(α) = K/(A+1) α^(A+1).
     pub stiffness: f64,
+    /// The impactor.
     pub impactor: Impactor,
     /// Non-conservative remainder of the loads (DOF, S_i + K ∂α/∂u_i), nonzero entries.
     pub nonconservative: Functional,
@@ -132,7 +149,9 @@ impl Contact {
 /// Time stepping as the deck's TSTEP gives it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TimeControl {
+    /// Time step.
     pub dt: f64,
+    /// Number of steps.
     pub steps: usize,
     /// Output every `every` steps.
     pub every: usize,
@@ -141,7 +160,9 @@ pub struct TimeControl {
 /// Where an output value comes from.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Source {
+    /// A solved DOF.
     Dof(usize),
+    /// A TF-defined point (index into [`Model::dependent`]).
     Dependent(usize),
     /// A DOF dropped as inert (see [`crate::assembly::drop_inert`]): identically zero.
     Inert,
@@ -150,7 +171,9 @@ pub enum Source {
 /// What the deck's case control asks to be written.
 #[derive(Debug, Clone, Default)]
 pub struct OutputPlan {
+    /// DOFs requested by DISP, with where each value comes from.
     pub disp: Vec<(DofLabel, Source)>,
+    /// DOFs requested by VELO.
     pub velo: Vec<(DofLabel, Source)>,
     /// NOLIN3 loads requested by NLLOAD (index into `Contact::loads`).
     pub nlload: Vec<usize>,
@@ -165,32 +188,49 @@ pub struct OutputPlan {
 pub struct RodInfo {
     /// Bar wave speed C = √(E/ρ).
     pub wave_speed: f64,
+    /// Rod length L.
     pub length: f64,
+    /// Young's modulus E.
     pub e: f64,
+    /// Cross-section area A.
     pub area: f64,
 }
 
+/// The structure, impactor and contact a run integrates, built from a deck.
 #[derive(Debug, Clone)]
 pub struct Model {
+    /// Name of the deck (its file stem).
     pub name: String,
+    /// Its TITLE.
     pub title: String,
+    /// The deck's units.
     pub units: Units,
     /// SHA-256 of the deck the model was built from (see [`crate::deck::Deck::sha256`]).
     pub deck_sha256: String,
+    /// The solved DOFs, in solve order.
     pub dofs: Vec<DofLabel>,
+    /// TF-defined points.
     pub dependent: Vec<DependentPoint>,
+    /// The elements (CONM2 masses included).
     pub elements: Vec<Element>,
+    /// The Hertzian contact, if the deck has NOLIN3 loads.
     pub contact: Option<Contact>,
+    /// Initial displacements (TIC).
     pub u0: Vec<f64>,
+    /// Initial velocities (TIC).
     pub v0: Vec<f64>,
+    /// Time stepping.
     pub time: TimeControl,
+    /// What the case control asks to be written.
     pub outputs: OutputPlan,
+    /// The rod, when the target is one uniform rod.
     pub rod: Option<RodInfo>,
     /// Solved DOFs dropped as inert (identically zero for the whole run).
     pub inert_dofs: usize,
 }
 
 impl Model {
+    /// Number of solved DOFs.
     pub fn n(&self) -> usize {
         self.dofs.len()
     }
@@ -200,6 +240,7 @@ impl Model {
         self.dofs.len() + self.dependent.len() + self.inert_dofs
     }
 
+    /// The value of an output source at `u`.
     pub fn value(&self, s: Source, u: &[f64]) -> f64 {
         match s {
             Source::Dof(i) => u[i],

@@ -8,12 +8,21 @@ use serde::Deserialize;
 /// Why a modification cannot be made.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ModifyError {
+    /// The model has no contact.
     #[error("the model has no contact to modify")]
     NoContact,
+    /// A scale factor is not positive.
     #[error("{name} must be a positive number, not {value}")]
-    NotPositive { name: &'static str, value: f64 },
+    NotPositive {
+        /// The modification's name.
+        name: &'static str,
+        /// The value given.
+        value: f64,
+    },
+    /// The gap is not finite.
     #[error("initial_gap must be finite, not {0}")]
     Gap(f64),
+    /// α does not depend on the impactor.
     #[error("the indentation does not depend on the impactor's DOF")]
     Indentation,
 }
@@ -33,6 +42,7 @@ pub struct Modify {
 }
 
 impl Modify {
+    /// True when nothing changes.
     pub fn is_empty(&self) -> bool {
         *self == Modify::default()
     }

@@ -80,6 +80,7 @@ fn set_mode(path: &Path, mode: u32) -> io::Result<()> {
     Ok(())
 }
 
+/// A CSV of numbers: the header, then each row, every float in the shortest form that reads back to the same f64.
 pub fn csv_bytes(header: &[String], rows: impl Iterator<Item = Vec<f64>>) -> Vec<u8> {
     let mut w = csv::Writer::from_writer(Vec::new());
     w.write_record(header).expect("writing to memory");

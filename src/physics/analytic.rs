@@ -16,9 +16,13 @@
 /// velocity, target face displacement; α = x − w.
 #[derive(Debug, Clone, Copy)]
 pub struct HertzDashpot {
+    /// Impactor mass m.
     pub mass: f64,
+    /// Impact velocity.
     pub v0: f64,
+    /// Hertz stiffness K.
     pub stiffness: f64,
+    /// Hertz exponent (1.5).
     pub exponent: f64,
     /// Dashpot impedance c (force per velocity); the face moves at F/c.
     pub impedance: f64,
@@ -27,19 +31,28 @@ pub struct HertzDashpot {
 /// A sampled solution of [`HertzDashpot`].
 #[derive(Debug, Clone, Default)]
 pub struct Trace {
+    /// Sample times.
     pub time: Vec<f64>,
+    /// Contact force K α^A.
     pub force: Vec<f64>,
+    /// Indentation α.
     pub alpha: Vec<f64>,
+    /// Impactor velocity.
     pub velocity: Vec<f64>,
 }
 
 /// Events of a [`Trace`]: the first contact interval.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Events {
+    /// End of the first contact.
     pub contact_end: f64,
+    /// First time the impactor's velocity is zero.
     pub velocity_zero: f64,
+    /// Largest contact force.
     pub peak_force: f64,
+    /// Its time.
     pub peak_time: f64,
+    /// Impactor velocity when contact ends.
     pub rebound_velocity: f64,
 }
 

@@ -9,12 +9,16 @@ use crate::model::Model;
 /// A reference that does not apply to a model.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ReferenceError {
+    /// The model has no contact.
     #[error("the reference needs a model with a contact")]
     NoContact,
+    /// The target is not one uniform rod.
     #[error("the reference needs a uniform rod target")]
     NoRod,
+    /// The target is not a plate with bending stiffness.
     #[error("the infinite-plate reference needs a plate with bending stiffness")]
     NoPlate,
+    /// The contact outlasts the first wave reflection.
     #[error("semi-infinite rod: contact does not end before 2L/C")]
     ContactDoesNotEnd,
 }
@@ -34,9 +38,13 @@ fn dashpot(model: &Model, impedance: f64) -> Result<HertzDashpot, ReferenceError
 /// A uniform rod target: wave speed C, length L, axial stiffness EA, impedance ρCA.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RodParams {
+    /// Bar wave speed C = √(E/ρ).
     pub wave_speed: f64,
+    /// Length L.
     pub length: f64,
+    /// Axial stiffness EA.
     pub ea: f64,
+    /// Impedance ρCA.
     pub impedance: f64,
 }
 

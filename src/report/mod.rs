@@ -20,11 +20,17 @@ use std::path::{Path, PathBuf};
 /// What a report says, for the index and for tests.
 #[derive(Debug, Clone)]
 pub struct CaseReport {
+    /// The case's name.
     pub name: String,
+    /// The page's Markdown.
     pub markdown: String,
+    /// The figures written.
     pub figures: Vec<PathBuf>,
+    /// Checks passed.
     pub passed: usize,
+    /// Checks failed.
     pub failed: usize,
+    /// The run's summary.
     pub summary: crate::run::Summary,
     /// The run's short human summary.
     pub human: String,

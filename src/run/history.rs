@@ -7,12 +7,15 @@ use crate::model::DofLabel;
 /// One column of a run's history.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Column {
+    /// Time.
     Time,
     /// Contact force magnitude K φ(α) (the force on the impactor).
     ContactForce,
     /// The indentation α.
     Indentation,
+    /// The impactor's displacement along the impact direction.
     ImpactorDisp,
+    /// The impactor's velocity along the impact direction.
     ImpactorVelo,
     /// Displacement of a DOF (DISP request).
     Disp(DofLabel),
@@ -22,7 +25,9 @@ pub enum Column {
     NlLoad(DofLabel),
     /// A recovered stress or strain of an element (STRESS/STRAIN requests).
     Element {
+        /// Element id.
         eid: i64,
+        /// Which value.
         value: Recovered,
     },
 }

@@ -20,8 +20,11 @@ pub use history::Column;
 /// How to run a model; `None` means "as the deck says".
 #[derive(Debug, Clone)]
 pub struct RunOptions {
+    /// The integration scheme.
     pub scheme: Scheme,
+    /// Time step; `None`: the deck's TSTEP.
     pub dt: Option<f64>,
+    /// Number of steps; `None`: the deck's TSTEP.
     pub steps: Option<usize>,
     /// The energy guard: stop when |relative energy error| exceeds this (like
     /// LS-DYNA's ENDENG or Radioss' /STOP Emax); `None` disables it. The run then
@@ -79,9 +82,13 @@ pub const DEFAULT_ENERGY_GUARD: f64 = 5e-2;
 /// Where the energy guard stopped a run.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct GuardTrip {
+    /// The step that tripped it.
     pub step: usize,
+    /// Its time.
     pub time: f64,
+    /// The relative energy error there.
     pub error: f64,
+    /// The limit it exceeded.
     pub limit: f64,
 }
 
@@ -98,38 +105,57 @@ impl std::fmt::Display for GuardTrip {
 /// A run that did not complete.
 #[derive(Debug, Clone, thiserror::Error)]
 pub enum RunError {
+    /// The solver failed.
     #[error(transparent)]
     Solve(#[from] SolveError),
     /// The energy guard stopped the run; `partial` holds everything recorded up to
     /// and including the step that tripped it, its summary marked incomplete.
+    /// The energy guard stopped the run.
     #[error("{trip}")]
-    EnergyGuard { trip: GuardTrip, partial: Box<RunResult> },
+    EnergyGuard {
+        /// Where and why it stopped.
+        trip: GuardTrip,
+        /// Everything recorded up to and including the tripping step, its summary marked incomplete.
+        partial: Box<RunResult>,
+    },
 }
 
 /// Per-step contact quantities, the basis of the summary.
 #[derive(Debug, Clone, Default)]
 pub struct Series {
+    /// Time of each state, from 0.
     pub time: Vec<f64>,
+    /// Indentation α.
     pub alpha: Vec<f64>,
     /// Contact force magnitude K φ(α) (the force on the impactor).
     pub force: Vec<f64>,
+    /// Impactor displacement along the impact direction.
     pub impactor_u: Vec<f64>,
+    /// Impactor velocity along the impact direction.
     pub impactor_v: Vec<f64>,
 }
 
 /// Everything a run produced.
 #[derive(Debug, Clone)]
 pub struct RunResult {
+    /// The scheme run.
     pub scheme: Scheme,
+    /// Its time step.
     pub dt: f64,
+    /// Steps planned.
     pub steps: usize,
     /// Counts and wall-clock times of the run's stages (assembly, factorisation,
     /// solves, the whole loop).
     pub stats: RunStats,
+    /// Per-step contact quantities.
     pub series: Series,
+    /// The energy ledger, every step.
     pub energy: Vec<EnergyRow>,
+    /// The columns of `history.csv`.
     pub history_columns: Vec<Column>,
+    /// The rows of `history.csv` (every TSTEP output interval).
     pub history: Vec<Vec<f64>>,
+    /// The summary (`summary.json`).
     pub summary: Summary,
     /// The solved DOFs of the run (inert DOFs dropped), for reading snapshots.
     pub dofs: Vec<crate::model::DofLabel>,

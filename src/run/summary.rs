@@ -16,20 +16,30 @@ pub const SCHEMA_VERSION: u32 = 3;
 /// Everything `summary.json` holds.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct Summary {
+    /// Version of this schema ([`SCHEMA_VERSION`]).
     pub schema_version: u32,
+    /// The impactlab version that wrote it.
     pub impactlab_version: String,
     /// The deck's name (its file stem).
     pub deck: String,
     /// SHA-256 of the deck's bytes followed by those of each INCLUDEd file in the
     /// order read: for a deck without INCLUDE, what `sha256sum DECK` prints.
     pub deck_sha256: String,
+    /// The deck's TITLE.
     pub title: String,
+    /// The units every number is in.
     pub units: UnitSystem,
+    /// Sizes and contact law of the model.
     pub model: ModelSummary,
+    /// Contact intervals and peak force.
     pub contact: ContactSummary,
+    /// Impactor mass, velocities and their times.
     pub impactor: ImpactorSummary,
+    /// Energy balance.
     pub energy: EnergySummary,
+    /// Momentum balance.
     pub momentum: MomentumSummary,
+    /// Settings and costs of the run.
     pub run: RunSummary,
     /// Times in units of the rod's transit time L/C, for a uniform rod target.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -47,10 +57,15 @@ pub struct Summary {
 /// force·length): labels, not conversions.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct UnitSystem {
+    /// Length unit.
     pub length: String,
+    /// Force unit.
     pub force: String,
+    /// Time unit.
     pub time: String,
+    /// Mass unit (force·time²/length).
     pub mass: String,
+    /// Energy unit (force·length).
     pub energy: String,
 }
 
@@ -69,18 +84,26 @@ impl UnitSystem {
     }
 }
 
+/// Sizes and contact law of the model.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct ModelSummary {
     /// Active DOFs as NASTRAN counts them (solved, inert and TF-defined points).
     pub active_dofs: usize,
+    /// DOFs solved for.
     pub solved_dofs: usize,
+    /// DOFs dropped as identically zero.
     pub inert_dofs_skipped: usize,
+    /// Elements, CONM2 masses included.
     pub elements: usize,
+    /// Hertz stiffness K.
     pub contact_stiffness: Option<f64>,
+    /// Contact exponent A.
     pub contact_exponent: Option<f64>,
+    /// True when the NOLIN3 loads derive from the Hertz potential.
     pub contact_conservative: Option<bool>,
 }
 
+/// When the impactor touched the target and how hard.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct ContactSummary {
     /// [start, end] of every interval with α > 0, interpolated between steps.
@@ -89,13 +112,18 @@ pub struct ContactSummary {
     pub open_at_end: bool,
     /// Length of the first interval.
     pub duration: Option<f64>,
+    /// Largest contact force.
     pub peak_force: f64,
+    /// Its time.
     pub peak_force_time: Option<f64>,
 }
 
+/// The impactor's mass and motion.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct ImpactorSummary {
+    /// Mass.
     pub mass: Option<f64>,
+    /// Velocity at t = 0.
     pub initial_velocity: f64,
     /// First time the impactor's velocity crosses zero.
     pub velocity_zero_time: Option<f64>,
@@ -103,36 +131,56 @@ pub struct ImpactorSummary {
     pub rebound_velocity: Option<f64>,
 }
 
+/// The energy balance of the ledger.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct EnergySummary {
+    /// Energy at t = 0, U_0.
     pub initial: Option<f64>,
+    /// Total energy at the last step.
     pub final_total: Option<f64>,
+    /// External work over the run.
     pub external_work: Option<f64>,
     /// 1 − (v_rebound/v0)²: the fraction of the impactor's energy left in the target.
     pub transferred_fraction: Option<f64>,
+    /// Largest |relative energy error| over the run.
     pub max_relative_error: Option<f64>,
+    /// Relative energy error at the last step.
     pub final_relative_error: Option<f64>,
 }
 
+/// Momentum along the impact direction.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct MomentumSummary {
+    /// At t = 0.
     pub initial: Option<f64>,
+    /// Largest |change| over the run (no external force: round-off).
     pub max_abs_change: Option<f64>,
 }
 
+/// Settings and costs of the run.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct RunSummary {
+    /// The scheme.
     pub scheme: Scheme,
+    /// Time step.
     pub dt: f64,
+    /// Steps planned.
     pub steps: usize,
+    /// Steps done.
     pub steps_done: usize,
+    /// Factorisations.
     pub factorizations: usize,
+    /// Triangular solve pairs.
     pub solves: usize,
+    /// Iterations of the scalar contact solve, over all steps.
     pub contact_iterations: usize,
-    /// Wall-clock seconds of the factorisation, the solves, the assembly and the run.
+    /// Seconds factorising (wall clock, as all the times below).
     pub factor_s: f64,
+    /// Seconds in solves.
     pub solve_s: f64,
+    /// Seconds assembling.
     pub assembly_s: f64,
+    /// Seconds for the whole run.
     pub wall_s: f64,
     /// False when the run stopped before its last step for a failure (the energy
     /// guard); a scene's planned stop after separation is complete.
@@ -141,15 +189,22 @@ pub struct RunSummary {
     pub stopped_by: Option<String>,
 }
 
+/// Times in units of a rod's transit time L/C.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct RodSummary {
+    /// Bar wave speed C.
     pub wave_speed: f64,
+    /// Length L.
     pub length: f64,
     /// L/C.
     pub transit_time: f64,
+    /// Contact intervals, in tC/L.
     pub contact_intervals_tcl: Vec<[f64; 2]>,
+    /// End of the first contact, in tC/L.
     pub contact_end_tcl: Option<f64>,
+    /// Time of the peak force, in tC/L.
     pub peak_force_time_tcl: Option<f64>,
+    /// First time the impactor is at rest, in tC/L.
     pub velocity_zero_time_tcl: Option<f64>,
 }
 
@@ -157,7 +212,9 @@ pub struct RodSummary {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error("`{key}` is not a number of the summary (numbers: {known})")]
 pub struct UnknownKey {
+    /// The key asked for.
     pub key: String,
+    /// The keys there are, comma-separated.
     pub known: String,
 }
 

@@ -16,27 +16,40 @@ use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
 use std::path::Path;
 
+/// A scene file: a target, an impactor and a contact law, described by what they are rather than by cards.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Scene {
+    /// Title, as the deck's TITLE.
     #[serde(default)]
     pub title: String,
+    /// Unit names (never converted).
     pub units: Units,
+    /// The struck structure.
     pub target: Target,
+    /// The impactor.
     pub impactor: Impactor,
+    /// The contact law.
     pub contact: Contact,
+    /// The effects asked for.
     #[serde(default)]
     pub effects: Effects,
+    /// What is written.
     #[serde(default)]
     pub output: Output,
+    /// The `[run]` table: scheme, step and end.
     pub run: RunResult,
 }
 
+/// The scene's unit names.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Units {
+    /// Length unit.
     pub length: String,
+    /// Force unit.
     pub force: String,
+    /// Time unit.
     pub time: String,
 }
 
@@ -44,27 +57,39 @@ pub struct Units {
 #[derive(Debug, Clone, Copy, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Isotropic {
+    /// Young's modulus E.
     pub e: f64,
+    /// Poisson's ratio ν.
     pub nu: f64,
+    /// Mass density ρ (0 when not given).
     #[serde(default)]
     pub rho: f64,
 }
 
+/// The struck structure (`kind = "rod"` or `"plate"`).
 #[derive(Debug, Clone, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum Target {
+    /// A uniform rod struck at one end along its axis.
     Rod {
+        /// Length.
         length: f64,
+        /// Cross-section area.
         area: f64,
+        /// Number of CRODs (even).
         elements: usize,
+        /// The rod's material.
         material: Isotropic,
         /// "free" or "fixed", struck end first.
         ends: [String; 2],
     },
+    /// A square plate struck at its centre.
     Plate {
         /// Side of the square plate (the generator meshes squares).
         a: f64,
+        /// Side along y (equal to `a`: the plate is square).
         b: f64,
+        /// Thickness T.
         thickness: f64,
         /// Elements per side (odd: an element sits under the impactor).
         mesh: usize,
@@ -72,6 +97,7 @@ pub enum Target {
         membrane: [f64; 6],
         /// Bending matrix (D = this · T³/12), same layout.
         bending: [f64; 6],
+        /// Mass density ρ.
         rho: f64,
         /// Transverse modulus E33, for Eq. 18.
         e33: Option<f64>,
@@ -80,16 +106,21 @@ pub enum Target {
     },
 }
 
+/// The impactor: a rigid mass.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Impactor {
+    /// Mass.
     pub mass: f64,
     /// Radius of the contact (sphere radius, or the rod end's contact radius).
     pub radius: Option<f64>,
+    /// Material, for Eq. 5.
     pub material: Option<Isotropic>,
+    /// Impact velocity.
     pub velocity: f64,
 }
 
+/// The contact law.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Contact {
@@ -99,17 +130,23 @@ pub struct Contact {
     pub k: toml::Value,
 }
 
+/// Effects asked for: each is off unless asked for or needed.
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Effects {
+    /// Solve the plate's membrane DOFs.
     #[serde(default)]
     pub membrane: bool,
+    /// Rotary inertia (not representable: an error when asked for).
     #[serde(default)]
     pub rotary_inertia: bool,
+    /// Damping (not representable: an error when asked for).
     #[serde(default)]
     pub damping: bool,
+    /// Gravity (not representable: an error when asked for).
     #[serde(default)]
     pub gravity: bool,
+    /// Book the energy ledger (default on).
     #[serde(default = "yes")]
     pub ledger: bool,
 }
@@ -118,6 +155,7 @@ fn yes() -> bool {
     true
 }
 
+/// What a scene's run writes.
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Output {
@@ -131,9 +169,11 @@ pub struct Output {
     pub every: Option<usize>,
 }
 
+/// The scene's `[run]` table.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RunResult {
+    /// The scheme (default `newmark`).
     #[serde(default = "newmark")]
     pub scheme: Scheme,
     /// A step in the scene's time unit, or "auto".
@@ -163,16 +203,23 @@ impl From<crate::mesh::MeshError> for SceneIssue {
 /// reader gives one).
 #[derive(Debug, thiserror::Error)]
 pub enum SceneError {
+    /// The file could not be read.
     #[error("{path}: {source}")]
     Read {
+        /// The scene file.
         path: String,
+        /// What failed.
         #[source]
         source: std::io::Error,
     },
+    /// The scene is not valid.
     #[error("{path}{}: {issue}", line.map_or(String::new(), |l| format!(":{l}")))]
     Invalid {
+        /// The scene file.
         path: String,
+        /// The line, where the TOML reader gives one.
         line: Option<usize>,
+        /// What is wrong.
         issue: SceneIssue,
     },
 }
@@ -560,14 +607,18 @@ pub fn load(path: &Path) -> Result<(Scene, Model, String), Error> {
 /// A scene's effects, each with the reason it is in or out (`effects` in the summary).
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct EffectReport {
+    /// Effects simulated, with why.
     pub simulated: Vec<Effect>,
+    /// Effects not simulated, with why.
     pub skipped: Vec<Effect>,
 }
 
 /// One effect and why it is simulated or skipped.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Effect {
+    /// The effect (`membrane`, `ledger`, ...).
     pub name: String,
+    /// Why it is simulated or skipped.
     pub reason: String,
 }
 

@@ -32,26 +32,38 @@ pub struct Row {
     /// of the same mesh), `rod-mesh`, `plate` (against a converged run of the same
     /// mesh), `plate-mesh` (against the finest mesh).
     pub problem: String,
+    /// The scheme.
     pub scheme: Scheme,
+    /// Time step, s.
     pub dt_s: f64,
+    /// Elements (rod) or elements a side (plate).
     pub mesh: usize,
+    /// Relative contact duration error |duration / reference − 1|.
     #[serde(with = "nan_empty")]
     pub error_contact_duration: f64,
+    /// Relative peak force error |peak / reference − 1|.
     #[serde(with = "nan_empty")]
     pub error_peak_force: f64,
+    /// L2 norm of the force difference over the reference's, on the reference's contact.
     #[serde(with = "nan_empty")]
     pub error_force_l2: f64,
     /// Rod: max |mid-rod strain − d'Alembert| / peak. Plate: gage A εyy extreme, relative.
     #[serde(with = "nan_empty")]
     pub error_strain: f64,
+    /// Max |relative energy error| of the run.
     #[serde(with = "nan_empty")]
     pub energy_error: f64,
+    /// Wall-clock seconds of the run.
     #[serde(with = "nan_empty")]
     pub wall_s: f64,
+    /// Triangular solve pairs.
     pub solves: usize,
+    /// Factorisations.
     pub factorizations: usize,
+    /// Peak resident memory of the process so far, MB.
     #[serde(with = "nan_empty")]
     pub peak_rss_mb: f64,
+    /// Why a run was skipped (empty for a run made).
     pub note: String,
 }
 

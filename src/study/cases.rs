@@ -12,6 +12,16 @@ use std::time::Instant;
 
 /// Runs a case and evaluates all its checks, timing each check on its own (a
 /// convergence check's time includes its runs).
+///
+/// ```
+/// let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("verification");
+/// let case = impactlab::verify::read_case(&dir.join("rod-rigid.toml"))?;
+/// let outcome = impactlab::study::cases::evaluate(&case)?;
+/// for c in &outcome.checks {
+///     assert!(c.passed, "{}: {} ({})", c.check, c.value, c.detail);
+/// }
+/// # Ok::<(), impactlab::Error>(())
+/// ```
 pub fn evaluate(case: &Case) -> Result<CaseOutcome, crate::Error> {
     let model = case_model(case)?;
     let t0 = Instant::now();

@@ -22,40 +22,66 @@ use std::path::{Path, PathBuf};
 /// One mesh, as a row of `mesh-study.csv` (the generated decks' units: in, lbf, s).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct MeshRow {
+    /// Elements a side.
     pub n: usize,
+    /// The scheme.
     pub scheme: Scheme,
+    /// Time step.
     pub dt_s: f64,
+    /// Steps.
     pub steps: usize,
+    /// Solved DOFs.
     pub solved_dofs: u64,
+    /// Length of the first contact.
     pub contact_duration_s: Option<f64>,
+    /// Largest contact force.
     pub peak_force_lbf: f64,
+    /// Its time.
     pub peak_force_time_s: Option<f64>,
     /// The largest local maximum of the force in the latter half of the contact.
     pub secondary_peak_lbf: Option<f64>,
+    /// Its time.
     pub secondary_peak_time_s: Option<f64>,
+    /// Element id of gage A on this mesh.
     pub gage_a: usize,
     /// Back-face (z2 = +T/2) strain extremes at the gages, signed, and their times.
     pub gage_a_exx: Option<f64>,
+    /// Its time.
     pub gage_a_exx_time_s: Option<f64>,
+    /// Gage A, εyy extreme.
     pub gage_a_eyy: Option<f64>,
+    /// Its time.
     pub gage_a_eyy_time_s: Option<f64>,
+    /// Element id of gage B on this mesh.
     pub gage_b: usize,
+    /// Gage B, εxx extreme.
     pub gage_b_exx: Option<f64>,
+    /// Its time.
     pub gage_b_exx_time_s: Option<f64>,
+    /// Gage B, εyy extreme.
     pub gage_b_eyy: Option<f64>,
+    /// Its time.
     pub gage_b_eyy_time_s: Option<f64>,
+    /// Wall-clock seconds of the run.
     pub wall_s: f64,
 }
 
 /// One output time of one mesh, as a row of `mesh-histories.csv`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Sample {
+    /// Elements a side.
     pub n: usize,
+    /// Time.
     pub time_s: f64,
+    /// Contact force.
     pub contact_force_lbf: f64,
+    /// Gage A, back-face εxx.
     pub gage_a_exx: f64,
+    /// Gage A, back-face εyy.
     pub gage_a_eyy: f64,
+    /// Gage B, back-face εxx.
     pub gage_b_exx: f64,
+    /// Gage B, back-face εyy.
     pub gage_b_eyy: f64,
 }
 

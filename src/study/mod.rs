@@ -47,7 +47,9 @@ pub fn write_page(path: &Path, text: &str) -> Result<(), Error> {
 /// Extreme (largest magnitude, signed) of a history column and its time.
 #[derive(Debug, Clone, Copy, Serialize, PartialEq)]
 pub struct Extreme {
+    /// The value of largest magnitude, signed.
     pub value: f64,
+    /// Its time.
     pub time_s: f64,
 }
 

@@ -18,7 +18,9 @@ use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
+/// The map's Δt axis, in units of [`DT0`].
 pub const DT_FACTORS: [f64; 9] = [0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0];
+/// The map's impact-velocity axis, as multiples of the deck's.
 pub const VELOCITY_SCALES: [f64; 7] = [1e-4, 1e-3, 1e-2, 1e-1, 1.0, 10.0, 100.0];
 /// The paper's Δt for the rod, the map's unit of Δt (the rod deck's time unit is the second).
 pub const DT0: f64 = 2e-7;
@@ -26,8 +28,11 @@ pub const DT0: f64 = 2e-7;
 /// One run of the map, as a row of `stability-map.csv`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Cell {
+    /// The scheme.
     pub scheme: Scheme,
+    /// Time step, s.
     pub dt_s: f64,
+    /// Impact velocity as a multiple of the deck's.
     pub velocity_scale: f64,
     /// Max |relative energy error| of a completed run; for a run the energy guard
     /// stopped, the error at the step that tripped it. None for a refused run.
@@ -37,6 +42,7 @@ pub struct Cell {
 }
 
 impl Cell {
+    /// True when the run was refused or stopped.
     pub fn failed(&self) -> bool {
         self.failure.is_some()
     }

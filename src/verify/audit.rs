@@ -23,33 +23,54 @@ use std::path::Path;
 /// Two directories that cannot be compared.
 #[derive(Debug, thiserror::Error)]
 pub enum AuditError {
+    /// The file could not be read.
     #[error("{path}: {source}")]
     Read {
+        /// The file.
         path: String,
+        /// What failed.
         #[source]
         source: std::io::Error,
     },
+    /// A JSON file could not be parsed.
     #[error("{path}: {source}")]
     Json {
+        /// The file.
         path: String,
+        /// What failed.
         #[source]
         source: serde_json::Error,
     },
+    /// A CSV could not be read.
     #[error("{0}")]
     Csv(#[from] gold::CsvError),
     #[error(
         "{base} and {cand}: neither holds the outputs of a run (summary.json) in both, nor those of \
          `impactlab verify` (verify.json) in both"
     )]
-    NotComparable { base: String, cand: String },
+    /// The directories hold neither two runs nor two verify outputs.
+    NotComparable {
+        /// The baseline directory.
+        base: String,
+        /// The candidate directory.
+        cand: String,
+    },
+    /// A tolerance is negative or not finite.
     #[error("--{name} must be a finite number ≥ 0, not {value}")]
-    Tolerance { name: &'static str, value: f64 },
+    Tolerance {
+        /// The option.
+        name: &'static str,
+        /// The value given.
+        value: f64,
+    },
 }
 
 /// What counts as moved.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct AuditTol {
+    /// Relative tolerance: of |baseline| for JSON numbers, of the column's peak for CSV columns.
     pub rtol: f64,
+    /// Absolute tolerance.
     pub atol: f64,
 }
 
@@ -66,8 +87,11 @@ impl Default for AuditTol {
 pub enum Change {
     /// A number of a JSON file, or the largest difference of a CSV column.
     Number {
+        /// Dotted JSON key, or file and column.
         what: String,
+        /// The baseline's value.
         baseline: f64,
+        /// The candidate's value.
         candidate: f64,
         /// |candidate − baseline|.
         difference: f64,
@@ -77,39 +101,58 @@ pub enum Change {
         /// difference, and the first row beyond tolerance.
         #[serde(skip_serializing_if = "Option::is_none")]
         at: Option<RowAt>,
+        /// The first row beyond tolerance (1 = first data row).
         #[serde(skip_serializing_if = "Option::is_none")]
         first_row_beyond: Option<usize>,
     },
     /// A string, boolean or null that differs (or a value whose type changed).
     Text {
+        /// Dotted JSON key.
         what: String,
+        /// The baseline's value, as JSON.
         baseline: String,
+        /// The candidate's value, as JSON.
         candidate: String,
     },
     /// A key or column present on one side only.
-    OneSide { what: String, side: Side },
+    OneSide {
+        /// The key or column.
+        what: String,
+        /// The side that has it.
+        side: Side,
+    },
     /// Files whose row counts differ.
     Rows {
+        /// The file.
         what: String,
+        /// Rows on the baseline's side.
         baseline: usize,
+        /// Rows on the candidate's side.
         candidate: usize,
     },
 }
 
+/// A row of a CSV and its time.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct RowAt {
+    /// Row, 1 = first data row.
     pub row: usize,
+    /// Its time.
     pub time: f64,
 }
 
+/// One of the two directories audited.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Side {
+    /// The baseline (the first directory).
     Baseline,
+    /// The candidate (the second).
     Candidate,
 }
 
 impl Change {
+    /// The key or column the change is about.
     pub fn what(&self) -> &str {
         match self {
             Change::Number { what, .. }
@@ -123,8 +166,11 @@ impl Change {
 /// The audit of two directories.
 #[derive(Debug, Clone, Serialize)]
 pub struct Audit {
+    /// The baseline directory.
     pub baseline: String,
+    /// The candidate directory.
     pub candidate: String,
+    /// The tolerance applied.
     pub tolerance: AuditTol,
     /// True when nothing moved beyond tolerance.
     pub passed: bool,
@@ -368,6 +414,20 @@ impl Collector {
 }
 
 /// Compares two run directories or two `verify` output directories.
+///
+/// ```
+/// use impactlab::verify::audit::{audit, AuditTol};
+/// let model = impactlab::paper::rod_model()?;
+/// let run = impactlab::run::run_model(&model, &Default::default())?;
+/// let tmp = tempfile::tempdir()?;
+/// let (a, b) = (tmp.path().join("a"), tmp.path().join("b"));
+/// for dir in [&a, &b] {
+///     impactlab::output::write_dir_atomically(dir, &impactlab::output::run_files(&model, &run))?;
+/// }
+/// let same = audit(&a, &b, AuditTol::default())?;
+/// assert!(same.passed && same.moved.is_empty());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn audit(base: &Path, cand: &Path, tol: AuditTol) -> Result<Audit, AuditError> {
     for (name, value) in [("rtol", tol.rtol), ("atol", tol.atol)] {
         if !(value >= 0.0 && value.is_finite()) {
@@ -432,8 +492,10 @@ pub fn audit(base: &Path, cand: &Path, tol: AuditTol) -> Result<Audit, AuditErro
 /// How an audit is printed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Format {
+    /// Plain text for a terminal.
     #[default]
     Text,
+    /// JSON, for programs.
     Json,
     /// A table to paste into a pull request.
     Markdown,

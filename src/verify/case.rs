@@ -13,22 +13,35 @@ use std::path::{Path, PathBuf};
 /// A case file that cannot be used.
 #[derive(Debug, thiserror::Error)]
 pub enum CaseError {
+    /// The file could not be read.
     #[error("{path}: {source}")]
     Read {
+        /// The case file.
         path: String,
+        /// What failed.
         #[source]
         source: std::io::Error,
     },
+    /// There is no such case file.
     #[error("{path}: no such case file")]
-    Missing { path: String },
+    Missing {
+        /// The case file asked for.
+        path: String,
+    },
+    /// The case is not valid.
     #[error("{path}{}: {message}", line.map_or(String::new(), |l| format!(":{l}")))]
     Invalid {
+        /// The case file.
         path: String,
+        /// The line, where the TOML reader gives one.
         line: Option<usize>,
+        /// What is wrong.
         message: String,
     },
+    /// Its deck could not be loaded.
     #[error("{0}")]
     Load(Box<crate::Error>),
+    /// Its modification could not be made.
     #[error("{0}")]
     Modify(#[from] crate::model::ModifyError),
 }
@@ -43,26 +56,33 @@ impl From<crate::Error> for CaseError {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Case {
+    /// The case's name (the file stem).
     pub name: String,
+    /// What the case shows.
     #[serde(default)]
     pub description: String,
     /// A deck, relative to the case file.
     pub deck: Option<PathBuf>,
     /// Or the paper's plate on a generated n×n mesh.
     pub plate_mesh: Option<usize>,
+    /// The scheme (default `newmark`).
     #[serde(default = "default_scheme")]
     pub scheme: Scheme,
+    /// Time step; `None`: the deck's.
     pub dt: Option<f64>,
+    /// Steps; `None`: the deck's.
     pub steps: Option<usize>,
     /// Output every step (for strain checks), instead of the deck's TSTEP rate.
     #[serde(default)]
     pub every_step: bool,
+    /// A change to the model before the run (velocity, contact stiffness, mass, gap).
     #[serde(default)]
     pub modify: Modify,
     /// Times (deck units) at which the run keeps the whole displacement field, for
     /// the report's field figures.
     #[serde(default)]
     pub snapshots: Vec<f64>,
+    /// The checks (`[[check]]` tables).
     #[serde(rename = "check", default)]
     pub checks: Vec<CheckSpec>,
     /// The file the case was read from (set by [`read_case`]).
@@ -78,8 +98,10 @@ fn default_scheme() -> Scheme {
 #[derive(Debug, Clone, Copy, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct Tol {
+    /// Relative to the reference.
     #[serde(default)]
     pub rel: f64,
+    /// Absolute.
     #[serde(default)]
     pub abs: f64,
 }
@@ -110,95 +132,176 @@ impl Tol {
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum CheckSpec {
     /// max |U_t − U_0 − W_ext| / U_0 ≤ max.
-    EnergyBalance { max: f64 },
+    EnergyBalance {
+        /// Largest relative error allowed.
+        max: f64,
+    },
     /// max |p − p_0| / |m v0| ≤ max along the impact direction (free targets).
-    Momentum { max: f64 },
+    Momentum {
+        /// Largest relative change allowed.
+        max: f64,
+    },
     /// F ≥ 0 always, F > 0 exactly when α > 0, and SE_i > 0 exactly when α > 0.
     ContactComplementarity,
     /// max |KE_t − SE_t| / U_0 over from_tcl..to_tcl (a travelling rod pulse) ≤ max.
-    KineticEqualsStrain { from_tcl: f64, to_tcl: f64, max: f64 },
+    KineticEqualsStrain {
+        /// Start of the window, tC/L.
+        from_tcl: f64,
+        /// End of the window, tC/L.
+        to_tcl: f64,
+        /// Largest difference allowed, relative to U_0.
+        max: f64,
+    },
     /// The minimum of SE_t within ±half_width of near_tcl: its time within the window
     /// and its depth (fraction of SE_t at the end of contact) in [min_fraction, max_fraction].
     StrainEnergyDip {
+        /// Expected time of the dip, tC/L.
         near_tcl: f64,
+        /// Half the width of the window searched, tC/L.
         half_width: f64,
+        /// Shallowest depth allowed.
         min_fraction: f64,
+        /// Deepest depth allowed.
         max_fraction: f64,
     },
     /// The paper's Eq. 16 KE_t against ½vᵀMv after contact: the relative deficit
     /// (½vᵀMv − Eq16)/½vᵀMv lies in [min, max].
-    Eq16Deficit { after_tcl: f64, min: f64, max: f64 },
+    Eq16Deficit {
+        /// Compared from this time on, tC/L.
+        after_tcl: f64,
+        /// Smallest deficit allowed.
+        min: f64,
+        /// Largest deficit allowed.
+        max: f64,
+    },
     /// A summary value against a number, with its source.
     Summary {
+        /// Dotted summary key (`contact.peak_force`).
         key: String,
+        /// The reference number.
         reference: f64,
+        /// The tolerance.
         tol: Tol,
+        /// Where the reference comes from.
         source: String,
     },
     /// A quantity of the ball on a semi-infinite rod (analytic::HertzDashpot with
     /// c = ρCA): contact_end_tcl, velocity_zero_tcl, peak_force, peak_force_tcl,
     /// rebound_velocity, transferred_fraction.
-    SemiInfiniteRod { quantity: RodQuantity, tol: Tol },
+    SemiInfiniteRod {
+        /// The quantity.
+        quantity: RodQuantity,
+        /// The tolerance.
+        tol: Tol,
+    },
     /// Strain of `element` (centre at x from the struck end) against d'Alembert's
     /// −F(t − x/C)/EA with the semi-infinite-rod force, while t < until_tcl;
     /// max |difference| / peak strain ≤ max.
     DalembertStrain {
+        /// The rod element.
         element: i64,
+        /// Its centre's distance from the struck end.
         x: f64,
+        /// Compared until this time, tC/L.
         until_tcl: f64,
+        /// Largest difference allowed, relative to the peak strain.
         max: f64,
     },
     /// Contact force against the infinite orthotropic plate (Zener/Olsson) over
     /// 0..until_s: max |difference| / analytic peak ≤ max.
-    InfinitePlate { until_s: f64, max: f64 },
+    InfinitePlate {
+        /// Compared until this time.
+        until_s: f64,
+        /// Largest difference allowed, relative to the analytic peak.
+        max: f64,
+    },
     /// Contact duration and peak force against the rigid-target closed form with the
     /// reduced mass of impactor and target.
-    RigidTarget { tol: Tol },
+    RigidTarget {
+        /// The tolerance on both.
+        tol: Tol,
+    },
     /// The lowest `modes` natural frequencies of a simply supported square plate of the
     /// case's size and shell section (bending), on two meshes (n × n, the second
     /// twice as fine), Richardson-extrapolated at order 2, against Navier's closed form:
     /// max relative difference ≤ max. Gates the element's bending stiffness and mass
     /// without any gold file.
-    NavierFrequencies { meshes: [usize; 2], modes: usize, max: f64 },
+    NavierFrequencies {
+        /// The two meshes, elements a side.
+        meshes: [usize; 2],
+        /// Number of modes.
+        modes: usize,
+        /// Largest relative difference allowed.
+        max: f64,
+    },
     /// The critical step central differences use (2/ω_max from the Gershgorin bound)
     /// against the exact one of a uniform lumped-mass rod, L_e/C: safe (not above it)
     /// and not over-conservative (at least `min_ratio` of it).
-    CriticalStep { min_ratio: f64 },
+    CriticalStep {
+        /// Smallest fraction of the exact critical step allowed.
+        min_ratio: f64,
+    },
     /// Halving Δt: fit the order of `quantity` (energy_error: the error itself;
     /// contact_duration, peak_force: successive differences) over `runs` step sizes.
     DtConvergence {
+        /// The quantity followed.
         quantity: Quantity,
+        /// Number of step sizes.
         runs: usize,
+        /// The order expected.
         expected_order: f64,
+        /// Allowed difference from it.
         tol: f64,
     },
     /// Plate mesh refinement: `quantity` (contact_duration, peak_force_time) on each
     /// mesh; the change between the last two meshes, relative, ≤ max and smaller
     /// than the change before.
     MeshConvergence {
+        /// Elements a side of each mesh, coarse to fine.
         meshes: Vec<usize>,
+        /// The quantity followed.
         quantity: Quantity,
+        /// Largest relative change allowed between the last two meshes.
         max: f64,
     },
     /// The run's history against a stored gold CSV, every column with the same
     /// relative tolerance and a floor relative to the column's peak.
-    Gold { file: PathBuf, tol: GoldTol },
+    Gold {
+        /// The gold CSV, relative to the case file.
+        file: PathBuf,
+        /// Its tolerances.
+        tol: GoldTol,
+    },
     /// The run's history against another solver's results ([`super::external`]):
     /// `columns` maps each history column (name without unit) to the external file's
     /// column; at every time both have, |ours − theirs| ≤ max · (the external
     /// column's peak). `time` names the external time column, `solver` who computed
     /// it, `what` the columns compared (the check's name).
     External {
+        /// The external CSV, relative to the case file.
         file: PathBuf,
+        /// Who computed it.
         solver: String,
+        /// The check's name.
         what: String,
+        /// The external time column.
         time: String,
+        /// History column (without unit) → external column.
         columns: BTreeMap<String, String>,
+        /// Largest difference allowed, relative to the external column's peak.
         max: f64,
     },
 }
 
 /// Reads and validates a case file.
+///
+/// ```
+/// let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("verification");
+/// let case = impactlab::verify::read_case(&dir.join("rod.toml"))?;
+/// assert_eq!(case.name, "rod");
+/// assert!(!case.checks.is_empty());
+/// # Ok::<(), impactlab::verify::CaseError>(())
+/// ```
 pub fn read_case(path: &Path) -> Result<Case, CaseError> {
     let file = || path.display().to_string();
     let text = std::fs::read_to_string(path).map_err(|source| CaseError::Read { path: file(), source })?;
@@ -300,9 +403,13 @@ pub fn case_options(case: &Case) -> RunOptions {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Quantity {
+    /// The largest relative energy error.
     EnergyError,
+    /// The first contact's duration.
     ContactDuration,
+    /// The largest contact force.
     PeakForce,
+    /// Its time.
     PeakForceTime,
 }
 
@@ -333,11 +440,17 @@ impl Quantity {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum RodQuantity {
+    /// End of contact, tC/L.
     ContactEndTcl,
+    /// Impactor at rest, tC/L.
     VelocityZeroTcl,
+    /// Largest contact force.
     PeakForce,
+    /// Its time, tC/L.
     PeakForceTcl,
+    /// Impactor velocity after contact.
     ReboundVelocity,
+    /// 1 − (v_rebound/v0)².
     TransferredFraction,
 }
 

@@ -16,40 +16,75 @@ use crate::run::{Column, RunResult};
 /// A check that cannot be evaluated on its run.
 #[derive(Debug, thiserror::Error)]
 pub enum CheckError {
+    /// A reference does not apply to the case's model.
     #[error("case {case}: {check}: {source}")]
     Reference {
+        /// The case.
         case: String,
+        /// The check.
         check: &'static str,
+        /// Why.
         #[source]
         source: ReferenceError,
     },
+    /// A run the check makes failed.
     #[error("case {case}: {source}")]
     Solve {
+        /// The case.
         case: String,
+        /// What failed.
         #[source]
         source: crate::integrate::SolveError,
     },
+    /// The check needs a plate.
     #[error("case {case}: {check} needs a plate model with bending stiffness")]
-    NoPlate { case: String, check: &'static str },
+    NoPlate {
+        /// The case.
+        case: String,
+        /// The check.
+        check: &'static str,
+    },
+    /// The check could not be computed.
     #[error("case {case}: {check}: {message}")]
     Failed {
+        /// The case.
         case: String,
+        /// The check.
         check: &'static str,
+        /// Why.
         message: String,
     },
+    /// The check needs a contact.
     #[error("case {case}: {check} needs a model with a contact")]
-    NoContact { case: String, check: &'static str },
+    NoContact {
+        /// The case.
+        case: String,
+        /// The check.
+        check: &'static str,
+    },
+    /// The run has no such history column.
     #[error("case {case}: the run has no history column {column}")]
-    NoColumn { case: String, column: String },
+    NoColumn {
+        /// The case.
+        case: String,
+        /// The column asked for.
+        column: String,
+    },
+    /// An external solver's file could not be read.
     #[error("case {case}: {source}")]
     External {
+        /// The case.
         case: String,
+        /// What failed.
         #[source]
         source: gold::CsvError,
     },
+    /// A summary key names no number.
     #[error("case {case}: {source}")]
     Summary {
+        /// The case.
         case: String,
+        /// The key.
         #[source]
         source: crate::run::summary::UnknownKey,
     },

@@ -21,7 +21,9 @@ pub struct ExternalSeries {
     pub ours: String,
     /// Its name in the external file.
     pub theirs: String,
+    /// Times.
     pub time: Vec<f64>,
+    /// Values at those times.
     pub values: Vec<f64>,
     /// max |value| over the file.
     pub peak: f64,
@@ -63,6 +65,7 @@ pub fn load(
 /// The largest difference of one column, relative to the external peak.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ColumnDiff {
+    /// The history column.
     pub ours: String,
     /// max |ours − theirs| / peak over the common times.
     pub worst: f64,
@@ -75,8 +78,10 @@ pub struct ColumnDiff {
 /// A column the run does not have, or no time in common: the comparison cannot be made.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum Mismatch {
+    /// The run has no such history column.
     #[error("the run has no history column {0}")]
     NoColumn(String),
+    /// No time of the external column is a step the run recorded.
     #[error("no time of the external column {0} is a step the run recorded")]
     NoCommonTime(String),
 }

@@ -39,10 +39,13 @@ impl GoldTol {
     }
 }
 
+/// A gold comparison's verdict.
 pub struct GoldOutcome {
+    /// True when every value is within tolerance.
     pub passed: bool,
     /// Largest |a − b| / (abs + rel·|gold|): ≤ 1 passes.
     pub worst: f64,
+    /// Where the worst value is, in words.
     pub detail: String,
 }
 
@@ -57,14 +60,25 @@ fn fail(detail: String) -> GoldOutcome {
 /// A CSV of numbers that cannot be read.
 #[derive(Debug, thiserror::Error)]
 pub enum CsvError {
+    /// The file could not be read.
     #[error("{path}: {source}")]
     Read {
+        /// The file.
         path: String,
+        /// What failed.
         #[source]
         source: csv::Error,
     },
+    /// A value is not a number.
     #[error("{path}: row {row}: {message}")]
-    Number { path: String, row: usize, message: String },
+    Number {
+        /// The file.
+        path: String,
+        /// Row, 1 = header.
+        row: usize,
+        /// What is wrong.
+        message: String,
+    },
 }
 
 /// Reads a CSV written by [`crate::output`] (header with units, numbers): the column

@@ -32,8 +32,11 @@ use std::path::PathBuf;
 /// with what a number is relative to (of peak, per column) where it is not the value.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Bound {
+    /// Relative tolerance, if any.
     pub rtol: Option<f64>,
+    /// Absolute tolerance, if any.
     pub atol: Option<f64>,
+    /// The tolerance in words.
     #[serde(rename = "tolerance")]
     pub text: String,
 }
@@ -67,14 +70,20 @@ impl Bound {
 /// The verdict of one check.
 #[derive(Debug, Clone, Serialize)]
 pub struct CheckResult {
+    /// The case.
     pub case: String,
+    /// The check (its kind, or its name).
     pub check: String,
+    /// The value measured.
     pub value: f64,
     /// What the value is compared with; `null` for a bound on the value itself.
     pub reference: Option<f64>,
+    /// What it is compared with.
     #[serde(flatten)]
     pub bound: Bound,
+    /// The verdict.
     pub passed: bool,
+    /// What was measured, in words.
     pub detail: String,
     /// Wall-clock seconds of this check alone (a convergence check's includes its runs).
     pub time_s: f64,
@@ -108,9 +117,13 @@ impl CheckResult {
 /// and what `report` draws, so that nothing is run twice.
 #[derive(Debug, Clone)]
 pub struct CaseOutcome {
+    /// The case.
     pub case: Case,
+    /// Its model.
     pub model: Model,
+    /// Its run.
     pub run: RunResult,
+    /// The verdicts of its checks.
     pub checks: Vec<CheckResult>,
     /// Wall-clock seconds of the case's run.
     pub wall_s: f64,
@@ -119,12 +132,14 @@ pub struct CaseOutcome {
 /// The verdicts of all cases.
 #[derive(Debug, Clone)]
 pub struct Verdicts {
+    /// Every check's verdict.
     pub results: Vec<CheckResult>,
     /// Cases that could not run at all, with why.
     pub errors: Vec<(String, String)>,
 }
 
 impl Verdicts {
+    /// Checks, passed, failed and cases in error.
     pub fn counts(&self) -> Counts {
         let failed = self.results.iter().filter(|r| !r.passed).count();
         Counts {
@@ -135,6 +150,7 @@ impl Verdicts {
         }
     }
 
+    /// True when every case ran and every check passed.
     pub fn passed(&self) -> bool {
         self.errors.is_empty() && self.results.iter().all(|r| r.passed)
     }
@@ -189,9 +205,13 @@ pub fn table(v: &Verdicts) -> String {
 /// The counts of a verdict.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 pub struct Counts {
+    /// Checks.
     pub checks: usize,
+    /// Checks passed.
     pub passed: usize,
+    /// Checks failed.
     pub failed: usize,
+    /// Cases that could not run.
     pub cases_in_error: usize,
 }
 
