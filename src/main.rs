@@ -5,6 +5,7 @@ mod cli;
 
 use clap::{Parser, Subcommand};
 use impactlab::integrate::Scheme;
+use impactlab::run::Engine;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -105,6 +106,11 @@ pub struct RunArgs {
     /// Time integration scheme [default: newmark, or the scene's].
     #[arg(long, value_parser = scheme_parser())]
     pub scheme: Option<Scheme>,
+    /// How to compute the run: `direct` (step by step, the reference) or
+    /// `convolution` (the target's response to a unit contact load once, then the
+    /// contact by an exact history sum; newmark and energy only, no --fields).
+    #[arg(long, default_value = "direct", value_parser = engine_parser())]
+    pub engine: Engine,
     /// Time step in the deck's time unit [default: the deck's TSTEP].
     #[arg(long)]
     pub dt: Option<f64>,
@@ -218,6 +224,15 @@ fn scheme_parser() -> impl clap::builder::TypedValueParser<Value = Scheme> {
     use clap::builder::TypedValueParser;
     clap::builder::PossibleValuesParser::new(Scheme::ALL.map(Scheme::name))
         .map(|name| Scheme::from_name(&name).expect("one of the listed names"))
+}
+
+/// `--engine`: `direct` or `convolution`.
+fn engine_parser() -> impl clap::builder::TypedValueParser<Value = Engine> {
+    use clap::builder::TypedValueParser;
+    clap::builder::PossibleValuesParser::new(["direct", "convolution"]).map(|name| match name.as_str() {
+        "convolution" => Engine::Convolution,
+        _ => Engine::Direct,
+    })
 }
 
 fn main() -> ExitCode {

@@ -86,6 +86,7 @@ pub fn run(a: RunArgs) -> Result<u8, Error> {
         steps: a.steps.or(opts.steps),
         max_energy_error: a.max_energy_error.0,
         progress: progress(format!("{} {}", model.name, opts.scheme)),
+        engine: a.engine,
         ..opts
     };
     if a.fields.is_some() {

@@ -18,9 +18,13 @@
 //!   (β = 1/3) with the nonlinear load lagged (explicit), for auditing against NASTRAN.
 //! - [`Scheme::Central`]: explicit central differences (velocity Verlet), lumped mass,
 //!   conditionally stable.
+//!
+//! [`convolution`] runs the two trapezoidal schemes another way: the target's linear
+//! response computed once, the contact by an exact history sum.
 
 pub mod central;
 mod contact;
+pub mod convolution;
 pub mod linear;
 pub mod nastran;
 pub mod newmark;

@@ -126,35 +126,53 @@ impl<'a> Newmark<'a> {
         })
     }
 
-    /// The load factor ψ over the step and the new indentation, from the indentation
-    /// α* of the contact-free predictor.
+    /// The load factor ψ of the step, from the indentation α* of the contact-free
+    /// predictor.
     fn contact_step(&mut self, ct: &Contact, alpha_star: f64, step: usize, time: f64) -> Result<f64, SolveError> {
-        let phi = |x: f64| ct.law(x);
-        let dphi = |x: f64| ct.law_slope(x);
-        let w = |x: f64| ct.law_integral(x);
-        let a_prev = self.alpha;
-        let (root, its) = match self.form {
-            ContactForm::Endpoint => solve(alpha_star, self.s, |x| (phi(x), dphi(x))),
-            ContactForm::DiscreteGradient => solve(alpha_star, self.s, |x| {
-                let dg = 2.0 * discrete_gradient(a_prev, x, w, phi);
-                // Derivative of the secant slope, for Newton only (the bracket
-                // keeps the iteration convergent with any nonnegative slope).
-                let d = x - a_prev;
-                let slope = if d.abs() > 1e-12 * x.abs().max(a_prev.abs()) {
-                    2.0 * (phi(x) - dg / 2.0) / d
-                } else {
-                    dphi(x)
-                };
-                (dg, slope.max(0.0))
-            }),
-        }
-        .ok_or(SolveError::ContactSolve { step, time })?;
+        let (psi, its) = contact_load(self.form, ct, alpha_star, self.s, self.alpha)
+            .ok_or(SolveError::ContactSolve { step, time })?;
         self.contact_iterations += its;
-        Ok(match self.form {
+        Ok(psi)
+    }
+}
+
+/// The contact's load factor ψ over a step of the trapezoidal rule, solving
+/// α = α* + s·ψ(α) (α* the indentation of the contact-free predictor, s the condensed
+/// compliance, `a_prev` the indentation at the start of the step); with the
+/// iterations it took, or `None` if the scalar solve failed. Shared by the direct
+/// stepper and the convolution engine, which differ only in how they get α* and s.
+pub(crate) fn contact_load(
+    form: ContactForm,
+    ct: &Contact,
+    alpha_star: f64,
+    s: f64,
+    a_prev: f64,
+) -> Option<(f64, usize)> {
+    let phi = |x: f64| ct.law(x);
+    let dphi = |x: f64| ct.law_slope(x);
+    let w = |x: f64| ct.law_integral(x);
+    let (root, its) = match form {
+        ContactForm::Endpoint => solve(alpha_star, s, |x| (phi(x), dphi(x))),
+        ContactForm::DiscreteGradient => solve(alpha_star, s, |x| {
+            let dg = 2.0 * discrete_gradient(a_prev, x, w, phi);
+            // Derivative of the secant slope, for Newton only (the bracket
+            // keeps the iteration convergent with any nonnegative slope).
+            let d = x - a_prev;
+            let slope = if d.abs() > 1e-12 * x.abs().max(a_prev.abs()) {
+                2.0 * (phi(x) - dg / 2.0) / d
+            } else {
+                dphi(x)
+            };
+            (dg, slope.max(0.0))
+        }),
+    }?;
+    Some((
+        match form {
             ContactForm::Endpoint => phi(root),
             ContactForm::DiscreteGradient => 2.0 * discrete_gradient(a_prev, root, w, phi),
-        })
-    }
+        },
+        its,
+    ))
 }
 
 impl Stepper for Newmark<'_> {

@@ -152,7 +152,6 @@ impl<'a> Ledger<'a> {
         }
         let total = ke_i + se_i + ke_t + se_t;
         let u0 = *self.initial.get_or_insert(total);
-        let balance = total - u0 - self.external_work;
         EnergyRow {
             time: s.time,
             ke_impactor: ke_i,
@@ -162,10 +161,50 @@ impl<'a> Ledger<'a> {
             se_target: se_t,
             total,
             external_work: self.external_work,
-            error: if u0 > 0.0 { balance / u0 } else { balance },
+            error: relative_error(total, u0, self.external_work),
             energy_ratio: ratio(total, u0 + self.external_work),
             momentum: p,
         }
+    }
+}
+
+impl EnergyRow {
+    /// A row whose target energy is known as a total only (the convolution engine's
+    /// discrete work identity): KE_t, its Eq. 16 form and SE_t are NaN, the balance
+    /// the same as the direct ledger's. `initial` is U_0, the total at step 0.
+    pub fn with_target_total(
+        time: f64,
+        ke_impactor: f64,
+        se_impactor: f64,
+        target_total: f64,
+        external_work: f64,
+        initial: f64,
+        momentum: f64,
+    ) -> Self {
+        let total = ke_impactor + se_impactor + target_total;
+        EnergyRow {
+            time,
+            ke_impactor,
+            se_impactor,
+            ke_target: f64::NAN,
+            ke_target_eq16: f64::NAN,
+            se_target: f64::NAN,
+            total,
+            external_work,
+            error: relative_error(total, initial, external_work),
+            energy_ratio: ratio(total, initial + external_work),
+            momentum,
+        }
+    }
+}
+
+/// (U_t − U_0 − W)/U_0, or the balance itself when U_0 is not positive.
+fn relative_error(total: f64, u0: f64, external_work: f64) -> f64 {
+    let balance = total - u0 - external_work;
+    if u0 > 0.0 {
+        balance / u0
+    } else {
+        balance
     }
 }
 

@@ -12,6 +12,7 @@ pub use summary::{
     UnitSystem,
 };
 
+mod convolution;
 pub mod history;
 pub mod summary;
 
@@ -42,6 +43,28 @@ pub struct RunOptions {
     pub ledger: bool,
     /// Stop this long after the first separation (contact ended), if given.
     pub stop_after_separation: Option<f64>,
+    /// How the run is computed.
+    pub engine: Engine,
+}
+
+/// How a run is computed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Engine {
+    /// Step by step, every DOF (the reference).
+    #[default]
+    Direct,
+    /// The target's response to a unit contact load computed once, the contact by an
+    /// exact history sum ([`crate::integrate::convolution`]): the direct run to
+    /// round-off, for `newmark` and `energy`, with the requested outputs only.
+    Convolution,
+}
+
+impl Engine {
+    /// True for the direct engine.
+    pub fn is_direct(&self) -> bool {
+        *self == Engine::Direct
+    }
 }
 
 impl RunOptions {
@@ -70,6 +93,7 @@ impl Default for RunOptions {
             snapshot_times: Vec::new(),
             ledger: true,
             stop_after_separation: None,
+            engine: Engine::Direct,
         }
     }
 }
@@ -110,6 +134,9 @@ pub enum RunError {
     Solve(#[from] SolveError),
     /// The energy guard stopped the run; `partial` holds everything recorded up to
     /// and including the step that tripped it, its summary marked incomplete.
+    /// The convolution engine cannot run this model or these options.
+    #[error("{0}")]
+    Engine(String),
     /// The energy guard stopped the run.
     #[error("{trip}")]
     EnergyGuard {
@@ -224,7 +251,15 @@ impl Observer for Recorder<'_> {
         self.series.impactor_u.push(s.u.get(iu).copied().unwrap_or(0.0));
         self.series.impactor_v.push(s.v.get(iu).copied().unwrap_or(0.0));
         if s.step % self.every == 0 {
-            self.history.push(history_row(m, s, force));
+            let head = RowHead {
+                time: s.time,
+                force,
+                alpha: s.alpha,
+                impactor_u: m.contact.as_ref().map_or(0.0, |c| s.u[c.impactor.dof]),
+                impactor_v: m.contact.as_ref().map_or(0.0, |c| s.v[c.impactor.dof]),
+                load_factor: s.load_factor,
+            };
+            self.history.push(history_row(m, &head, &linear_outputs(m, s.u, s.v)));
         }
         if self.snapshot_steps.contains(&s.step) {
             self.snapshots.push(Snapshot {
@@ -303,29 +338,44 @@ fn recovered_elements(m: &Model) -> impl Iterator<Item = (usize, bool)> + '_ {
         .chain(o.strain.iter().filter(|e| !o.stress.contains(e)).map(|&e| (e, false)))
 }
 
-fn history_row(m: &Model, s: &StepState, force: f64) -> Vec<f64> {
-    let iu = m.contact.as_ref().map(|c| c.impactor.dof);
-    let mut row = vec![
-        s.time,
-        force,
-        s.alpha,
-        iu.map(|i| s.u[i]).unwrap_or(0.0),
-        iu.map(|i| s.v[i]).unwrap_or(0.0),
-    ];
+/// The history outputs that are linear in the state, in column order: DISP, VELO,
+/// then the recovered element values.
+fn linear_outputs(m: &Model, u: &[f64], v: &[f64]) -> Vec<f64> {
+    let mut out = Vec::new();
     for (_, src) in &m.outputs.disp {
-        row.push(m.value(*src, s.u));
+        out.push(m.value(*src, u));
     }
     for (_, src) in &m.outputs.velo {
-        row.push(m.value(*src, s.v));
-    }
-    if let Some(c) = &m.contact {
-        for &k in &m.outputs.nlload {
-            row.push(c.loads[k].scale * s.load_factor);
-        }
+        out.push(m.value(*src, v));
     }
     for (e, stress) in recovered_elements(m) {
-        row.extend(m.elements[e].recover(s.u, stress));
+        out.extend(m.elements[e].recover(u, stress));
     }
+    out
+}
+
+/// The contact quantities of a history row.
+struct RowHead {
+    time: f64,
+    force: f64,
+    alpha: f64,
+    impactor_u: f64,
+    impactor_v: f64,
+    load_factor: f64,
+}
+
+/// A row of `history.csv` in [`history_columns`] order, from the contact quantities
+/// and the [`linear_outputs`].
+fn history_row(m: &Model, h: &RowHead, linear: &[f64]) -> Vec<f64> {
+    let mut row = vec![h.time, h.force, h.alpha, h.impactor_u, h.impactor_v];
+    let nodal = m.outputs.disp.len() + m.outputs.velo.len();
+    row.extend_from_slice(&linear[..nodal]);
+    if let Some(c) = &m.contact {
+        for &k in &m.outputs.nlload {
+            row.push(c.loads[k].scale * h.load_factor);
+        }
+    }
+    row.extend_from_slice(&linear[nodal..]);
     row
 }
 
@@ -384,6 +434,9 @@ pub fn run_model(model: &Model, opts: &RunOptions) -> Result<RunResult, RunError
 
 /// Runs a model whose system is already assembled.
 pub fn run_system(model: &Model, sys: &System, opts: &RunOptions) -> Result<RunResult, RunError> {
+    if opts.engine == Engine::Convolution {
+        return convolution::run_convolution(model, sys, opts);
+    }
     let dt = opts.dt.unwrap_or(model.time.dt);
     let steps = opts.steps.unwrap_or(model.time.steps);
     let bar = opts.progress.clone().unwrap_or_else(ProgressBar::hidden);
@@ -530,6 +583,7 @@ fn summarize(model: &Model, run: &RunResult, tripped: Option<GuardTrip>) -> Summ
         },
         run: RunSummary {
             scheme: run.scheme,
+            engine: Engine::Direct,
             dt: run.dt,
             steps: run.steps,
             steps_done: run.stats.steps,

@@ -162,6 +162,9 @@ pub struct MomentumSummary {
 pub struct RunSummary {
     /// The scheme.
     pub scheme: Scheme,
+    /// The engine, written only when it is not the direct one.
+    #[serde(default, skip_serializing_if = "super::Engine::is_direct")]
+    pub engine: super::Engine,
     /// Time step.
     pub dt: f64,
     /// Steps planned.

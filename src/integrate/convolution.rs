@@ -1,0 +1,290 @@
+//! The convolution engine of the trapezoidal schemes (`newmark`, `energy`).
+//!
+//! With a fixed Δt the trapezoidal rule's linear part is linear and time-invariant,
+//! and the target starts at rest. The contact is the only nonlinearity and enters a
+//! step through one scalar, p_n: the target's load over step n averages g_T·p_n/2,
+//! with p_n = φ(α(n−1)) + φ(α(n)) for `newmark` and twice the discrete gradient for
+//! `energy`. So every linear output y of the target is the discrete convolution
+//!
+//!   y(n) = Σ_{j=1..n} h_y(n−j+1) p_j,
+//!
+//! h_y being the response of the same scheme, Δt and model to p = (1, 0, 0, …) from
+//! rest: one linear pass, [`unit_response`]. The impactor, a free point mass, keeps
+//! its own trapezoidal recursion, and the contact is solved by the same scalar
+//! equation as the direct stepper ([`super::newmark`]), its α* coming from a history
+//! sum instead of a sparse solve ([`contact_history`]). In exact arithmetic this is
+//! the direct run; in floating point it agrees to round-off (the sums run in another
+//! order).
+//!
+//! The target's energy needs no field: the trapezoidal rule satisfies the discrete
+//! work identity E_T(n) − E_T(n−1) = (w(n) − w(n−1))·p_n/2 exactly, w = g_T·u_T.
+//!
+//! Cost: the kernel pass is one solve and two sparse products per step, as a direct
+//! step; the contact history then costs about N² multiply-adds in all and each
+//! reconstructed output N²/2 at most.
+//!
+//! Not for `nastran` (its three-point linear part is a different recursion, and its
+//! lagged contact would need its own kernel pass: not built) nor `central` (explicit).
+
+use super::linear::Factor;
+use super::newmark::{contact_load, ContactForm};
+use super::{contact_vectors, SolveError, StepCosts};
+use crate::assembly::System;
+use crate::model::{apply, Model};
+
+/// Why a model cannot run on the convolution engine.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("the convolution engine cannot run this model: {0}")]
+pub struct NotConvolvable(pub String);
+
+/// The response of the trapezoidal target to a unit contact load at step 1, from
+/// rest: the kernels of α and of the target's energy.
+#[derive(Debug, Clone)]
+pub struct UnitResponse {
+    /// Time step.
+    pub dt: f64,
+    /// c_T·u_T(k) for k = 1..=N (index k − 1): the target's share of α.
+    pub alpha: Vec<f64>,
+    /// g_T·u_T(k): the load-weighted displacement whose increments times p/2 are the
+    /// work done on the target.
+    pub work: Vec<f64>,
+    /// What the pass cost.
+    pub costs: StepCosts,
+}
+
+/// The impactor as the convolution engine sees it: a free point mass.
+#[derive(Debug, Clone, Copy)]
+struct Ball {
+    dof: usize,
+    mass: f64,
+    /// Its NOLIN3 scale (the load is g·p/2 over a step).
+    g: f64,
+    /// Its coefficient in α.
+    c: f64,
+}
+
+fn ball(model: &Model, sys: &System) -> Result<Ball, NotConvolvable> {
+    let no = |why: &str| NotConvolvable(why.to_string());
+    let ct = model.contact.as_ref().ok_or_else(|| no("it has no contact"))?;
+    if sys.m_lumped.is_none() {
+        return Err(no("its mass matrix is not lumped"));
+    }
+    let dof = ct.impactor.dof;
+    let imp = &ct.impactor.dofs;
+    let kd = sys.k_diag();
+    if imp.iter().any(|&i| kd[i] != 0.0) {
+        return Err(no("the impactor is attached to an element"));
+    }
+    let target = model.target_mask();
+    if (0..model.n()).any(|i| target[i] && (model.u0[i] != 0.0 || model.v0[i] != 0.0)) {
+        return Err(no("the target does not start at rest"));
+    }
+    if imp
+        .iter()
+        .any(|&i| i != dof && (model.u0[i] != 0.0 || model.v0[i] != 0.0))
+    {
+        return Err(no("the impactor moves in more than the impact direction"));
+    }
+    let (g, c) = contact_vectors(model);
+    if c.iter().any(|&(j, _)| imp.contains(&j) && j != dof) || imp.iter().any(|&i| i != dof && g[i] != 0.0) {
+        return Err(no("the contact acts on more than the impactor's impact direction"));
+    }
+    Ok(Ball {
+        dof,
+        mass: sys.m_diag()[dof],
+        g: g[dof],
+        c: c.iter().filter(|&&(j, _)| j == dof).map(|&(_, w)| w).sum(),
+    })
+}
+
+/// The kernel pass: the trapezoidal rule on the target alone, from rest, with the
+/// contact load g_T·p and p = (1, 0, 0, …), for `steps` steps of `dt`. `record` sees
+/// the target's state (u, v over all solved DOFs, the impactor's at zero) after
+/// every step, so that the caller keeps the kernels of its own outputs.
+pub fn unit_response(
+    model: &Model,
+    sys: &System,
+    dt: f64,
+    steps: usize,
+    record: &mut dyn FnMut(&[f64], &[f64]),
+) -> Result<UnitResponse, RunFailure> {
+    let b = ball(model, sys)?;
+    let (mut g, c) = contact_vectors(model);
+    for &i in &model.contact.as_ref().map_or(Vec::new(), |ct| ct.impactor.dofs.clone()) {
+        g[i] = 0.0;
+    }
+    let c_t: Vec<(usize, f64)> = c.into_iter().filter(|&(j, _)| j != b.dof).collect();
+    let (mut alpha, mut work) = (Vec::with_capacity(steps), Vec::with_capacity(steps));
+    let costs = linear_response(model, sys, dt, steps, &g, &mut |u, v| {
+        alpha.push(apply(&c_t, u));
+        work.push(g.iter().zip(u).map(|(g, u)| g * u).sum());
+        record(u, v);
+    })?;
+    Ok(UnitResponse { dt, alpha, work, costs })
+}
+
+/// The trapezoidal rule's response from rest to the load `load`·p with p = (1, 0, 0,
+/// …): u(k), v(k) after each step k = 1..=`steps`, shown to `record`. The same
+/// arithmetic as the direct step ([`super::newmark`]), in increments.
+pub fn linear_response(
+    model: &Model,
+    sys: &System,
+    dt: f64,
+    steps: usize,
+    load: &[f64],
+    record: &mut dyn FnMut(&[f64], &[f64]),
+) -> Result<StepCosts, SolveError> {
+    let n = model.n();
+    let a = sys.combine(4.0 / (dt * dt), 1.0);
+    let mut factor = Factor::new(&a, &model.dofs)?;
+    let (mut u, mut v, mut f) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    let (mut du, mut kdu, mut mv) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    for k in 1..=steps {
+        sys.m_mul(&v, &mut mv);
+        for i in 0..n {
+            du[i] = 4.0 / dt * mv[i] - 2.0 * f[i] + if k == 1 { load[i] } else { 0.0 };
+        }
+        factor.solve_in_place(&mut du);
+        sys.k_mul(&du, &mut kdu);
+        for i in 0..n {
+            u[i] += du[i];
+            f[i] += kdu[i];
+            v[i] = 2.0 * du[i] / dt - v[i];
+        }
+        record(&u, &v);
+    }
+    Ok(StepCosts {
+        factorizations: 1,
+        solves: factor.solves,
+        contact_iterations: 0,
+        factor_time: factor.factor_time,
+        solve_time: factor.solve_time,
+    })
+}
+
+/// Why a convolution run failed.
+#[derive(Debug, Clone, thiserror::Error)]
+pub enum RunFailure {
+    /// The model does not fit the engine.
+    #[error(transparent)]
+    Model(#[from] NotConvolvable),
+    /// The numerics failed.
+    #[error(transparent)]
+    Solve(#[from] SolveError),
+}
+
+/// One step of a convolution run, as [`contact_history`] reports it.
+#[derive(Debug, Clone, Copy)]
+pub struct ConvStep {
+    /// Step, from 0.
+    pub step: usize,
+    /// Time.
+    pub time: f64,
+    /// Indentation α.
+    pub alpha: f64,
+    /// The impactor's displacement along the impact direction.
+    pub x: f64,
+    /// Its velocity.
+    pub xv: f64,
+    /// The step's load p_n (0 at step 0).
+    pub p: f64,
+    /// φ(α): every NOLIN3 load is S·φ.
+    pub load_factor: f64,
+    /// The mean load factor over the step, p/2.
+    pub work_factor: f64,
+    /// The target's load-weighted displacement w = g_T·u_T.
+    pub w: f64,
+    /// The target's share of α, c_T·u_T.
+    pub alpha_target: f64,
+}
+
+/// The contact history of a trapezoidal run from its kernel: for each step the
+/// scalar contact equation of the direct stepper, α* = (impactor predictor) +
+/// Σ_{j<n} h_α(n−j+1) p_j. `observe` sees every step from 0 and may stop the run
+/// (returns false). Returns the loads p_1..p_n of the steps done and the contact
+/// solve's iterations.
+pub fn contact_history(
+    model: &Model,
+    sys: &System,
+    form: ContactForm,
+    kernel: &UnitResponse,
+    steps: usize,
+    observe: &mut dyn FnMut(&ConvStep) -> Result<bool, SolveError>,
+) -> Result<(Vec<f64>, usize), RunFailure> {
+    let b = ball(model, sys)?;
+    let ct = model.contact.as_ref().expect("ball() checked the contact");
+    let dt = kernel.dt;
+    let steps = steps.min(kernel.alpha.len());
+    let (h_a, h_w) = (&kernel.alpha, &kernel.work);
+    // Condensed compliance: the impactor's Δt²/(4m) and the target's first response.
+    let s = b.c * b.g * dt * dt / (4.0 * b.mass) + h_a[0];
+    let (mut x, mut xv) = (model.u0[b.dof], model.v0[b.dof]);
+    let mut alpha = b.c * x;
+    let mut phi = ct.law(alpha);
+    let mut p: Vec<f64> = Vec::with_capacity(steps);
+    let mut iterations = 0;
+    let mut go = observe(&ConvStep {
+        step: 0,
+        time: 0.0,
+        alpha,
+        x,
+        xv,
+        p: 0.0,
+        load_factor: phi,
+        work_factor: phi,
+        w: 0.0,
+        alpha_target: 0.0,
+    })?;
+    let mut n = 0;
+    while go && n < steps {
+        n += 1;
+        let time = n as f64 * dt;
+        // History of the loads before this step, seen by α and w at step n.
+        let (mut hist_a, mut hist_w) = (0.0, 0.0);
+        for (j, pj) in p.iter().enumerate() {
+            if *pj != 0.0 {
+                hist_a += h_a[n - 1 - j] * pj;
+                hist_w += h_w[n - 1 - j] * pj;
+            }
+        }
+        let x_pred = x + xv * dt;
+        let base = b.c * x_pred + hist_a;
+        let alpha_star = match form {
+            ContactForm::Endpoint => base + s * phi,
+            ContactForm::DiscreteGradient => base,
+        };
+        let (psi, its) =
+            contact_load(form, ct, alpha_star, s, alpha).ok_or(SolveError::ContactSolve { step: n, time })?;
+        iterations += its;
+        let pn = match form {
+            ContactForm::Endpoint => phi + psi,
+            ContactForm::DiscreteGradient => psi,
+        };
+        p.push(pn);
+        let dx = xv * dt + b.g * pn * dt * dt / (4.0 * b.mass);
+        xv = 2.0 * dx / dt - xv;
+        x += dx;
+        let alpha_target = hist_a + h_a[0] * pn;
+        alpha = b.c * x + alpha_target;
+        phi = ct.law(alpha);
+        go = observe(&ConvStep {
+            step: n,
+            time,
+            alpha,
+            x,
+            xv,
+            p: pn,
+            load_factor: phi,
+            work_factor: 0.5 * pn,
+            w: hist_w + h_w[0] * pn,
+            alpha_target,
+        })?;
+    }
+    Ok((p, iterations))
+}
+
+/// y(n) = Σ_{j=1..n} h(n−j+1) p_j for a kernel `h` (index k − 1 for step k) and loads
+/// `p` (index j − 1): the output at step n of a linear target driven by the contact.
+pub fn convolve_at(h: &[f64], p: &[f64], n: usize) -> f64 {
+    (1..=n.min(p.len())).map(|j| h[n - j] * p[j - 1]).sum()
+}
