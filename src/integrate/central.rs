@@ -128,6 +128,7 @@ impl Stepper for Central<'_> {
         Current {
             u: &self.u,
             v: &self.v,
+            internal_force: None,
             alpha: self.alpha,
             load_factor: self.phi_n,
             work_factor: 0.5 * (self.phi_prev + self.phi_n),

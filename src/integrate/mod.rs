@@ -145,6 +145,8 @@ pub struct StepState<'a> {
     pub u: &'a [f64],
     /// Velocities of the solved DOFs.
     pub v: &'a [f64],
+    /// K u, where the scheme keeps it: the ledger's SE_t = ½ u·Ku without a product.
+    pub internal_force: Option<&'a [f64]>,
     /// The contact driver (indentation α).
     pub alpha: f64,
     /// Load factor acting at this state: every NOLIN3 load is S·factor.
@@ -197,6 +199,8 @@ pub struct Current<'a> {
     pub u: &'a [f64],
     /// Velocities.
     pub v: &'a [f64],
+    /// K u, where the scheme keeps it.
+    pub internal_force: Option<&'a [f64]>,
     /// The indentation α.
     pub alpha: f64,
     /// Load factor acting at this state.
@@ -273,6 +277,7 @@ fn observe(model: &Model, step: usize, time: f64, c: Current, obs: &mut dyn Obse
         time,
         u: c.u,
         v: c.v,
+        internal_force: c.internal_force,
         alpha: c.alpha,
         load_factor: c.load_factor,
         work_factor: c.work_factor,

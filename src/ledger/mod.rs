@@ -135,7 +135,12 @@ impl<'a> Ledger<'a> {
                 p += self.mv[i];
             }
         }
-        let se_t = strain_energy(m, s.u);
+        // ½ u·Ku from the scheme's own K u where it keeps one (the impactor has no
+        // stiffness: only the target contributes), element by element otherwise.
+        let se_t = match s.internal_force {
+            Some(f) => 0.5 * s.u.iter().zip(f).map(|(u, f)| u * f).sum::<f64>(),
+            None => strain_energy(m, s.u),
+        };
         let se_i = m.contact.as_ref().map(|c| c.potential(s.alpha)).unwrap_or(0.0);
         if let Some(c) = &m.contact {
             if s.step > 0 {
