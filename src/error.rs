@@ -17,7 +17,7 @@ pub enum Error {
     #[error("numerical failure: {0}")]
     Solve(#[from] SolveError),
     /// A run failed.
-    #[error("numerical failure: {0}")]
+    #[error("{0}")]
     Run(#[from] crate::run::RunError),
     /// A model modification could not be made.
     #[error("{0}")]
@@ -79,7 +79,8 @@ impl Error {
             | Error::Audit(_)
             | Error::Fields(_)
             | Error::Usage(_)
-            | Error::Io { .. } => 2,
+            | Error::Io { .. }
+            | Error::Run(crate::run::RunError::Input(_)) => 2,
             Error::Solve(_) | Error::Run(_) | Error::Stopped(_) => 3,
         }
     }

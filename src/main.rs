@@ -121,6 +121,10 @@ pub struct RunArgs {
     /// this, writing the outputs up to there marked incomplete; `off` disables it.
     #[arg(long, value_parser = energy_guard_parser, default_value = "5e-2")]
     pub max_energy_error: EnergyGuard,
+    /// Refuse, before allocating, a run estimated to need more than this many GiB
+    /// (the system and the per-step records; exit 2).
+    #[arg(long, default_value_t = 4.0)]
+    pub max_memory: f64,
     /// Unknown bulk data cards become warnings instead of errors.
     #[arg(long)]
     pub allow_unknown: bool,

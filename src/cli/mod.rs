@@ -85,6 +85,7 @@ pub fn run(a: RunArgs) -> Result<u8, Error> {
         dt: a.dt.or(opts.dt),
         steps: a.steps.or(opts.steps),
         max_energy_error: a.max_energy_error.0,
+        max_memory: Some((a.max_memory.max(0.0) * (1u64 << 30) as f64) as u64),
         progress: progress(format!("{} {}", model.name, opts.scheme)),
         engine: a.engine,
         ..opts

@@ -414,6 +414,14 @@ impl<'a> Reader<'a> {
             return None;
         }
         match parse_real(t) {
+            Some(RealToken::Real(v)) if v != 0.0 && v.abs() < f64::MIN_POSITIVE => {
+                self.fail(
+                    k,
+                    name,
+                    "is subnormal (nonzero, below 2.2e-308 in magnitude): too small to compute with at full precision",
+                );
+                None
+            }
             Some(RealToken::Real(v)) => Some(v),
             Some(RealToken::Integer(v)) => {
                 self.warn(

@@ -45,6 +45,66 @@ pub struct RunOptions {
     pub stop_after_separation: Option<f64>,
     /// How the run is computed.
     pub engine: Engine,
+    /// Refuse a run whose [`memory_estimate`] exceeds this many bytes, before
+    /// allocating anything large; `None`: no limit. Default [`DEFAULT_MAX_MEMORY`].
+    pub max_memory: Option<u64>,
+}
+
+/// The default memory limit of a run: 4 GiB.
+pub const DEFAULT_MAX_MEMORY: u64 = 4 << 30;
+
+/// Bytes a run of `steps` steps would hold beyond the model: the assembled system
+/// (element triplets of K and M, and their compressed copies; the factor's fill is
+/// not counted) and the records kept per step (contact series, ledger rows, history
+/// rows; the convolution engine's kernels besides).
+pub fn memory_estimate(model: &Model, steps: usize, engine: Engine) -> u64 {
+    let system: u64 = model
+        .elements
+        .iter()
+        .map(|e| {
+            let d = e.dofs.iter().flatten().flatten().count() as u64;
+            // K and M, as triplets (24 bytes) and compressed (about 16 bytes).
+            2 * d * d * 40
+        })
+        .sum::<u64>()
+        + model.n() as u64 * 8 * 16;
+    let (steps, columns) = (steps as u64 + 1, history_columns(model).len() as u64);
+    let rows = steps / model.time.every.max(1) as u64 + 1;
+    // Series (5 values) and ledger row (11) per step, history rows as vectors.
+    let records = steps * 16 * 8 + rows * (columns * 8 + 24);
+    let kernels = match engine {
+        Engine::Direct => 0,
+        Engine::Convolution => steps * (columns + 4) * 8 * 2,
+    };
+    system + records + kernels
+}
+
+/// Refuses a run that cannot be computed sensibly, before anything large is made: a
+/// step whose 4/Δt² overflows, or a run over its memory limit.
+fn preflight(model: &Model, opts: &RunOptions) -> Result<(), RunError> {
+    let dt = opts.dt.unwrap_or(model.time.dt);
+    let steps = opts.steps.unwrap_or(model.time.steps);
+    if !(dt > 0.0 && dt.is_finite() && (4.0 / (dt * dt)).is_finite()) {
+        return Err(RunError::Input(format!(
+            "time step {dt:e} (the deck's TSTEP DT, or --dt): it must be positive and large enough \
+             that 4/Δt² is finite (Δt ≥ 2e-154)"
+        )));
+    }
+    if let Some(limit) = opts.max_memory {
+        let need = memory_estimate(model, steps, opts.engine);
+        if need > limit {
+            let gib = |b: u64| b as f64 / (1u64 << 30) as f64;
+            return Err(RunError::Input(format!(
+                "the run would need about {:.1} GiB ({steps} steps, {} solved DOFs, {} elements), over the \
+                 limit of {:.1} GiB: lower the step count or raise --max-memory",
+                gib(need),
+                model.n(),
+                model.elements.len(),
+                gib(limit)
+            )));
+        }
+    }
+    Ok(())
 }
 
 /// How a run is computed.
@@ -94,6 +154,7 @@ impl Default for RunOptions {
             ledger: true,
             stop_after_separation: None,
             engine: Engine::Direct,
+            max_memory: Some(DEFAULT_MAX_MEMORY),
         }
     }
 }
@@ -130,14 +191,16 @@ impl std::fmt::Display for GuardTrip {
 #[derive(Debug, Clone, thiserror::Error)]
 pub enum RunError {
     /// The solver failed.
-    #[error(transparent)]
+    #[error("numerical failure: {0}")]
     Solve(#[from] SolveError),
-    /// The energy guard stopped the run; `partial` holds everything recorded up to
-    /// and including the step that tripped it, its summary marked incomplete.
     /// The convolution engine cannot run this model or these options.
     #[error("{0}")]
     Engine(String),
-    /// The energy guard stopped the run.
+    /// The run cannot be made as asked (its step, its size): nothing was computed.
+    #[error("{0}")]
+    Input(String),
+    /// The energy guard stopped the run; `partial` holds everything recorded up to
+    /// and including the step that tripped it, its summary marked incomplete.
     #[error("{trip}")]
     EnergyGuard {
         /// Where and why it stopped.
@@ -391,6 +454,7 @@ fn history_row(m: &Model, h: &RowHead, linear: &[f64]) -> Vec<f64> {
 /// # Ok::<(), impactlab::Error>(())
 /// ```
 pub fn run_model(model: &Model, opts: &RunOptions) -> Result<RunResult, RunError> {
+    preflight(model, opts)?;
     let t0 = std::time::Instant::now();
     let sys = assemble(model);
     // A DOF with neither stiffness nor mass is a mechanism whether or not anything
@@ -434,6 +498,7 @@ pub fn run_model(model: &Model, opts: &RunOptions) -> Result<RunResult, RunError
 
 /// Runs a model whose system is already assembled.
 pub fn run_system(model: &Model, sys: &System, opts: &RunOptions) -> Result<RunResult, RunError> {
+    preflight(model, opts)?;
     if opts.engine == Engine::Convolution {
         return convolution::run_convolution(model, sys, opts);
     }
