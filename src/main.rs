@@ -46,6 +46,54 @@ pub enum Command {
     Audit(AuditArgs),
     /// Time the paper's 49×49 plate (3000 steps) and report where the time goes.
     Bench(BenchArgs),
+    /// Sweep a deck over impact velocity, impactor mass, Hertz K and exponent on the
+    /// convolution engine: sweep.csv (one row per point) and summary.json.
+    Sweep(SweepArgs),
+    /// Merge the output directories of a sharded sweep into the sweep.csv an unsharded
+    /// run writes.
+    Collect(CollectArgs),
+}
+
+#[derive(clap::Args)]
+pub struct SweepArgs {
+    /// The deck (.bdf).
+    pub deck: PathBuf,
+    /// NAME=START:STOP:COUNT or NAME=v1,v2,... with NAME one of velocity, mass, k,
+    /// exponent (values in the deck's units; velocity is the speed, the deck's
+    /// direction kept). Repeat for a grid (the first varies slowest).
+    #[arg(long, required = true)]
+    pub vary: Vec<String>,
+    /// Space these parameters' START:STOP:COUNT values geometrically.
+    #[arg(long)]
+    pub log: Vec<String>,
+    /// `newmark` or `energy`.
+    #[arg(long, default_value = "newmark", value_parser = scheme_parser())]
+    pub scheme: Scheme,
+    /// Time step in the deck's time unit [default: the deck's TSTEP].
+    #[arg(long)]
+    pub dt: Option<f64>,
+    /// Number of steps [default: the deck's TSTEP].
+    #[arg(long)]
+    pub steps: Option<usize>,
+    /// Output directory [default: out/<deck name>-sweep].
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Points run at once [default: every core].
+    #[arg(long)]
+    pub jobs: Option<usize>,
+    /// Run only shard I of N (I from 1): the points numbered I−1 modulo N.
+    #[arg(long)]
+    pub shard: Option<String>,
+}
+
+#[derive(clap::Args)]
+pub struct CollectArgs {
+    /// The shards' output directories.
+    #[arg(required = true)]
+    pub dirs: Vec<PathBuf>,
+    /// Where the merged sweep.csv and summary.json go.
+    #[arg(long)]
+    pub out: PathBuf,
 }
 
 #[derive(Subcommand)]
@@ -249,6 +297,8 @@ fn main() -> ExitCode {
         Command::Report(a) => cli::report(a),
         Command::Audit(a) => cli::audit(a),
         Command::Bench(a) => cli::bench(a),
+        Command::Sweep(a) => cli::sweep(a),
+        Command::Collect(a) => cli::collect(a),
     };
     match result {
         Ok(code) => ExitCode::from(code),

@@ -2,7 +2,11 @@
 //! files, and return the exit code (0 success, 1 verification failed); errors map to
 //! theirs in `main`. Progress bars are made here.
 
-use crate::{AuditArgs, AuditFormat, BenchArgs, MeshKind, ReportArgs, RunArgs, SceneArgs, StudyKind, VerifyArgs};
+use crate::{
+    AuditArgs, AuditFormat, BenchArgs, CollectArgs, MeshKind, ReportArgs, RunArgs, SceneArgs, StudyKind, SweepArgs,
+    VerifyArgs,
+};
+use impactlab::integrate::Scheme;
 use impactlab::run::RunOptions;
 use impactlab::{deck, output, verify, Error};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -284,4 +288,172 @@ pub fn audit(a: AuditArgs) -> Result<u8, Error> {
 pub fn bench(a: BenchArgs) -> Result<u8, Error> {
     say(&impactlab::study::bench_plate(a.repeats.max(1), a.steps)?);
     Ok(0)
+}
+
+/// `impactlab sweep`.
+pub fn sweep(a: SweepArgs) -> Result<u8, Error> {
+    use impactlab::study::sweep::{self, SweepOptions, Vary};
+    if a.deck.extension().is_some_and(|e| e == "toml") {
+        return Err(Error::Usage(format!("{}: sweep takes a deck (.bdf)", a.deck.display())));
+    }
+    let varies = a
+        .vary
+        .iter()
+        .map(|v| Vary::parse(v, &a.log))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(Error::Usage)?;
+    if let Some(l) = a
+        .log
+        .iter()
+        .find(|l| !varies.iter().any(|v| v.param.name() == l.as_str()))
+    {
+        return Err(Error::Usage(format!("--log {l}: not a varied parameter")));
+    }
+    let shard = a
+        .shard
+        .as_deref()
+        .map(|s| {
+            s.split_once('/')
+                .and_then(|(i, n)| Some((i.parse::<usize>().ok()?, n.parse::<usize>().ok()?)))
+                .filter(|&(i, n)| n >= 1 && (1..=n).contains(&i))
+                .ok_or_else(|| Error::Usage(format!("--shard {s}: expected I/N with 1 ≤ I ≤ N")))
+        })
+        .transpose()?;
+    if !matches!(a.scheme, Scheme::Newmark | Scheme::Energy) {
+        return Err(Error::Usage(format!(
+            "--scheme {}: sweeps run on the convolution engine, newmark or energy",
+            a.scheme
+        )));
+    }
+    let (model, warnings) = impactlab::load_deck(&a.deck, Default::default())?;
+    for w in &warnings {
+        say_err(&w.to_string());
+    }
+    let points = sweep::points(&varies).len();
+    let jobs = a
+        .jobs
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    let bar = progress(format!("{} sweep", model.name)).inspect(|b| {
+        b.set_style(
+            ProgressStyle::with_template("{spinner} {msg} [{bar:40}] {pos}/{len} points ({eta})")
+                .expect("valid template")
+                .progress_chars("=> "),
+        )
+    });
+    let run = RunOptions {
+        dt: a.dt,
+        steps: a.steps,
+        ..Default::default()
+    };
+    let opts = SweepOptions {
+        varies: varies.clone(),
+        scheme: a.scheme,
+        jobs,
+        shard,
+        progress: bar,
+    };
+    let out = sweep::sweep(&model, &run, &opts)?;
+    let dir = a
+        .out
+        .unwrap_or_else(|| PathBuf::from("out").join(format!("{}-sweep", model.name)));
+    let summary = serde_json::json!({
+        "deck": model.name,
+        "deck_sha256": model.deck_sha256,
+        "scheme": a.scheme,
+        "engine": "convolution",
+        "dt": a.dt.unwrap_or(model.time.dt),
+        "steps": a.steps.unwrap_or(model.time.steps),
+        "varied": varies.iter().map(|v| serde_json::json!({"name": v.param.name(), "values": v.values})).collect::<Vec<_>>(),
+        "points_total": points,
+        "points": out.rows.len(),
+        "shard": shard.map(|(i, n)| format!("{i}/{n}")),
+        "direct_checks": out.direct_checks,
+        "worst_direct_check": out.worst_direct_check,
+        "direct_check_max": sweep::DIRECT_CHECK_MAX,
+        "passed": out.passed(),
+        "kernel_pass_s": out.kernel_pass_s,
+        "points_s": out.points_s,
+    });
+    let files = [
+        ("sweep.csv", sweep::csv_bytes(&out.header, &out.rows)),
+        (
+            "summary.json",
+            (serde_json::to_string_pretty(&summary).expect("plain JSON") + "\n").into_bytes(),
+        ),
+    ];
+    output::write_dir_atomically(&dir, &files).map_err(io_error(&dir))?;
+    sayln(&format!(
+        "{}: {} of {points} points ({} jobs), kernel pass {:.2} s, points {:.2} s; {} direct checks, worst {:.2e} (max {:.0e})",
+        model.name,
+        out.rows.len(),
+        jobs,
+        out.kernel_pass_s,
+        out.points_s,
+        out.direct_checks,
+        out.worst_direct_check,
+        sweep::DIRECT_CHECK_MAX
+    ));
+    sayln(&format!("  outputs:  {}", dir.display()));
+    Ok(if out.passed() { 0 } else { 1 })
+}
+
+/// `impactlab collect`.
+pub fn collect(a: CollectArgs) -> Result<u8, Error> {
+    use impactlab::study::sweep;
+    let mut parts = Vec::new();
+    let mut total = None;
+    let mut summaries = Vec::new();
+    for d in &a.dirs {
+        parts.push(sweep::read_csv(&d.join("sweep.csv"))?);
+        let path = d.join("summary.json");
+        let text = std::fs::read_to_string(&path).map_err(|source| Error::Io {
+            path: path.display().to_string(),
+            source,
+        })?;
+        let s: serde_json::Value =
+            serde_json::from_str(&text).map_err(|e| Error::Usage(format!("{}: {e}", path.display())))?;
+        let n = s["points_total"].as_u64().map(|n| n as usize);
+        if total.is_some() && n != total {
+            return Err(Error::Usage(format!(
+                "{}: another sweep (points_total differs)",
+                d.display()
+            )));
+        }
+        total = n;
+        summaries.push(s);
+    }
+    let (header, rows) = sweep::collect(&parts, total).map_err(Error::Usage)?;
+    let col = header.len() - 1;
+    let checks: Vec<f64> = rows.iter().map(|r| r[col]).filter(|v| !v.is_nan()).collect();
+    let worst = checks.iter().fold(0.0, |a: f64, &v| a.max(v));
+    let mut summary = summaries[0].clone();
+    summary["shard"] = serde_json::Value::Null;
+    summary["points"] = rows.len().into();
+    summary["direct_checks"] = checks.len().into();
+    summary["worst_direct_check"] = worst.into();
+    summary["passed"] = (worst <= sweep::DIRECT_CHECK_MAX).into();
+    summary["collected_from"] = a
+        .dirs
+        .iter()
+        .map(|d| d.display().to_string())
+        .collect::<Vec<_>>()
+        .into();
+    for key in ["kernel_pass_s", "points_s"] {
+        summary[key] = summaries.iter().filter_map(|s| s[key].as_f64()).sum::<f64>().into();
+    }
+    let files = [
+        ("sweep.csv", sweep::csv_bytes(&header, &rows)),
+        (
+            "summary.json",
+            (serde_json::to_string_pretty(&summary).expect("plain JSON") + "\n").into_bytes(),
+        ),
+    ];
+    output::write_dir_atomically(&a.out, &files).map_err(io_error(&a.out))?;
+    sayln(&format!(
+        "{} points from {} shards: {}",
+        rows.len(),
+        a.dirs.len(),
+        a.out.display()
+    ));
+    Ok(if worst <= sweep::DIRECT_CHECK_MAX { 0 } else { 1 })
 }

@@ -52,6 +52,19 @@ pub struct UnitResponse {
     pub costs: StepCosts,
 }
 
+impl UnitResponse {
+    /// The response to the contact loads scaled by `s` (a Hertz K scaled by `s` scales
+    /// every NOLIN3 load): α's kernel scales by s, the work's by s².
+    pub fn scaled(&self, s: f64) -> Self {
+        UnitResponse {
+            dt: self.dt,
+            alpha: self.alpha.iter().map(|a| a * s).collect(),
+            work: self.work.iter().map(|w| w * s * s).collect(),
+            costs: self.costs,
+        }
+    }
+}
+
 /// The impactor as the convolution engine sees it: a free point mass.
 #[derive(Debug, Clone, Copy)]
 struct Ball {
@@ -63,18 +76,12 @@ struct Ball {
     c: f64,
 }
 
-fn ball(model: &Model, sys: &System) -> Result<Ball, NotConvolvable> {
+/// The impactor of a model, if the convolution engine can treat it as a free mass.
+fn ball(model: &Model) -> Result<Ball, NotConvolvable> {
     let no = |why: &str| NotConvolvable(why.to_string());
     let ct = model.contact.as_ref().ok_or_else(|| no("it has no contact"))?;
-    if sys.m_lumped.is_none() {
-        return Err(no("its mass matrix is not lumped"));
-    }
     let dof = ct.impactor.dof;
     let imp = &ct.impactor.dofs;
-    let kd = sys.k_diag();
-    if imp.iter().any(|&i| kd[i] != 0.0) {
-        return Err(no("the impactor is attached to an element"));
-    }
     let target = model.target_mask();
     if (0..model.n()).any(|i| target[i] && (model.u0[i] != 0.0 || model.v0[i] != 0.0)) {
         return Err(no("the target does not start at rest"));
@@ -91,7 +98,7 @@ fn ball(model: &Model, sys: &System) -> Result<Ball, NotConvolvable> {
     }
     Ok(Ball {
         dof,
-        mass: sys.m_diag()[dof],
+        mass: ct.impactor.mass,
         g: g[dof],
         c: c.iter().filter(|&&(j, _)| j == dof).map(|&(_, w)| w).sum(),
     })
@@ -108,7 +115,21 @@ pub fn unit_response(
     steps: usize,
     record: &mut dyn FnMut(&[f64], &[f64]),
 ) -> Result<UnitResponse, RunFailure> {
-    let b = ball(model, sys)?;
+    let b = ball(model)?;
+    let no = |why: &str| RunFailure::Model(NotConvolvable(why.to_string()));
+    if sys.m_lumped.is_none() {
+        return Err(no("its mass matrix is not lumped"));
+    }
+    let kd = sys.k_diag();
+    let imp = &model
+        .contact
+        .as_ref()
+        .expect("ball() checked the contact")
+        .impactor
+        .dofs;
+    if imp.iter().any(|&i| kd[i] != 0.0) {
+        return Err(no("the impactor is attached to an element"));
+    }
     let (mut g, c) = contact_vectors(model);
     for &i in &model.contact.as_ref().map_or(Vec::new(), |ct| ct.impactor.dofs.clone()) {
         g[i] = 0.0;
@@ -205,13 +226,12 @@ pub struct ConvStep {
 /// solve's iterations.
 pub fn contact_history(
     model: &Model,
-    sys: &System,
     form: ContactForm,
     kernel: &UnitResponse,
     steps: usize,
     observe: &mut dyn FnMut(&ConvStep) -> Result<bool, SolveError>,
 ) -> Result<(Vec<f64>, usize), RunFailure> {
-    let b = ball(model, sys)?;
+    let b = ball(model)?;
     let ct = model.contact.as_ref().expect("ball() checked the contact");
     let dt = kernel.dt;
     let steps = steps.min(kernel.alpha.len());

@@ -18,7 +18,7 @@ use super::{
     RunResult, Series,
 };
 use crate::assembly::System;
-use crate::integrate::convolution::{contact_history, convolve_at, unit_response, ConvStep, RunFailure};
+use crate::integrate::convolution::{contact_history, convolve_at, unit_response, ConvStep, RunFailure, UnitResponse};
 use crate::integrate::{ContactForm, RunStats, Scheme};
 use crate::ledger::EnergyRow;
 use crate::model::{apply, Model};
@@ -36,179 +36,299 @@ impl From<RunFailure> for RunError {
 /// Runs a model whose system is assembled on the convolution engine.
 pub fn run_convolution(model: &Model, sys: &System, opts: &RunOptions) -> Result<RunResult, RunError> {
     let t0 = std::time::Instant::now();
-    let form = match opts.scheme {
-        Scheme::Newmark => ContactForm::Endpoint,
-        Scheme::Energy => ContactForm::DiscreteGradient,
-        s => {
-            return Err(RunError::Engine(format!(
-                "the convolution engine runs the trapezoidal schemes (newmark, energy), not {s}"
-            )))
-        }
-    };
-    if !opts.snapshot_times.is_empty() {
-        return Err(RunError::Engine(
-            "field snapshots need the whole field: run them on the direct engine".into(),
-        ));
-    }
-    let ct = model
-        .contact
-        .as_ref()
-        .ok_or_else(|| RunError::Engine("the convolution engine needs a model with a contact".into()))?;
     let dt = opts.dt.unwrap_or(model.time.dt);
     let steps = opts.steps.unwrap_or(model.time.steps);
     let bar = opts.progress.clone().unwrap_or_else(ProgressBar::hidden);
     bar.set_length(2 * steps as u64);
     bar.set_position(0);
-
-    // Functionals the ledger needs beyond the outputs, over the target's DOFs.
-    let imp = ct.impactor.dof;
-    let comp = model.dofs[imp].comp;
-    let m_diag = sys.m_diag();
-    let target = model.target_mask();
-    let momentum_t: Vec<(usize, f64)> = (0..model.n())
-        .filter(|&i| target[i] && model.dofs[i].comp == comp && m_diag[i] != 0.0)
-        .map(|i| (i, m_diag[i]))
-        .collect();
-    let nc_t: Vec<(usize, f64)> = ct.nonconservative.iter().copied().filter(|&(j, _)| j != imp).collect();
-    let nc_imp: f64 = ct
-        .nonconservative
-        .iter()
-        .filter(|&&(j, _)| j == imp)
-        .map(|&(_, r)| r)
-        .sum();
-
-    // The kernel pass: each step's outputs, then the two ledger functionals.
-    let mut kernels: Vec<Vec<f64>> = Vec::with_capacity(steps);
-    let kernel = unit_response(model, sys, dt, steps, &mut |u, v| {
-        let mut k = linear_outputs(model, u, v);
-        k.push(apply(&momentum_t, v));
-        k.push(apply(&nc_t, u));
-        kernels.push(k);
-        if kernels.len() % 64 == 0 {
-            bar.set_position(kernels.len() as u64);
-        }
-    })?;
-    let width = kernels.first().map_or(2, Vec::len);
-    // Kernels by column: columns[c][k − 1] is output c at step k.
-    let columns: Vec<Vec<f64>> = (0..width).map(|c| kernels.iter().map(|k| k[c]).collect()).collect();
-    drop(kernels);
-    let (h_mom, h_nc) = (&columns[width - 2], &columns[width - 1]);
-
-    // The contact history, with the ledger, the energy guard and the planned stop.
-    let mass = m_diag[imp];
-    let mut series = Series::default();
-    let mut energy: Vec<EnergyRow> = Vec::with_capacity(steps + 1);
-    let mut loads: Vec<f64> = Vec::with_capacity(steps);
-    let mut heads: Vec<RowHead> = Vec::new();
-    let every = model.time.every.max(1);
-    let (mut target_energy, mut external, mut initial) = (0.0, 0.0, None);
-    let (mut prev_w, mut prev_x, mut prev_nc) = (0.0, 0.0, 0.0);
-    let (mut in_contact, mut separated_at, mut tripped) = (false, None::<f64>, None);
-    let mut observe = |s: &ConvStep| {
-        if s.step > 0 {
-            loads.push(s.p);
-        }
-        let force = ct.stiffness * s.load_factor;
-        series.time.push(s.time);
-        series.alpha.push(s.alpha);
-        series.force.push(force);
-        series.impactor_u.push(s.x);
-        series.impactor_v.push(s.xv);
-        if opts.ledger {
-            let nc = convolve_at(h_nc, &loads, s.step);
-            if s.step > 0 {
-                target_energy += (s.w - prev_w) * s.work_factor;
-                external += (nc_imp * (s.x - prev_x) + (nc - prev_nc)) * s.work_factor;
-            }
-            (prev_w, prev_x, prev_nc) = (s.w, s.x, nc);
-            let ke_i = 0.5 * mass * s.xv * s.xv;
-            let se_i = ct.potential(s.alpha);
-            let u0 = *initial.get_or_insert(ke_i + se_i + target_energy);
-            let momentum = mass * s.xv + convolve_at(h_mom, &loads, s.step);
-            let row = EnergyRow::with_target_total(s.time, ke_i, se_i, target_energy, external, u0, momentum);
-            if let Some(limit) = opts.max_energy_error {
-                if row.error.abs() > limit || row.error.is_nan() {
-                    tripped = Some(GuardTrip {
-                        step: s.step,
-                        time: s.time,
-                        error: row.error,
-                        limit,
-                    });
-                }
-            }
-            energy.push(row);
-        }
-        if s.step % every == 0 {
-            heads.push(RowHead {
-                time: s.time,
-                force,
-                alpha: s.alpha,
-                impactor_u: s.x,
-                impactor_v: s.xv,
-                load_factor: s.load_factor,
-            });
-        }
-        if s.alpha > 0.0 {
-            in_contact = true;
-        } else if in_contact && separated_at.is_none() {
-            separated_at = Some(s.time);
-        }
-        if s.step % 64 == 0 {
-            bar.set_position((steps + s.step) as u64);
-        }
-        let done = matches!((separated_at, opts.stop_after_separation), (Some(t), Some(w)) if s.time >= t + w);
-        Ok(!done && tripped.is_none())
-    };
-    let (p, iterations) = contact_history(model, sys, form, &kernel, steps, &mut observe)?;
-
-    // The history rows: the impactor's part of each linear output plus the target's sum.
-    let outputs = width - 2;
-    let (mut u_imp, mut v_imp) = (model.u0.clone(), model.v0.clone());
-    let history: Vec<Vec<f64>> = heads
-        .iter()
-        .map(|h| {
-            let n = (h.time / dt).round() as usize;
-            u_imp[imp] = h.impactor_u;
-            v_imp[imp] = h.impactor_v;
-            let mut linear = linear_outputs(model, &u_imp, &v_imp);
-            for (c, y) in linear.iter_mut().enumerate().take(outputs) {
-                *y += convolve_at(&columns[c], &p, n);
-            }
-            history_row(model, h, &linear)
-        })
-        .collect();
+    let kernels = Kernels::compute(model, sys, dt, steps, &bar)?;
+    let mut run = kernels.run(model, opts, &bar)?;
     bar.finish_and_clear();
+    run.stats.total_time = t0.elapsed();
+    run.summary.run.wall_s = run.stats.total_time.as_secs_f64();
+    Ok(run)
+}
 
-    let stats = RunStats {
-        steps: p.len(),
-        factorizations: kernel.costs.factorizations,
-        solves: kernel.costs.solves,
-        contact_iterations: iterations,
-        factor_time: kernel.costs.factor_time,
-        solve_time: kernel.costs.solve_time,
-        total_time: t0.elapsed(),
-        assembly_time: Default::default(),
-    };
-    let mut run = RunResult {
-        scheme: opts.scheme,
-        dt,
-        steps,
-        stats,
-        series,
-        energy,
-        history_columns: history_columns(model),
-        history,
-        summary: Default::default(),
-        dofs: model.dofs.clone(),
-        snapshots: Vec::new(),
-    };
-    run.summary = summarize(model, &run, tripped);
-    run.summary.run.engine = Engine::Convolution;
-    match tripped {
-        None => Ok(run),
-        Some(trip) => Err(RunError::EnergyGuard {
-            trip,
-            partial: Box::new(run),
-        }),
+/// The kernels of a model's convolution runs: computed once ([`Kernels::compute`]),
+/// reused by every run of the same target, Δt and steps whose impactor (mass,
+/// velocity) or contact law (K, exponent) differs ([`Kernels::run`]): those are
+/// outside the target's linear system (a K scaled by s scales every kernel by s, the
+/// work's by s²).
+pub struct Kernels {
+    response: UnitResponse,
+    /// Kernels by column: `columns[c][k − 1]` is output c at step k; the history's
+    /// linear outputs, then the target's momentum, then its non-conservative work
+    /// functional.
+    columns: Vec<Vec<f64>>,
+    /// The Hertz K the kernels were computed with.
+    stiffness: f64,
+    dt: f64,
+    steps: usize,
+    /// Wall-clock seconds of the kernel pass.
+    pub pass_s: f64,
+}
+
+impl Kernels {
+    /// The kernel pass of a model (the base of a family of runs).
+    pub fn compute(model: &Model, sys: &System, dt: f64, steps: usize, bar: &ProgressBar) -> Result<Kernels, RunError> {
+        let t0 = std::time::Instant::now();
+        let ct = model
+            .contact
+            .as_ref()
+            .ok_or_else(|| RunError::Engine("the convolution engine needs a model with a contact".into()))?;
+        // Functionals the ledger needs beyond the outputs, over the target's DOFs.
+        let imp = ct.impactor.dof;
+        let comp = model.dofs[imp].comp;
+        let m_diag = sys.m_diag();
+        let target = model.target_mask();
+        let momentum_t: Vec<(usize, f64)> = (0..model.n())
+            .filter(|&i| target[i] && model.dofs[i].comp == comp && m_diag[i] != 0.0)
+            .map(|i| (i, m_diag[i]))
+            .collect();
+        let nc_t: Vec<(usize, f64)> = ct.nonconservative.iter().copied().filter(|&(j, _)| j != imp).collect();
+        let mut rows: Vec<Vec<f64>> = Vec::with_capacity(steps);
+        let response = unit_response(model, sys, dt, steps, &mut |u, v| {
+            let mut k = linear_outputs(model, u, v);
+            k.push(apply(&momentum_t, v));
+            k.push(apply(&nc_t, u));
+            rows.push(k);
+            if rows.len() % 64 == 0 {
+                bar.set_position(rows.len() as u64);
+            }
+        })?;
+        let width = rows.first().map_or(2, Vec::len);
+        let columns = (0..width).map(|c| rows.iter().map(|k| k[c]).collect()).collect();
+        Ok(Kernels {
+            response,
+            columns,
+            stiffness: ct.stiffness,
+            dt,
+            steps,
+            pass_s: t0.elapsed().as_secs_f64(),
+        })
     }
+
+    /// A run of `model` (the kernels' target, with any impactor and Hertz law) on
+    /// these kernels; `opts` as for any run, its Δt and steps those of the kernels.
+    pub fn run(&self, model: &Model, opts: &RunOptions, bar: &ProgressBar) -> Result<RunResult, RunError> {
+        let t0 = std::time::Instant::now();
+        let form = match opts.scheme {
+            Scheme::Newmark => ContactForm::Endpoint,
+            Scheme::Energy => ContactForm::DiscreteGradient,
+            s => {
+                return Err(RunError::Engine(format!(
+                    "the convolution engine runs the trapezoidal schemes (newmark, energy), not {s}"
+                )))
+            }
+        };
+        if !opts.snapshot_times.is_empty() {
+            return Err(RunError::Engine(
+                "field snapshots need the whole field: run them on the direct engine".into(),
+            ));
+        }
+        let ct = model
+            .contact
+            .as_ref()
+            .ok_or_else(|| RunError::Engine("the convolution engine needs a model with a contact".into()))?;
+        let (dt, steps) = (self.dt, self.steps);
+        // A K scaled by s scales every load, so every kernel (the work's by s²).
+        let s = ct.stiffness / self.stiffness;
+        let scaled;
+        let (kernel, columns): (&UnitResponse, Vec<std::borrow::Cow<[f64]>>) = if s == 1.0 {
+            (
+                &self.response,
+                self.columns.iter().map(|c| c.as_slice().into()).collect(),
+            )
+        } else {
+            scaled = self.response.scaled(s);
+            let last = self.columns.len() - 1;
+            let cols = self
+                .columns
+                .iter()
+                .enumerate()
+                .map(|(i, c)| {
+                    let f = if i == last { s * s } else { s };
+                    c.iter().map(|x| x * f).collect::<Vec<f64>>().into()
+                })
+                .collect();
+            (&scaled, cols)
+        };
+        let width = columns.len();
+        let (h_mom, h_nc) = (&columns[width - 2], &columns[width - 1]);
+        let imp = ct.impactor.dof;
+        let nc_imp: f64 = ct
+            .nonconservative
+            .iter()
+            .filter(|&&(j, _)| j == imp)
+            .map(|&(_, r)| r)
+            .sum();
+
+        // The contact history, with the ledger, the energy guard and the planned stop.
+        let mass = ct.impactor.mass;
+        let mut series = Series::default();
+        let mut energy: Vec<EnergyRow> = Vec::with_capacity(steps + 1);
+        let mut loads: Vec<f64> = Vec::with_capacity(steps);
+        let mut heads: Vec<RowHead> = Vec::new();
+        let every = model.time.every.max(1);
+        let (mut target_energy, mut external, mut initial) = (0.0, 0.0, None);
+        let (mut prev_w, mut prev_x, mut prev_nc) = (0.0, 0.0, 0.0);
+        let (mut in_contact, mut separated_at, mut tripped) = (false, None::<f64>, None);
+        let mut observe = |s: &ConvStep| {
+            if s.step > 0 {
+                loads.push(s.p);
+            }
+            let force = ct.stiffness * s.load_factor;
+            series.time.push(s.time);
+            series.alpha.push(s.alpha);
+            series.force.push(force);
+            series.impactor_u.push(s.x);
+            series.impactor_v.push(s.xv);
+            if opts.ledger {
+                let nc = convolve_at(h_nc, &loads, s.step);
+                if s.step > 0 {
+                    target_energy += (s.w - prev_w) * s.work_factor;
+                    external += (nc_imp * (s.x - prev_x) + (nc - prev_nc)) * s.work_factor;
+                }
+                (prev_w, prev_x, prev_nc) = (s.w, s.x, nc);
+                let ke_i = 0.5 * mass * s.xv * s.xv;
+                let se_i = ct.potential(s.alpha);
+                let u0 = *initial.get_or_insert(ke_i + se_i + target_energy);
+                let momentum = mass * s.xv + convolve_at(h_mom, &loads, s.step);
+                let row = EnergyRow::with_target_total(s.time, ke_i, se_i, target_energy, external, u0, momentum);
+                if let Some(limit) = opts.max_energy_error {
+                    if row.error.abs() > limit || row.error.is_nan() {
+                        tripped = Some(GuardTrip {
+                            step: s.step,
+                            time: s.time,
+                            error: row.error,
+                            limit,
+                        });
+                    }
+                }
+                energy.push(row);
+            }
+            if s.step % every == 0 {
+                heads.push(RowHead {
+                    time: s.time,
+                    force,
+                    alpha: s.alpha,
+                    impactor_u: s.x,
+                    impactor_v: s.xv,
+                    load_factor: s.load_factor,
+                });
+            }
+            if s.alpha > 0.0 {
+                in_contact = true;
+            } else if in_contact && separated_at.is_none() {
+                separated_at = Some(s.time);
+            }
+            if s.step % 64 == 0 {
+                bar.set_position((steps + s.step) as u64);
+            }
+            let done = matches!((separated_at, opts.stop_after_separation), (Some(t), Some(w)) if s.time >= t + w);
+            Ok(!done && tripped.is_none())
+        };
+        let (p, iterations) = contact_history(model, form, kernel, steps, &mut observe)?;
+
+        // The history rows: the impactor's part of each linear output plus the target's sum.
+        let outputs = width - 2;
+        let (mut u_imp, mut v_imp) = (model.u0.clone(), model.v0.clone());
+        let history: Vec<Vec<f64>> = heads
+            .iter()
+            .map(|h| {
+                let n = (h.time / dt).round() as usize;
+                u_imp[imp] = h.impactor_u;
+                v_imp[imp] = h.impactor_v;
+                let mut linear = linear_outputs(model, &u_imp, &v_imp);
+                for (c, y) in linear.iter_mut().enumerate().take(outputs) {
+                    *y += convolve_at(&columns[c], &p, n);
+                }
+                history_row(model, h, &linear)
+            })
+            .collect();
+
+        let stats = RunStats {
+            steps: p.len(),
+            factorizations: kernel.costs.factorizations,
+            solves: kernel.costs.solves,
+            contact_iterations: iterations,
+            factor_time: kernel.costs.factor_time,
+            solve_time: kernel.costs.solve_time,
+            total_time: t0.elapsed(),
+            assembly_time: Default::default(),
+        };
+        let mut run = RunResult {
+            scheme: opts.scheme,
+            dt,
+            steps,
+            stats,
+            series,
+            energy,
+            history_columns: history_columns(model),
+            history,
+            summary: Default::default(),
+            dofs: model.dofs.clone(),
+            snapshots: Vec::new(),
+        };
+        run.summary = summarize(model, &run, tripped);
+        run.summary.run.engine = Engine::Convolution;
+        match tripped {
+            None => Ok(run),
+            Some(trip) => Err(RunError::EnergyGuard {
+                trip,
+                partial: Box::new(run),
+            }),
+        }
+    }
+}
+
+/// How far a run on the convolution engine is from the same run on the direct one:
+/// the largest difference of the contact force (every step) and of each history
+/// column, relative to its peak, with what and when; `None` when the runs did not
+/// make the same number of steps. A column below 1e-8 of the peak of the columns in
+/// its unit vanishes in exact arithmetic (the shear on the plate's centre lines, by
+/// symmetry): its own peak is round-off, and it is compared with that larger peak.
+pub fn engine_difference(direct: &RunResult, conv: &RunResult) -> Option<(f64, String, f64)> {
+    let units = &direct.summary.units;
+    if conv.history.len() != direct.history.len() || conv.series.force.len() != direct.series.force.len() {
+        return None;
+    }
+    let peak = |v: &mut dyn Iterator<Item = f64>| v.fold(0.0, |a: f64, x| a.max(x.abs()));
+    // (relative difference, what, time) of the force and of each history column.
+    let mut worst = (0.0, String::new(), 0.0);
+    let mut judge = |what: String, scale: f64, a: &[f64], b: &[f64], t: &[f64]| {
+        for k in 0..a.len() {
+            let d = (a[k] - b[k]).abs() / scale.max(f64::MIN_POSITIVE);
+            if d > worst.0 || d.is_nan() {
+                worst = (d, what.clone(), t[k]);
+            }
+        }
+    };
+    let f_peak = peak(&mut direct.series.force.iter().copied());
+    judge(
+        "contact force (every step)".into(),
+        f_peak,
+        &direct.series.force,
+        &conv.series.force,
+        &direct.series.time,
+    );
+    let times: Vec<f64> = direct.history.iter().map(|r| r[0]).collect();
+    let cols = &direct.history_columns;
+    for (j, c) in cols.iter().enumerate().skip(1) {
+        let column = |h: &[Vec<f64>]| h.iter().map(|r| r[j]).collect::<Vec<f64>>();
+        let (a, b) = (column(&direct.history), column(&conv.history));
+        let unit = c.unit(units);
+        let family = cols
+            .iter()
+            .enumerate()
+            .filter(|(_, o)| o.unit(units) == unit)
+            .map(|(i, _)| peak(&mut direct.history.iter().map(|r| r[i])))
+            .fold(0.0, f64::max);
+        // A column below 1e-8 of its family's peak is zero in exact arithmetic (by
+        // symmetry): its own peak is round-off, so the family's is the scale.
+        let own = peak(&mut a.iter().copied());
+        let scale = if own < 1e-8 * family { family } else { own };
+        judge(c.header(units), scale, &a, &b, &times);
+    }
+    Some(worst)
 }

@@ -12,7 +12,7 @@ pub use summary::{
     UnitSystem,
 };
 
-mod convolution;
+pub mod convolution;
 pub mod history;
 pub mod summary;
 

@@ -167,6 +167,7 @@ pub fn bench_plate(repeats: usize, steps: usize) -> Result<String, Error> {
 }
 pub mod accuracy;
 pub mod stability;
+pub mod sweep;
 
 /// What each optional effect costs: wall time (median of 3 runs) of the scene as
 /// configured, with the membrane DOFs solved, and without the ledger.

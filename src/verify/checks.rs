@@ -11,6 +11,7 @@ use crate::physics::analytic;
 use crate::physics::references::{
     infinite_plate, rod_critical_step, rod_params, semi_infinite, two_rigid_bodies, ReferenceError,
 };
+use crate::run::convolution::engine_difference;
 use crate::run::{run_model, Column, Engine, RunOptions, RunResult};
 
 /// A check that cannot be evaluated on its run.
@@ -203,55 +204,17 @@ fn superposition(cx: &Cx, max: f64) -> Result<CheckResult, CheckError> {
         check: CHECK,
         message: e.to_string(),
     })?;
-    let (direct, units) = (cx.run, &cx.run.summary.units);
-    if conv.history.len() != direct.history.len() || conv.series.force.len() != direct.series.force.len() {
-        return Err(CheckError::Failed {
-            case: cx.case.name.clone(),
-            check: CHECK,
-            message: format!(
-                "the engines ran {} and {} steps",
-                direct.series.force.len() - 1,
-                conv.series.force.len() - 1
-            ),
-        });
-    }
-    let peak = |v: &mut dyn Iterator<Item = f64>| v.fold(0.0, |a: f64, x| a.max(x.abs()));
-    // (relative difference, what, time) of the force and of each history column.
-    let mut worst = (0.0, String::new(), 0.0);
-    let mut judge = |what: String, scale: f64, a: &[f64], b: &[f64], t: &[f64]| {
-        for k in 0..a.len() {
-            let d = (a[k] - b[k]).abs() / scale.max(f64::MIN_POSITIVE);
-            if d > worst.0 || d.is_nan() {
-                worst = (d, what.clone(), t[k]);
-            }
-        }
-    };
-    let f_peak = peak(&mut direct.series.force.iter().copied());
-    judge(
-        "contact force (every step)".into(),
-        f_peak,
-        &direct.series.force,
-        &conv.series.force,
-        &direct.series.time,
-    );
-    let times: Vec<f64> = direct.history.iter().map(|r| r[0]).collect();
-    let cols = &direct.history_columns;
-    for (j, c) in cols.iter().enumerate().skip(1) {
-        let column = |h: &[Vec<f64>]| h.iter().map(|r| r[j]).collect::<Vec<f64>>();
-        let (a, b) = (column(&direct.history), column(&conv.history));
-        let unit = c.unit(units);
-        let family = cols
-            .iter()
-            .enumerate()
-            .filter(|(_, o)| o.unit(units) == unit)
-            .map(|(i, _)| peak(&mut direct.history.iter().map(|r| r[i])))
-            .fold(0.0, f64::max);
-        // A column below 1e-8 of its family's peak is zero in exact arithmetic (by
-        // symmetry): its own peak is round-off, so the family's is the scale.
-        let own = peak(&mut a.iter().copied());
-        let scale = if own < 1e-8 * family { family } else { own };
-        judge(c.header(units), scale, &a, &b, &times);
-    }
+    let direct = cx.run;
+    let units = &direct.summary.units;
+    let worst = engine_difference(direct, &conv).ok_or_else(|| CheckError::Failed {
+        case: cx.case.name.clone(),
+        check: CHECK,
+        message: format!(
+            "the engines ran {} and {} steps",
+            direct.series.force.len() - 1,
+            conv.series.force.len() - 1
+        ),
+    })?;
     let (v, what, t) = worst;
     Ok(cx.result(
         CHECK.into(),

@@ -1,0 +1,447 @@
+//! Parameter sweeps on the convolution engine: the target's kernels computed once,
+//! then one contact history per point, over the impactor's velocity and mass and the
+//! Hertz law's K and exponent (everything outside the target's linear system).
+//!
+//! Points are the Cartesian product of the `--vary` lists, the first varying slowest,
+//! numbered from 0. The first, the last and every tenth point are also run on the
+//! direct engine; their largest difference ([`engine_difference`]) is the row's
+//! `direct_check`, and one over [`DIRECT_CHECK_MAX`] fails the sweep. A shard `I/N`
+//! runs the points whose number is I−1 modulo N; [`collect`] merges shards into the
+//! `sweep.csv` an unsharded run writes.
+
+use crate::integrate::Scheme;
+use crate::model::{Model, Modify};
+use crate::run::convolution::{engine_difference, Kernels};
+use crate::run::{run_model, Column, Engine, RunError, RunOptions, RunResult};
+use crate::Error;
+use indicatif::ProgressBar;
+use std::path::Path;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
+
+/// The largest `direct_check` a sweep accepts, relative to each quantity's peak.
+pub const DIRECT_CHECK_MAX: f64 = 1e-9;
+
+/// What a sweep can vary.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Param {
+    /// The impactor's impact speed (the deck's direction kept).
+    Velocity,
+    /// The impactor's mass (its inertia scaled with it).
+    Mass,
+    /// The Hertz stiffness K (every NOLIN3 scale with it).
+    K,
+    /// The contact law's exponent.
+    Exponent,
+}
+
+impl Param {
+    /// Every parameter, by name.
+    pub const ALL: [Param; 4] = [Param::Velocity, Param::Mass, Param::K, Param::Exponent];
+
+    /// The name on the command line and in `sweep.csv`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Param::Velocity => "velocity",
+            Param::Mass => "mass",
+            Param::K => "k",
+            Param::Exponent => "exponent",
+        }
+    }
+}
+
+/// One `--vary`: a parameter and its values.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Vary {
+    /// The parameter.
+    pub param: Param,
+    /// Its values, in order.
+    pub values: Vec<f64>,
+}
+
+impl Vary {
+    /// Reads `NAME=START:STOP:COUNT` (evenly spaced, or geometrically when `log`) or
+    /// `NAME=v1,v2,...`.
+    pub fn parse(text: &str, log: &[String]) -> Result<Vary, String> {
+        let (name, spec) = text
+            .split_once('=')
+            .ok_or_else(|| format!("--vary {text}: expected NAME=START:STOP:COUNT or NAME=v1,v2,..."))?;
+        let param = Param::ALL
+            .into_iter()
+            .find(|p| p.name() == name)
+            .ok_or_else(|| format!("--vary {text}: unknown parameter {name} (velocity, mass, k, exponent)"))?;
+        let number = |s: &str| -> Result<f64, String> {
+            s.trim()
+                .parse::<f64>()
+                .ok()
+                .filter(|v| v.is_finite() && *v > 0.0)
+                .ok_or_else(|| format!("--vary {text}: '{s}' is not a positive number"))
+        };
+        let values = match spec.split(':').collect::<Vec<_>>()[..] {
+            [a, b, n] => {
+                let (a, b) = (number(a)?, number(b)?);
+                let n: usize = n
+                    .trim()
+                    .parse()
+                    .ok()
+                    .filter(|n| (1..=100_000).contains(n))
+                    .ok_or_else(|| format!("--vary {text}: COUNT must be 1 to 100000"))?;
+                let geometric = log.iter().any(|l| l == name);
+                (0..n)
+                    .map(|i| {
+                        let f = if n == 1 { 0.0 } else { i as f64 / (n - 1) as f64 };
+                        if geometric {
+                            a * (b / a).powf(f)
+                        } else {
+                            a + (b - a) * f
+                        }
+                    })
+                    .collect()
+            }
+            [_] => spec.split(',').map(number).collect::<Result<Vec<f64>, String>>()?,
+            _ => return Err(format!("--vary {text}: expected START:STOP:COUNT or a list")),
+        };
+        Ok(Vary { param, values })
+    }
+}
+
+/// The points of a sweep: the Cartesian product of the values, the first `Vary`
+/// slowest.
+pub fn points(varies: &[Vary]) -> Vec<Vec<f64>> {
+    let mut out = vec![Vec::new()];
+    for v in varies {
+        out = out
+            .into_iter()
+            .flat_map(|p| {
+                v.values.iter().map(move |x| {
+                    let mut q = p.clone();
+                    q.push(*x);
+                    q
+                })
+            })
+            .collect();
+    }
+    out
+}
+
+/// The model of one point: the base model with its impactor and contact law changed.
+pub fn point_model(base: &Model, varies: &[Vary], values: &[f64]) -> Result<Model, Error> {
+    let ct = base
+        .contact
+        .as_ref()
+        .ok_or_else(|| Error::Usage("a sweep needs a model with a contact".into()))?;
+    let v0 = base.v0[ct.impactor.dof];
+    let mut m = Modify::default();
+    let mut exponent = None;
+    for (v, x) in varies.iter().zip(values) {
+        match v.param {
+            Param::Velocity => m.velocity_scale = Some(x / v0.abs()),
+            Param::Mass => m.impactor_mass_scale = Some(x / ct.impactor.mass),
+            Param::K => m.contact_stiffness_scale = Some(x / ct.stiffness),
+            Param::Exponent => exponent = Some(*x),
+        }
+    }
+    let mut model = m.apply(base)?;
+    if let (Some(a), Some(c)) = (exponent, model.contact.as_mut()) {
+        c.exponent = a;
+    }
+    Ok(model)
+}
+
+/// How to sweep.
+#[derive(Debug, Clone)]
+pub struct SweepOptions {
+    /// The parameters varied.
+    pub varies: Vec<Vary>,
+    /// `newmark` or `energy`.
+    pub scheme: Scheme,
+    /// Points run at once.
+    pub jobs: usize,
+    /// Run only the points numbered I−1 modulo N (`Some((I, N))`, I from 1).
+    pub shard: Option<(usize, usize)>,
+    /// A progress bar, set up by the caller.
+    pub progress: Option<ProgressBar>,
+}
+
+/// The fixed columns of `sweep.csv` after the point number and the varied values.
+pub const RESULT_COLUMNS: [&str; 7] = [
+    "peak_force",
+    "peak_force_time",
+    "contact_end",
+    "n_contacts",
+    "rebound_velocity",
+    "transferred_fraction",
+    "energy_error",
+];
+
+/// A sweep's outputs: `sweep.csv` and whether every direct check passed.
+#[derive(Debug, Clone)]
+pub struct SweepOutcome {
+    /// The CSV's header.
+    pub header: Vec<String>,
+    /// Its rows (point number first), in point order.
+    pub rows: Vec<Vec<f64>>,
+    /// Points checked against the direct engine.
+    pub direct_checks: usize,
+    /// The largest direct check (0 when none ran).
+    pub worst_direct_check: f64,
+    /// Seconds of the kernel pass.
+    pub kernel_pass_s: f64,
+    /// Seconds of all the points (direct checks included).
+    pub points_s: f64,
+}
+
+impl SweepOutcome {
+    /// True when every direct check is within [`DIRECT_CHECK_MAX`].
+    pub fn passed(&self) -> bool {
+        self.worst_direct_check <= DIRECT_CHECK_MAX
+    }
+}
+
+/// The columns of `sweep.csv` for a model and its varied parameters.
+pub fn header(model: &Model, varies: &[Vary]) -> Vec<String> {
+    let mut h = vec!["point".to_string()];
+    h.extend(varies.iter().map(|v| v.param.name().to_string()));
+    h.extend(RESULT_COLUMNS.iter().map(|c| c.to_string()));
+    h.extend(output_columns(model).iter().map(|c| format!("peak_{}", c.name())));
+    h.push("direct_check".into());
+    h
+}
+
+/// The history columns whose peaks a sweep reports: the requested outputs.
+fn output_columns(model: &Model) -> Vec<Column> {
+    crate::run::history_columns(model).into_iter().skip(5).collect()
+}
+
+/// The row of one point.
+fn row(index: usize, values: &[f64], run: &RunResult, direct_check: Option<f64>) -> Vec<f64> {
+    let s = &run.summary;
+    let nan = f64::NAN;
+    let mut r = vec![index as f64];
+    r.extend_from_slice(values);
+    r.extend([
+        s.contact.peak_force,
+        s.contact.peak_force_time.unwrap_or(nan),
+        s.contact.intervals.first().map_or(nan, |i| i[1]),
+        s.contact.intervals.len() as f64,
+        s.impactor.rebound_velocity.unwrap_or(nan),
+        s.energy.transferred_fraction.unwrap_or(nan),
+        s.energy.max_relative_error.unwrap_or(nan),
+    ]);
+    for j in 5..run.history_columns.len() {
+        r.push(
+            run.history
+                .iter()
+                .map(|h| h[j])
+                .fold(0.0, |a: f64, x| if x.abs() > a.abs() { x } else { a }),
+        );
+    }
+    r.push(direct_check.unwrap_or(nan));
+    r
+}
+
+/// One point's row, or why it could not be run.
+type PointRow = Result<Vec<f64>, Error>;
+
+/// Runs a sweep of `base` (its Δt and steps from `run`).
+pub fn sweep(base: &Model, run: &RunOptions, opts: &SweepOptions) -> Result<SweepOutcome, Error> {
+    let all = points(&opts.varies);
+    let mine: Vec<usize> = (0..all.len())
+        .filter(|i| opts.shard.is_none_or(|(k, n)| i % n == k - 1))
+        .collect();
+    let bar = opts.progress.clone().unwrap_or_else(ProgressBar::hidden);
+    let sys = crate::assembly::assemble(base);
+    let reduced = crate::assembly::drop_inert(base, &sys);
+    let (model, sys) = match reduced {
+        Some(m) => {
+            let s = crate::assembly::assemble(&m);
+            (m, s)
+        }
+        None => (base.clone(), sys),
+    };
+    let dt = run.dt.unwrap_or(model.time.dt);
+    let steps = run.steps.unwrap_or(model.time.steps);
+    let kernels = Kernels::compute(&model, &sys, dt, steps, &ProgressBar::hidden())?;
+    bar.set_length(mine.len() as u64);
+    let t0 = std::time::Instant::now();
+    let opts_conv = RunOptions {
+        scheme: opts.scheme,
+        engine: Engine::Convolution,
+        progress: None,
+        ..run.clone()
+    };
+    let next = AtomicUsize::new(0);
+    let rows: Mutex<Vec<(usize, PointRow)>> = Mutex::new(Vec::new());
+    let last = all.len() - 1;
+    std::thread::scope(|scope| {
+        for _ in 0..opts.jobs.max(1).min(mine.len().max(1)) {
+            scope.spawn(|| loop {
+                let k = next.fetch_add(1, Ordering::Relaxed);
+                let Some(&i) = mine.get(k) else { break };
+                let result = (|| -> Result<Vec<f64>, Error> {
+                    let m = point_model(&model, &opts.varies, &all[i])?;
+                    let conv = match kernels.run(&m, &opts_conv, &ProgressBar::hidden()) {
+                        Ok(r) => r,
+                        Err(RunError::EnergyGuard { partial, .. }) => *partial,
+                        Err(e) => return Err(e.into()),
+                    };
+                    let check = if i == 0 || i == last || i % 10 == 0 {
+                        let direct = run_model(
+                            &m,
+                            &RunOptions {
+                                engine: Engine::Direct,
+                                ..opts_conv.clone()
+                            },
+                        );
+                        let direct = match direct {
+                            Ok(r) => r,
+                            Err(RunError::EnergyGuard { partial, .. }) => *partial,
+                            Err(e) => return Err(e.into()),
+                        };
+                        Some(engine_difference(&direct, &conv).map_or(f64::INFINITY, |w| w.0))
+                    } else {
+                        None
+                    };
+                    Ok(row(i, &all[i], &conv, check))
+                })();
+                rows.lock().expect("no worker panics").push((i, result));
+                bar.inc(1);
+            });
+        }
+    });
+    bar.finish_and_clear();
+    let mut rows = rows.into_inner().expect("no worker panics");
+    rows.sort_by_key(|(i, _)| *i);
+    let rows: Vec<Vec<f64>> = rows.into_iter().map(|(_, r)| r).collect::<Result<_, _>>()?;
+    let col = header(&model, &opts.varies).len() - 1;
+    let checks: Vec<f64> = rows.iter().map(|r| r[col]).filter(|v| !v.is_nan()).collect();
+    Ok(SweepOutcome {
+        header: header(&model, &opts.varies),
+        direct_checks: checks.len(),
+        worst_direct_check: checks
+            .iter()
+            .fold(0.0, |a: f64, &v| if v > a || v.is_nan() { v } else { a }),
+        rows,
+        kernel_pass_s: kernels.pass_s,
+        points_s: t0.elapsed().as_secs_f64(),
+    })
+}
+
+/// `sweep.csv`: the header, then the rows; numbers in the shortest form that reads
+/// back to the same f64, NaN as an empty field, the point number as an integer.
+pub fn csv_bytes(header: &[String], rows: &[Vec<f64>]) -> Vec<u8> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    w.write_record(header).expect("in memory");
+    for r in rows {
+        w.write_record(r.iter().enumerate().map(|(j, v)| {
+            if v.is_nan() {
+                String::new()
+            } else if j == 0 {
+                format!("{}", *v as u64)
+            } else {
+                format!("{v:e}")
+            }
+        }))
+        .expect("in memory");
+    }
+    w.into_inner().expect("in memory")
+}
+
+/// Reads a `sweep.csv` back: header and rows (empty fields as NaN).
+pub fn read_csv(path: &Path) -> Result<(Vec<String>, Vec<Vec<f64>>), Error> {
+    let bad = |what: String| Error::Usage(format!("{}: {what}", path.display()));
+    let mut r = csv::Reader::from_path(path).map_err(|e| bad(e.to_string()))?;
+    let header: Vec<String> = r
+        .headers()
+        .map_err(|e| bad(e.to_string()))?
+        .iter()
+        .map(String::from)
+        .collect();
+    let mut rows = Vec::new();
+    for (k, rec) in r.records().enumerate() {
+        let rec = rec.map_err(|e| bad(e.to_string()))?;
+        let row = rec
+            .iter()
+            .map(|f| if f.is_empty() { Ok(f64::NAN) } else { f.parse::<f64>() })
+            .collect::<Result<Vec<f64>, _>>()
+            .map_err(|e| bad(format!("row {}: {e}", k + 2)))?;
+        rows.push(row);
+    }
+    Ok((header, rows))
+}
+
+/// Merges shards' `sweep.csv` files: the same header in each, every point once, in
+/// point order; `total` points in all when given.
+pub fn collect(
+    parts: &[(Vec<String>, Vec<Vec<f64>>)],
+    total: Option<usize>,
+) -> Result<(Vec<String>, Vec<Vec<f64>>), String> {
+    let Some((header, _)) = parts.first() else {
+        return Err("no shards to collect".into());
+    };
+    if let Some(k) = parts.iter().position(|(h, _)| h != header) {
+        return Err(format!("shard {} has other columns than the first", k + 1));
+    }
+    let mut rows: Vec<Vec<f64>> = parts.iter().flat_map(|(_, r)| r.iter().cloned()).collect();
+    rows.sort_by(|a, b| a[0].total_cmp(&b[0]));
+    for w in rows.windows(2) {
+        if w[0][0] == w[1][0] {
+            return Err(format!("point {} is in two shards", w[0][0]));
+        }
+    }
+    if let Some(n) = total {
+        let missing: Vec<usize> = (0..n).filter(|i| !rows.iter().any(|r| r[0] == *i as f64)).collect();
+        if !missing.is_empty() {
+            return Err(format!(
+                "{} of {n} points missing (first: {})",
+                missing.len(),
+                missing[0]
+            ));
+        }
+    }
+    Ok((header.clone(), rows))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Goal: `--vary` reads ranges (even or geometric) and lists, and refuses the rest.
+    #[test]
+    fn vary_reads_ranges_and_lists() {
+        let v = Vary::parse("velocity=100:300:3", &[]).unwrap();
+        assert_eq!((v.param, v.values), (Param::Velocity, vec![100.0, 200.0, 300.0]));
+        let v = Vary::parse("k=1e5:1e7:3", &["k".into()]).unwrap();
+        assert!((v.values[1] - 1e6).abs() < 1e-6, "{:?}", v.values);
+        let v = Vary::parse("exponent=1.5,1.4", &[]).unwrap();
+        assert_eq!(v.values, vec![1.5, 1.4]);
+        for bad in [
+            "speed=1:2:3",
+            "velocity",
+            "velocity=1:2",
+            "velocity=-1,2",
+            "mass=1:2:0",
+            "k=NaN",
+        ] {
+            assert!(Vary::parse(bad, &[]).is_err(), "{bad}");
+        }
+    }
+
+    /// Goal: points are the Cartesian product, the first parameter slowest.
+    #[test]
+    fn points_vary_the_first_parameter_slowest() {
+        let a = Vary {
+            param: Param::Velocity,
+            values: vec![1.0, 2.0],
+        };
+        let b = Vary {
+            param: Param::K,
+            values: vec![10.0, 20.0, 30.0],
+        };
+        let p = points(&[a, b]);
+        assert_eq!(p.len(), 6);
+        assert_eq!(p[0], vec![1.0, 10.0]);
+        assert_eq!(p[1], vec![1.0, 20.0]);
+        assert_eq!(p[3], vec![2.0, 10.0]);
+    }
+}
