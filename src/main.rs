@@ -84,6 +84,13 @@ pub struct SweepArgs {
     /// Run only shard I of N (I from 1): the points numbered I−1 modulo N.
     #[arg(long)]
     pub shard: Option<String>,
+    /// Keep the convolution engine's kernels in DIR [default: $XDG_CACHE_HOME/impactlab,
+    /// or ~/.cache/impactlab].
+    #[arg(long, value_name = "DIR")]
+    pub cache: Option<PathBuf>,
+    /// Compute the convolution engine's kernels afresh and store nothing.
+    #[arg(long, conflicts_with = "cache")]
+    pub no_cache: bool,
 }
 
 #[derive(clap::Args)]
@@ -159,6 +166,13 @@ pub struct RunArgs {
     /// contact by an exact history sum; newmark and energy only, no --fields).
     #[arg(long, default_value = "direct", value_parser = engine_parser())]
     pub engine: Engine,
+    /// Keep the convolution engine's kernels in DIR [default: $XDG_CACHE_HOME/impactlab,
+    /// or ~/.cache/impactlab].
+    #[arg(long, value_name = "DIR")]
+    pub cache: Option<PathBuf>,
+    /// Compute the convolution engine's kernels afresh and store nothing.
+    #[arg(long, conflicts_with = "cache")]
+    pub no_cache: bool,
     /// Time step in the deck's time unit [default: the deck's TSTEP].
     #[arg(long)]
     pub dt: Option<f64>,

@@ -169,3 +169,74 @@ fn the_kernel_is_reciprocal() {
         }
     }
 }
+
+/// Goal: the kernel cache reuses kernels only for the very input they were made for.
+/// A second run reads them (no solve) and gives the same numbers bit for bit; another
+/// Δt, another Hertz K or another output set makes a new file; a corrupt or truncated
+/// file is recomputed with the reason, never read as data. Model: the paper's rod.
+#[test]
+fn the_kernel_cache_is_reused_only_when_valid() {
+    use impactlab::run::convolution::CacheUse;
+    let dir = tempfile::tempdir().unwrap();
+    let model = rod_model();
+    let opts = RunOptions {
+        kernel_cache: Some(dir.path().to_path_buf()),
+        ..options(Scheme::Newmark, Engine::Convolution)
+    };
+    let first = run_model(&model, &opts).unwrap();
+    assert_eq!(first.summary.run.kernel_cache, Some(CacheUse::Miss));
+    let second = run_model(&model, &opts).unwrap();
+    assert_eq!(second.summary.run.kernel_cache, Some(CacheUse::Hit));
+    assert_eq!(second.stats.solves, 0, "read, not computed");
+    assert_eq!(second.history, first.history);
+    assert_eq!(second.series.force, first.series.force);
+    let files = || std::fs::read_dir(dir.path()).unwrap().count();
+    assert_eq!(files(), 1);
+    // Another Δt, another K (every NOLIN3 scale with it), another output set: new files.
+    let other_dt = RunOptions {
+        dt: Some(1e-7),
+        steps: Some(5000),
+        ..opts.clone()
+    };
+    assert_eq!(
+        run_model(&model, &other_dt).unwrap().summary.run.kernel_cache,
+        Some(CacheUse::Miss)
+    );
+    let stiffer = impactlab::model::Modify {
+        contact_stiffness_scale: Some(2.0),
+        ..Default::default()
+    }
+    .apply(&model)
+    .unwrap();
+    assert_eq!(
+        run_model(&stiffer, &opts).unwrap().summary.run.kernel_cache,
+        Some(CacheUse::Miss)
+    );
+    let mut fewer = model.clone();
+    fewer.outputs.disp.pop();
+    assert_eq!(
+        run_model(&fewer, &opts).unwrap().summary.run.kernel_cache,
+        Some(CacheUse::Miss)
+    );
+    assert_eq!(files(), 4);
+    // Corrupt every file, then truncate them: recomputed, the same numbers.
+    for damage in ["flip", "truncate"] {
+        for p in std::fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().path()) {
+            let mut b = std::fs::read(&p).unwrap();
+            match damage {
+                "flip" => {
+                    let k = b.len() / 2;
+                    b[k] ^= 1;
+                }
+                _ => b.truncate(b.len() / 3),
+            }
+            std::fs::write(&p, b).unwrap();
+        }
+        let again = run_model(&model, &opts).unwrap();
+        match &again.summary.run.kernel_cache {
+            Some(CacheUse::Recomputed(why)) => assert!(why.contains("corrupt or truncated"), "{damage}: {why}"),
+            other => panic!("{damage}: {other:?}"),
+        }
+        assert_eq!(again.history, first.history, "{damage}");
+    }
+}

@@ -40,6 +40,27 @@ fn progress(message: String) -> Option<ProgressBar> {
     Some(b)
 }
 
+/// The kernel cache directory of `--cache`/`--no-cache`: the given one, else
+/// `$XDG_CACHE_HOME/impactlab`, else `~/.cache/impactlab`.
+fn kernel_cache(dir: Option<PathBuf>, off: bool) -> Option<PathBuf> {
+    if off {
+        return None;
+    }
+    dir.or_else(|| {
+        let env = |k: &str| std::env::var_os(k).filter(|v| !v.is_empty()).map(PathBuf::from);
+        env("XDG_CACHE_HOME")
+            .or_else(|| env("HOME").map(|h| h.join(".cache")))
+            .map(|c| c.join("impactlab"))
+    })
+}
+
+/// Says where the kernels came from when the cache could not be used.
+fn report_cache(c: &Option<impactlab::run::convolution::CacheUse>) {
+    if let Some(impactlab::run::convolution::CacheUse::Recomputed(why)) = c {
+        say_err(&format!("warning: kernel cache: {why}; recomputed and stored again"));
+    }
+}
+
 fn io_error(path: &Path) -> impl Fn(std::io::Error) -> Error + '_ {
     move |source| Error::Io {
         path: path.display().to_string(),
@@ -92,6 +113,7 @@ pub fn run(a: RunArgs) -> Result<u8, Error> {
         max_memory: Some((a.max_memory.max(0.0) * (1u64 << 30) as f64) as u64),
         progress: progress(format!("{} {}", model.name, opts.scheme)),
         engine: a.engine,
+        kernel_cache: kernel_cache(a.cache, a.no_cache),
         ..opts
     };
     if a.fields.is_some() {
@@ -116,6 +138,7 @@ pub fn run(a: RunArgs) -> Result<u8, Error> {
         ));
         r.summary.contact_stiffness_source = impactlab::scene::contact_stiffness(s).map(|k| k.1).ok();
     }
+    report_cache(&r.summary.run.kernel_cache);
     output::write_dir_atomically(&dir, &output::run_files(&model, &r)).map_err(io_error(&dir))?;
     say(&output::human_summary(&model, &r));
     sayln(&format!("  outputs:  {}", dir.display()));
@@ -343,6 +366,7 @@ pub fn sweep(a: SweepArgs) -> Result<u8, Error> {
     let run = RunOptions {
         dt: a.dt,
         steps: a.steps,
+        kernel_cache: kernel_cache(a.cache, a.no_cache),
         ..Default::default()
     };
     let opts = SweepOptions {
@@ -353,6 +377,7 @@ pub fn sweep(a: SweepArgs) -> Result<u8, Error> {
         progress: bar,
     };
     let out = sweep::sweep(&model, &run, &opts)?;
+    report_cache(&Some(out.kernel_cache.clone()));
     let dir = a
         .out
         .unwrap_or_else(|| PathBuf::from("out").join(format!("{}-sweep", model.name)));
@@ -372,6 +397,7 @@ pub fn sweep(a: SweepArgs) -> Result<u8, Error> {
         "direct_check_max": sweep::DIRECT_CHECK_MAX,
         "passed": out.passed(),
         "kernel_pass_s": out.kernel_pass_s,
+        "kernel_cache": out.kernel_cache,
         "points_s": out.points_s,
     });
     let files = [

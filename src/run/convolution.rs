@@ -41,8 +41,12 @@ pub fn run_convolution(model: &Model, sys: &System, opts: &RunOptions) -> Result
     let bar = opts.progress.clone().unwrap_or_else(ProgressBar::hidden);
     bar.set_length(2 * steps as u64);
     bar.set_position(0);
-    let kernels = Kernels::compute(model, sys, dt, steps, &bar)?;
+    let (kernels, cache) = match &opts.kernel_cache {
+        Some(dir) => Kernels::cached(model, sys, dt, steps, dir, &bar)?,
+        None => (Kernels::compute(model, sys, dt, steps, &bar)?, CacheUse::Off),
+    };
     let mut run = kernels.run(model, opts, &bar)?;
+    run.summary.run.kernel_cache = (cache != CacheUse::Off).then_some(cache);
     bar.finish_and_clear();
     run.stats.total_time = t0.elapsed();
     run.summary.run.wall_s = run.stats.total_time.as_secs_f64();
@@ -68,7 +72,66 @@ pub struct Kernels {
     pub pass_s: f64,
 }
 
+/// Where a run's kernels came from.
+#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CacheUse {
+    /// Computed; no cache asked for.
+    Off,
+    /// Read from the cache.
+    Hit,
+    /// Computed and stored: the cache had none.
+    Miss,
+    /// Computed and stored again: the cached file could not be used (why).
+    Recomputed(String),
+}
+
+/// The version of the kernel file format; a file of another version is recomputed.
+const CACHE_FORMAT: u32 = 1;
+const CACHE_MAGIC: &[u8; 18] = b"impactlab-kernels\n";
+
 impl Kernels {
+    /// The kernels of a model from the cache directory `dir` when a file there holds
+    /// them for exactly this input, else computed and stored (atomically). The file is
+    /// named by a SHA-256 of everything the kernels depend on: the format version, Δt,
+    /// steps, the deck's SHA-256, the solved DOFs, K, M (the impactor's excluded),
+    /// the contact operator and the non-conservative part, and the output columns.
+    /// A file that is truncated, corrupt (its own SHA-256 fails) or of another
+    /// format is recomputed, and the reason returned, never read as data.
+    pub fn cached(
+        model: &Model,
+        sys: &System,
+        dt: f64,
+        steps: usize,
+        dir: &std::path::Path,
+        bar: &ProgressBar,
+    ) -> Result<(Kernels, CacheUse), RunError> {
+        let key = cache_key(model, sys, dt, steps);
+        let path = dir.join(format!("{key}.kernels"));
+        let why = match std::fs::read(&path) {
+            Ok(bytes) => match decode(&bytes, &key, dt, steps) {
+                Ok(k) => return Ok((k, CacheUse::Hit)),
+                Err(why) => Some(format!("{}: {why}", path.display())),
+            },
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => None,
+            Err(e) => Some(format!("{}: {e}", path.display())),
+        };
+        let k = Kernels::compute(model, sys, dt, steps, bar)?;
+        // Written whole beside its final name, then renamed: a reader sees the old
+        // file or the new one, never a part.
+        let store = || -> std::io::Result<()> {
+            use std::io::Write;
+            std::fs::create_dir_all(dir)?;
+            let mut tmp = tempfile::NamedTempFile::new_in(dir)?;
+            tmp.write_all(&encode(&k, &key))?;
+            tmp.as_file().sync_all()?;
+            tmp.persist(&path).map_err(|e| e.error)?;
+            Ok(())
+        };
+        store().map_err(|e| RunError::Input(format!("kernel cache {}: {e}", path.display())))?;
+        Ok((k, why.map_or(CacheUse::Miss, CacheUse::Recomputed)))
+    }
+
     /// The kernel pass of a model (the base of a family of runs).
     pub fn compute(model: &Model, sys: &System, dt: f64, steps: usize, bar: &ProgressBar) -> Result<Kernels, RunError> {
         let t0 = std::time::Instant::now();
@@ -331,4 +394,122 @@ pub fn engine_difference(direct: &RunResult, conv: &RunResult) -> Option<(f64, S
         judge(c.header(units), scale, &a, &b, &times);
     }
     Some(worst)
+}
+
+/// The SHA-256 (hex) of everything a model's kernels depend on.
+fn cache_key(model: &Model, sys: &System, dt: f64, steps: usize) -> String {
+    use sha2::{Digest, Sha256};
+    let mut h = Sha256::new();
+    let mut f = |x: f64| h.update(x.to_bits().to_le_bytes());
+    f(CACHE_FORMAT as f64);
+    f(dt);
+    f(steps as f64);
+    let imp: Vec<usize> = model.contact.as_ref().map_or(Vec::new(), |c| c.impactor.dofs.clone());
+    let m = sys.m_diag();
+    for (i, d) in model.dofs.iter().enumerate() {
+        f(d.point as f64);
+        f(d.comp as f64);
+        f(if imp.contains(&i) { 0.0 } else { m[i] });
+    }
+    let k = &sys.k_csc;
+    for &p in k.symbolic().col_ptr() {
+        f(p as f64);
+    }
+    for &r in k.symbolic().row_idx() {
+        f(r as f64);
+    }
+    for &v in k.val() {
+        f(v);
+    }
+    if let Some(c) = &model.contact {
+        for l in &c.loads {
+            f(l.dof as f64);
+            f(l.scale);
+        }
+        for &(j, w) in c.driver.iter().chain(&c.nonconservative) {
+            f(j as f64);
+            f(w);
+        }
+        f(c.stiffness);
+    }
+    let mut h2 = h;
+    h2.update(model.deck_sha256.as_bytes());
+    for c in history_columns(model) {
+        h2.update(c.name().as_bytes());
+        h2.update(b"\n");
+    }
+    h2.finalize().iter().map(|b| format!("{b:02x}")).collect()
+}
+
+/// A kernel file: magic, format, key, Δt, steps, K, the kernels, then the SHA-256 of
+/// all that.
+fn encode(k: &Kernels, key: &str) -> Vec<u8> {
+    use sha2::{Digest, Sha256};
+    let mut b = Vec::new();
+    b.extend_from_slice(CACHE_MAGIC);
+    b.extend_from_slice(&CACHE_FORMAT.to_le_bytes());
+    b.extend_from_slice(key.as_bytes());
+    let mut put = |x: f64| b.extend_from_slice(&x.to_le_bytes());
+    put(k.dt);
+    put(k.steps as f64);
+    put(k.stiffness);
+    put(k.columns.len() as f64);
+    for v in [&k.response.alpha, &k.response.work].into_iter().chain(&k.columns) {
+        for x in v {
+            put(*x);
+        }
+    }
+    let sum = Sha256::digest(&b);
+    b.extend_from_slice(&sum);
+    b
+}
+
+/// Reads a kernel file written by [`encode`] for this key, Δt and steps, or says why not.
+fn decode(b: &[u8], key: &str, dt: f64, steps: usize) -> Result<Kernels, String> {
+    use sha2::{Digest, Sha256};
+    if b.len() < CACHE_MAGIC.len() + 4 + 64 + 32 || &b[..CACHE_MAGIC.len()] != CACHE_MAGIC {
+        return Err("not a kernel file".into());
+    }
+    let (body, sum) = b.split_at(b.len() - 32);
+    if Sha256::digest(body).as_slice() != sum {
+        return Err("corrupt or truncated (its checksum fails)".into());
+    }
+    let mut at = CACHE_MAGIC.len();
+    let format = u32::from_le_bytes(body[at..at + 4].try_into().expect("4 bytes"));
+    if format != CACHE_FORMAT {
+        return Err(format!("format {format}, not {CACHE_FORMAT}"));
+    }
+    at += 4;
+    if &body[at..at + 64] != key.as_bytes() {
+        return Err("written for another input".into());
+    }
+    at += 64;
+    let words: Vec<f64> = body[at..]
+        .chunks(8)
+        .map(|c| c.try_into().map(f64::from_le_bytes))
+        .collect::<Result<_, _>>()
+        .map_err(|_| "truncated".to_string())?;
+    let [fdt, fsteps, stiffness, width, data @ ..] = &words[..] else {
+        return Err("truncated".into());
+    };
+    let (n, w) = (*fsteps as usize, *width as usize);
+    if *fdt != dt || n != steps || data.len() != (w + 2) * n {
+        return Err("its sizes do not match".into());
+    }
+    let mut parts = data.chunks(n.max(1)).map(<[f64]>::to_vec);
+    let mut next = || parts.next().unwrap_or_default();
+    let (alpha, work) = (next(), next());
+    Ok(Kernels {
+        response: UnitResponse {
+            dt,
+            alpha,
+            work,
+            costs: Default::default(),
+        },
+        columns: (0..w).map(|_| next()).collect(),
+        stiffness: *stiffness,
+        dt,
+        steps,
+        pass_s: 0.0,
+    })
 }

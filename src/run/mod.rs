@@ -45,6 +45,9 @@ pub struct RunOptions {
     pub stop_after_separation: Option<f64>,
     /// How the run is computed.
     pub engine: Engine,
+    /// Where the convolution engine keeps its kernels between runs
+    /// ([`convolution::Kernels::cached`]); `None`: computed every time.
+    pub kernel_cache: Option<std::path::PathBuf>,
     /// Refuse a run whose [`memory_estimate`] exceeds this many bytes, before
     /// allocating anything large; `None`: no limit. Default [`DEFAULT_MAX_MEMORY`].
     pub max_memory: Option<u64>,
@@ -155,6 +158,7 @@ impl Default for RunOptions {
             stop_after_separation: None,
             engine: Engine::Direct,
             max_memory: Some(DEFAULT_MAX_MEMORY),
+            kernel_cache: None,
         }
     }
 }
@@ -649,6 +653,7 @@ fn summarize(model: &Model, run: &RunResult, tripped: Option<GuardTrip>) -> Summ
         run: RunSummary {
             scheme: run.scheme,
             engine: Engine::Direct,
+            kernel_cache: None,
             dt: run.dt,
             steps: run.steps,
             steps_done: run.stats.steps,

@@ -165,6 +165,9 @@ pub struct RunSummary {
     /// The engine, written only when it is not the direct one.
     #[serde(default, skip_serializing_if = "super::Engine::is_direct")]
     pub engine: super::Engine,
+    /// Where the convolution engine's kernels came from (not written when off).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub kernel_cache: Option<super::convolution::CacheUse>,
     /// Time step.
     pub dt: f64,
     /// Steps planned.

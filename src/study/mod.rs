@@ -163,6 +163,56 @@ pub fn bench_plate(repeats: usize, steps: usize) -> Result<String, Error> {
         "convolution engine run (kernel pass included) / direct run",
         ratio(&|r| r[2] / r[0])
     );
+    // The cache and a sweep, once each, against the median direct run.
+    let direct = median(ratios.iter().map(|r| r[0]).collect());
+    let model = crate::paper::plate_model()?;
+    let cache = tempfile::tempdir().map_err(|source| Error::Io {
+        path: "temporary directory".into(),
+        source,
+    })?;
+    let cached = RunOptions {
+        steps: Some(steps),
+        engine: crate::run::Engine::Convolution,
+        kernel_cache: Some(cache.path().join("kernels")),
+        ..Default::default()
+    };
+    let cold = run_model(&model, &cached)?.stats.total_time.as_secs_f64();
+    let warm = run_model(&model, &cached)?.stats.total_time.as_secs_f64();
+    out += &format!(
+        "  {:<66} {:>9.3}\n",
+        "kernel pass (cold cache) / direct run",
+        cold / direct
+    );
+    out += &format!(
+        "  {:<66} {:>9.4}\n",
+        "cached convolution run / direct run (goal 0.05)",
+        warm / direct
+    );
+    let t = Instant::now();
+    let sweep = sweep::sweep(
+        &model,
+        &RunOptions {
+            steps: Some(steps),
+            kernel_cache: Some(cache.path().join("sweep")),
+            ..Default::default()
+        },
+        &sweep::SweepOptions {
+            varies: vec![sweep::Vary::parse("velocity=100:2000:100", &[]).map_err(Error::Usage)?],
+            scheme: crate::integrate::Scheme::Newmark,
+            jobs: std::thread::available_parallelism().map_or(1, |n| n.get()),
+            shard: None,
+            progress: None,
+        },
+    )?;
+    let wall = t.elapsed().as_secs_f64();
+    out += &format!(
+        "  {:<66} {:>9.3}\n",
+        format!(
+            "100-velocity sweep, cold cache, {} direct checks / direct",
+            sweep.direct_checks
+        ),
+        wall / direct
+    );
     Ok(out)
 }
 pub mod accuracy;

@@ -11,7 +11,7 @@
 
 use crate::integrate::Scheme;
 use crate::model::{Model, Modify};
-use crate::run::convolution::{engine_difference, Kernels};
+use crate::run::convolution::{engine_difference, CacheUse, Kernels};
 use crate::run::{run_model, Column, Engine, RunError, RunOptions, RunResult};
 use crate::Error;
 use indicatif::ProgressBar;
@@ -185,8 +185,10 @@ pub struct SweepOutcome {
     pub direct_checks: usize,
     /// The largest direct check (0 when none ran).
     pub worst_direct_check: f64,
-    /// Seconds of the kernel pass.
+    /// Seconds of the kernel pass (0 when read from the cache).
     pub kernel_pass_s: f64,
+    /// Where the kernels came from.
+    pub kernel_cache: CacheUse,
     /// Seconds of all the points (direct checks included).
     pub points_s: f64,
 }
@@ -261,7 +263,13 @@ pub fn sweep(base: &Model, run: &RunOptions, opts: &SweepOptions) -> Result<Swee
     };
     let dt = run.dt.unwrap_or(model.time.dt);
     let steps = run.steps.unwrap_or(model.time.steps);
-    let kernels = Kernels::compute(&model, &sys, dt, steps, &ProgressBar::hidden())?;
+    let (kernels, cache) = match &run.kernel_cache {
+        Some(dir) => Kernels::cached(&model, &sys, dt, steps, dir, &ProgressBar::hidden())?,
+        None => (
+            Kernels::compute(&model, &sys, dt, steps, &ProgressBar::hidden())?,
+            CacheUse::Off,
+        ),
+    };
     bar.set_length(mine.len() as u64);
     let t0 = std::time::Instant::now();
     let opts_conv = RunOptions {
@@ -323,6 +331,7 @@ pub fn sweep(base: &Model, run: &RunOptions, opts: &SweepOptions) -> Result<Swee
             .fold(0.0, |a: f64, &v| if v > a || v.is_nan() { v } else { a }),
         rows,
         kernel_pass_s: kernels.pass_s,
+        kernel_cache: cache,
         points_s: t0.elapsed().as_secs_f64(),
     })
 }
