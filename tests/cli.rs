@@ -402,6 +402,10 @@ fn sweep_shards_collect_to_the_unsharded_csv() {
     let whole = dir.path().join("whole");
     sweep(&whole, None);
     let (header, rows) = impactlab::study::sweep::read_csv(&whole.join("sweep.csv")).unwrap();
+    for figure in ["peak-force", "contact-end", "transferred-fraction", "strain-peaks"] {
+        let png = std::fs::read(whole.join(format!("{figure}.png"))).unwrap();
+        assert_eq!(&png[..4], b"\x89PNG", "{figure}");
+    }
     assert_eq!(&header[..3], ["point", "velocity", "k"]);
     assert_eq!(rows.len(), 12);
     let col = |name: &str| header.iter().position(|h| h == name).unwrap();

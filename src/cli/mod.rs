@@ -381,8 +381,12 @@ pub fn sweep(a: SweepArgs) -> Result<u8, Error> {
     let dir = a
         .out
         .unwrap_or_else(|| PathBuf::from("out").join(format!("{}-sweep", model.name)));
+    let units = impactlab::run::UnitSystem::of(&model.units);
+    let mass = model.contact.as_ref().map_or(f64::NAN, |c| c.impactor.mass);
     let summary = serde_json::json!({
         "deck": model.name,
+        "units": units,
+        "impactor_mass": mass,
         "deck_sha256": model.deck_sha256,
         "scheme": a.scheme,
         "engine": "convolution",
@@ -408,6 +412,12 @@ pub fn sweep(a: SweepArgs) -> Result<u8, Error> {
         ),
     ];
     output::write_dir_atomically(&dir, &files).map_err(io_error(&dir))?;
+    let cx = sweep::FigureContext {
+        deck: model.name.clone(),
+        mass,
+        units,
+    };
+    let figures = sweep::figures(&out.header, &out.rows, &cx, &dir)?;
     sayln(&format!(
         "{}: {} of {points} points ({} jobs), kernel pass {:.2} s, points {:.2} s; {} direct checks, worst {:.2e} (max {:.0e})",
         model.name,
@@ -419,7 +429,11 @@ pub fn sweep(a: SweepArgs) -> Result<u8, Error> {
         out.worst_direct_check,
         sweep::DIRECT_CHECK_MAX
     ));
-    sayln(&format!("  outputs:  {}", dir.display()));
+    sayln(&format!(
+        "  outputs:  {} (sweep.csv, summary.json, {} figures)",
+        dir.display(),
+        figures.len() / 2
+    ));
     Ok(if out.passed() { 0 } else { 1 })
 }
 
@@ -475,6 +489,12 @@ pub fn collect(a: CollectArgs) -> Result<u8, Error> {
         ),
     ];
     output::write_dir_atomically(&a.out, &files).map_err(io_error(&a.out))?;
+    let cx = sweep::FigureContext {
+        deck: summary["deck"].as_str().unwrap_or("").to_string(),
+        mass: summary["impactor_mass"].as_f64().unwrap_or(f64::NAN),
+        units: serde_json::from_value(summary["units"].clone()).unwrap_or_default(),
+    };
+    sweep::figures(&header, &rows, &cx, &a.out)?;
     sayln(&format!(
         "{} points from {} shards: {}",
         rows.len(),

@@ -454,3 +454,135 @@ mod tests {
         assert_eq!(p[3], vec![2.0, 10.0]);
     }
 }
+
+/// What the figures of a sweep need beyond `sweep.csv`: the deck's units and the
+/// impactor's mass where it is not varied.
+#[derive(Debug, Clone)]
+pub struct FigureContext {
+    /// The deck's name.
+    pub deck: String,
+    /// The impactor's mass, for the impact energy of points that do not vary it.
+    pub mass: f64,
+    /// Units of the deck: length, force, time.
+    pub units: crate::run::UnitSystem,
+}
+
+/// The figures of a sweep, from its `sweep.csv` alone: peak force, contact duration,
+/// transferred fraction and the largest |strain| of the strain outputs against the impact
+/// energy ½mv², one line per combination of the other varied parameters, the points
+/// also run on the direct engine ringed. Written as `DIR/<name>.png` and `.svg`.
+pub fn figures(
+    header: &[String],
+    rows: &[Vec<f64>],
+    cx: &FigureContext,
+    dir: &Path,
+) -> Result<Vec<std::path::PathBuf>, crate::plot::PlotError> {
+    use crate::plot::{line_chart, Chart, Line};
+    let col = |name: &str| header.iter().position(|h| h == name);
+    let (Some(vcol), Some(check)) = (col("velocity"), col("direct_check")) else {
+        return Ok(Vec::new()); // no impact energy axis without a velocity sweep
+    };
+    let mcol = col("mass");
+    let energy = |r: &[f64]| 0.5 * mcol.map_or(cx.mass, |j| r[j]) * r[vcol] * r[vcol];
+    // Lines: one per combination of the varied parameters other than velocity and mass.
+    let others: Vec<usize> = (1..header.len())
+        .take_while(|&j| header[j] != RESULT_COLUMNS[0])
+        .filter(|&j| j != vcol && Some(j) != mcol)
+        .collect();
+    let key = |r: &[f64]| others.iter().map(|&j| r[j]).collect::<Vec<f64>>();
+    let mut groups: Vec<(Vec<f64>, Vec<&Vec<f64>>)> = Vec::new();
+    for r in rows {
+        match groups.iter_mut().find(|(k, _)| *k == key(r)) {
+            Some((_, g)) => g.push(r),
+            None => groups.push((key(r), vec![r])),
+        }
+    }
+    let u = &cx.units;
+    let label = |k: &[f64]| {
+        if k.is_empty() {
+            "sweep".to_string()
+        } else {
+            others
+                .iter()
+                .zip(k)
+                .map(|(&j, v)| format!("{} = {v:e}", header[j]))
+                .collect::<Vec<_>>()
+                .join(", ")
+        }
+    };
+    // Lines of column j (its magnitude when `abs`), colours from `colour0` on.
+    let lines_of = |j: usize, name: &str, colour0: usize, abs: bool| -> Vec<Line> {
+        groups
+            .iter()
+            .enumerate()
+            .map(|(g, (k, rs))| {
+                let mut rs: Vec<&&Vec<f64>> = rs.iter().filter(|r| r[j].is_finite()).collect();
+                rs.sort_by(|a, b| energy(a).total_cmp(&energy(b)));
+                let rings = rs
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, r)| !r[check].is_nan())
+                    .map(|(i, _)| i)
+                    .collect();
+                let title = if name.is_empty() {
+                    label(k)
+                } else {
+                    format!("{name}, {}", label(k))
+                };
+                let y = rs.iter().map(|r| if abs { r[j].abs() } else { r[j] }).collect();
+                Line::new(title, rs.iter().map(|r| energy(r)).collect(), y, colour0 + g)
+                    .markers()
+                    .emphasis(rings)
+            })
+            .collect()
+    };
+    let x_label = format!("impact energy ½mv² [{}]", u.energy);
+    let footer = format!(
+        "impactlab sweep · {} · convolution engine; ringed: also run on the direct engine",
+        cx.deck
+    );
+    let chart = |title: &str, y: String, lines: Vec<Line>| Chart {
+        title: title.into(),
+        x_label: x_label.clone(),
+        y_label: y,
+        footer: footer.clone(),
+        lines,
+        ..Default::default()
+    };
+    let mut out = Vec::new();
+    for (name, title, y) in [
+        ("peak_force", "Peak contact force", format!("peak force [{}]", u.force)),
+        (
+            "contact_end",
+            "End of the first contact",
+            format!("contact end [{}]", u.time),
+        ),
+        (
+            "transferred_fraction",
+            "Energy left in the target",
+            "1 − (v_rebound/v0)² [-]".to_string(),
+        ),
+    ] {
+        if let Some(j) = col(name) {
+            let lines = lines_of(j, "", 0, false);
+            out.extend(line_chart(&chart(title, y, lines), &dir.join(name.replace('_', "-")))?);
+        }
+    }
+    // At most as many lines as the palette has colours.
+    let strains: Vec<usize> = (0..header.len())
+        .filter(|&j| header[j].starts_with("peak_strain_"))
+        .take((crate::plot::PALETTE.len() / groups.len().max(1)).max(1))
+        .collect();
+    if !strains.is_empty() {
+        let lines = strains
+            .iter()
+            .enumerate()
+            .flat_map(|(s, &j)| lines_of(j, header[j].trim_start_matches("peak_"), s * groups.len(), true))
+            .collect();
+        out.extend(line_chart(
+            &chart("Largest strain at each gage", "largest |strain| [-]".into(), lines),
+            &dir.join("strain-peaks"),
+        )?);
+    }
+    Ok(out)
+}
