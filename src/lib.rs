@@ -17,10 +17,12 @@
 //! - [`paper`]: input: the paper's two decks, embedded.
 //! - [`scene`]: input: impacts described in TOML, turned into the decks they stand for.
 //! - [`ledger`]: the energy ledger and momentum, per step.
-//! - [`run`]: one run: the pipeline, the recorder, the typed summary and history columns.
+//! - [`run`]: one run: the pipeline, the recorder, the typed summary and history columns;
+//!   the convolution engine's kernels and their cache.
 //! - [`output`]: a run's files, written atomically, and its printed summary.
 //! - [`verify`]: verification cases, check kinds, gold files, audit, verdicts.
-//! - [`study`]: families of runs: verification cases, convergence, accuracy, stability, bench.
+//! - [`study`]: families of runs: verification cases, convergence, accuracy, stability,
+//!   sweeps, bench.
 //! - [`report`]: reports from case outcomes; VTU fields.
 //! - [`error`]: the program's error, one variant per stage, and its exit codes.
 

@@ -71,30 +71,39 @@ pub fn write_fields(model: &Model, run: &RunResult, dir: &Path) -> Result<Vec<Pa
 
 /// The `.pvd` collection: each file with its time.
 fn collection<'a>(files: impl Iterator<Item = (f64, &'a str)>) -> Vec<u8> {
-    let mut w = Writer::new_with_indent(Vec::new(), b' ', 2);
-    let ok = (|| {
-        w.write_event(Event::Decl(BytesDecl::new("1.0", None, None)))?;
-        w.create_element("VTKFile")
-            .with_attributes([
-                ("type", "Collection"),
-                ("version", "0.1"),
-                ("byte_order", "LittleEndian"),
-            ])
-            .write_inner_content(|w| {
-                w.create_element("Collection").write_inner_content(|w| {
-                    for (t, name) in files {
-                        let t = t.to_string();
-                        w.create_element("DataSet")
-                            .with_attributes([("timestep", t.as_str()), ("part", "0"), ("file", name)])
-                            .write_empty()?;
-                    }
-                    Ok(())
-                })?;
+    vtk_file(
+        &[
+            ("type", "Collection"),
+            ("version", "0.1"),
+            ("byte_order", "LittleEndian"),
+        ],
+        |w| {
+            w.create_element("Collection").write_inner_content(|w| {
+                for (t, name) in files {
+                    let t = t.to_string();
+                    w.create_element("DataSet")
+                        .with_attributes([("timestep", t.as_str()), ("part", "0"), ("file", name)])
+                        .write_empty()?;
+                }
                 Ok(())
             })?;
-        std::io::Result::Ok(())
-    })();
-    ok.expect("writing XML into memory cannot fail");
+            Ok(())
+        },
+    )
+}
+
+/// A VTK XML file: the declaration and a `VTKFile` element with these attributes and
+/// the content `body` writes, indented, ending with a newline.
+fn vtk_file(attributes: &[(&str, &str)], body: impl FnOnce(&mut Writer<Vec<u8>>) -> std::io::Result<()>) -> Vec<u8> {
+    let mut w = Writer::new_with_indent(Vec::new(), b' ', 2);
+    w.write_event(Event::Decl(BytesDecl::new("1.0", None, None)))
+        .and_then(|_| {
+            w.create_element("VTKFile")
+                .with_attributes(attributes.iter().copied())
+                .write_inner_content(body)
+                .map(|_| ())
+        })
+        .expect("writing XML into memory cannot fail");
     let mut bytes = w.into_inner();
     bytes.push(b'\n');
     bytes
@@ -302,43 +311,33 @@ impl<'m> Mesh<'m> {
             },
         ];
         let (np, nc) = (self.grids.len().to_string(), self.cells.len().to_string());
-        let mut w = Writer::new_with_indent(Vec::new(), b' ', 2);
         let all = |w: &mut Writer<Vec<u8>>, arrays: &[Array]| arrays.iter().try_for_each(|a| a.write(w));
-        let ok = (|| {
-            w.write_event(Event::Decl(BytesDecl::new("1.0", None, None)))?;
-            w.create_element("VTKFile")
-                .with_attributes([
-                    ("type", "UnstructuredGrid"),
-                    ("version", "1.0"),
-                    ("byte_order", "LittleEndian"),
-                    ("header_type", "UInt64"),
-                ])
-                .write_inner_content(|w| {
-                    w.create_element("UnstructuredGrid").write_inner_content(|w| {
-                        w.create_element("FieldData").write_inner_content(|w| all(w, &field))?;
-                        w.create_element("Piece")
-                            .with_attributes([("NumberOfPoints", np.as_str()), ("NumberOfCells", nc.as_str())])
-                            .write_inner_content(|w| {
-                                w.create_element("PointData")
-                                    .with_attributes([("Scalars", "grid_id"), ("Vectors", "displacement")])
-                                    .write_inner_content(|w| all(w, &point))?;
-                                w.create_element("CellData")
-                                    .with_attribute(("Scalars", "element_id"))
-                                    .write_inner_content(|w| all(w, &cell))?;
-                                w.create_element("Points").write_inner_content(|w| geometry.write(w))?;
-                                w.create_element("Cells").write_inner_content(|w| all(w, &topology))?;
-                                Ok(())
-                            })?;
+        let attributes = [
+            ("type", "UnstructuredGrid"),
+            ("version", "1.0"),
+            ("byte_order", "LittleEndian"),
+            ("header_type", "UInt64"),
+        ];
+        vtk_file(&attributes, |w| {
+            w.create_element("UnstructuredGrid").write_inner_content(|w| {
+                w.create_element("FieldData").write_inner_content(|w| all(w, &field))?;
+                w.create_element("Piece")
+                    .with_attributes([("NumberOfPoints", np.as_str()), ("NumberOfCells", nc.as_str())])
+                    .write_inner_content(|w| {
+                        w.create_element("PointData")
+                            .with_attributes([("Scalars", "grid_id"), ("Vectors", "displacement")])
+                            .write_inner_content(|w| all(w, &point))?;
+                        w.create_element("CellData")
+                            .with_attribute(("Scalars", "element_id"))
+                            .write_inner_content(|w| all(w, &cell))?;
+                        w.create_element("Points").write_inner_content(|w| geometry.write(w))?;
+                        w.create_element("Cells").write_inner_content(|w| all(w, &topology))?;
                         Ok(())
                     })?;
-                    Ok(())
-                })?;
-            std::io::Result::Ok(())
-        })();
-        ok.expect("writing XML into memory cannot fail");
-        let mut bytes = w.into_inner();
-        bytes.push(b'\n');
-        bytes
+                Ok(())
+            })?;
+            Ok(())
+        })
     }
 }
 
