@@ -7,11 +7,10 @@
 mod common;
 
 use common::{deck, rod_model};
-use impactlab::assembly::{assemble, drop_inert};
 use impactlab::integrate::convolution::{convolve_at, linear_response, unit_response};
 use impactlab::integrate::Scheme;
-use impactlab::model::{DofLabel, Model};
-use impactlab::run::{run_model, Engine, RunError, RunOptions};
+use impactlab::model::DofLabel;
+use impactlab::run::{run_model, solved_system, Engine, RunError, RunOptions};
 
 fn options(scheme: Scheme, engine: Engine) -> RunOptions {
     RunOptions {
@@ -87,18 +86,6 @@ fn the_convolution_engine_refuses_what_it_cannot_compute() {
     }
 }
 
-/// The model as `run_model` solves it (inert DOFs dropped) and its system.
-fn solved(model: &Model) -> (Model, impactlab::assembly::System) {
-    let sys = assemble(model);
-    match drop_inert(model, &sys) {
-        Some(m) => {
-            let s = assemble(&m);
-            (m, s)
-        }
-        None => (model.clone(), sys),
-    }
-}
-
 /// Goal: the kernel is passive. From rest, the work done on the target by any load
 /// history, E(n) = Σ_k (w(k) − w(k−1))·p_k/2 (the trapezoidal rule's exact work
 /// identity), equals ½vᵀMv + ½uᵀKu and is never negative, whatever the signs of the
@@ -106,7 +93,8 @@ fn solved(model: &Model) -> (Model, impactlab::assembly::System) {
 /// histories (a contact-like pulse, an alternating one, a pseudo-random one).
 #[test]
 fn the_kernel_is_passive() {
-    let (model, sys) = solved(&rod_model());
+    let rod = rod_model();
+    let (model, sys) = solved_system(&rod, true).unwrap();
     let k = unit_response(&model, &sys, 2e-7, 2500, &mut |_, _| {}).unwrap();
     let pulse: Vec<f64> = (0..400)
         .map(|n| (std::f64::consts::PI * n as f64 / 400.0).sin())
@@ -144,7 +132,7 @@ fn the_kernel_is_reciprocal() {
         (rod_model(), (1, 1), (73, 1), 2e-7, 1000),
         (plate, (2525, 3), (3325, 3), 1e-7, 300),
     ] {
-        let (model, sys) = solved(&model);
+        let (model, sys) = solved_system(&model, true).unwrap();
         let at = |(point, comp): (i64, u8)| model.dofs.iter().position(|d| *d == DofLabel { point, comp }).unwrap();
         let (ia, ib) = (at(a), at(b));
         let response = |from: usize, to: usize| {

@@ -6,7 +6,6 @@ use crate::{
     AuditArgs, AuditFormat, BenchArgs, CollectArgs, MeshKind, ReportArgs, RunArgs, SceneArgs, StudyKind, SweepArgs,
     VerifyArgs,
 };
-use impactlab::integrate::Scheme;
 use impactlab::run::RunOptions;
 use impactlab::{deck, output, verify, Error};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -342,7 +341,7 @@ pub fn sweep(a: SweepArgs) -> Result<u8, Error> {
                 .ok_or_else(|| Error::Usage(format!("--shard {s}: expected I/N with 1 ≤ I ≤ N")))
         })
         .transpose()?;
-    if !matches!(a.scheme, Scheme::Newmark | Scheme::Energy) {
+    if a.scheme.newmark_params().is_none() {
         return Err(Error::Usage(format!(
             "--scheme {}: sweeps run on the convolution engine, newmark or energy",
             a.scheme
@@ -463,13 +462,11 @@ pub fn collect(a: CollectArgs) -> Result<u8, Error> {
         summaries.push(s);
     }
     let (header, rows) = sweep::collect(&parts, total).map_err(Error::Usage)?;
-    let col = header.len() - 1;
-    let checks: Vec<f64> = rows.iter().map(|r| r[col]).filter(|v| !v.is_nan()).collect();
-    let worst = checks.iter().fold(0.0, |a: f64, &v| a.max(v));
+    let (checked, worst) = sweep::direct_checks(&rows);
     let mut summary = summaries[0].clone();
     summary["shard"] = serde_json::Value::Null;
     summary["points"] = rows.len().into();
-    summary["direct_checks"] = checks.len().into();
+    summary["direct_checks"] = checked.into();
     summary["worst_direct_check"] = worst.into();
     summary["passed"] = (worst <= sweep::DIRECT_CHECK_MAX).into();
     summary["collected_from"] = a

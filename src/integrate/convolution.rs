@@ -27,7 +27,7 @@
 //! lagged contact would need its own kernel pass: not built) nor `central` (explicit).
 
 use super::linear::Factor;
-use super::newmark::{contact_load, ContactForm};
+use super::newmark::{complete, contact_load, predictor, ContactForm};
 use super::{contact_vectors, SolveError, StepCosts};
 use crate::assembly::System;
 use crate::model::{apply, Model};
@@ -131,7 +131,7 @@ pub fn unit_response(
         return Err(no("the impactor is attached to an element"));
     }
     let (mut g, c) = contact_vectors(model);
-    for &i in &model.contact.as_ref().map_or(Vec::new(), |ct| ct.impactor.dofs.clone()) {
+    for &i in imp {
         g[i] = 0.0;
     }
     let c_t: Vec<(usize, f64)> = c.into_iter().filter(|&(j, _)| j != b.dof).collect();
@@ -161,17 +161,15 @@ pub fn linear_response(
     let (mut u, mut v, mut f) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
     let (mut du, mut kdu, mut mv) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
     for k in 1..=steps {
-        sys.m_mul(&v, &mut mv);
-        for i in 0..n {
-            du[i] = 4.0 / dt * mv[i] - 2.0 * f[i] + if k == 1 { load[i] } else { 0.0 };
-        }
-        factor.solve_in_place(&mut du);
-        sys.k_mul(&du, &mut kdu);
-        for i in 0..n {
-            u[i] += du[i];
-            f[i] += kdu[i];
-            v[i] = 2.0 * du[i] / dt - v[i];
-        }
+        // The direct step's own arithmetic (newmark.rs), the load at step 1 only.
+        predictor(
+            sys,
+            &mut factor,
+            dt,
+            (&v, &f, &mut mv, &mut du),
+            (k == 1).then_some((load, 1.0)),
+        );
+        complete(sys, dt, &du, &mut kdu, (&mut u, &mut f, &mut v));
         record(&u, &v);
     }
     Ok(StepCosts {

@@ -72,11 +72,23 @@ impl Scheme {
         Scheme::ALL.into_iter().find(|s| s.name() == name)
     }
 
+    /// The trapezoidal rule's parameters for the two schemes that are one (`newmark`,
+    /// `energy`; the convolution engine runs those), `None` for the others.
+    pub fn newmark_params(self) -> Option<NewmarkParams> {
+        match self {
+            Scheme::Newmark => Some(NewmarkParams::TRAPEZOIDAL),
+            Scheme::Energy => Some(NewmarkParams::ENERGY_CONSERVING),
+            Scheme::Nastran | Scheme::Central => None,
+        }
+    }
+
     /// The scheme's stepper for a model, step size and system.
     fn stepper<'a>(self, model: &'a Model, sys: &'a System, dt: f64) -> Result<Box<dyn Stepper + 'a>, SolveError> {
         Ok(match self {
-            Scheme::Newmark => Box::new(Newmark::new(model, sys, dt, NewmarkParams::TRAPEZOIDAL)?),
-            Scheme::Energy => Box::new(Newmark::new(model, sys, dt, NewmarkParams::ENERGY_CONSERVING)?),
+            Scheme::Newmark | Scheme::Energy => {
+                let params = self.newmark_params().expect("a trapezoidal scheme");
+                Box::new(Newmark::new(model, sys, dt, params)?)
+            }
             Scheme::Nastran => Box::new(ThreePoint::new(model, sys, dt, ThreePointParams::NASTRAN)?),
             Scheme::Central => Box::new(Central::new(model, sys, dt)?),
         })

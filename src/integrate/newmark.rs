@@ -143,6 +143,46 @@ impl<'a> Newmark<'a> {
     }
 }
 
+/// The trapezoidal rule's contact-free predictor: du = A⁻¹(4M v/Δt − 2f), plus g·φ
+/// when `load` = (g, φ) is given. `vectors` = (v, f, workspace for M v, du).
+pub(crate) fn predictor(
+    sys: &System,
+    factor: &mut Factor,
+    dt: f64,
+    vectors: (&[f64], &[f64], &mut [f64], &mut [f64]),
+    load: Option<(&[f64], f64)>,
+) {
+    let (v, f, mv, du) = vectors;
+    sys.m_mul(v, mv);
+    for i in 0..du.len() {
+        du[i] = 4.0 / dt * mv[i] - 2.0 * f[i];
+    }
+    if let Some((g, phi)) = load {
+        for i in 0..du.len() {
+            du[i] += g[i] * phi;
+        }
+    }
+    factor.solve_in_place(du);
+}
+
+/// Completes a trapezoidal step from its increment du: u += du, f += K du (`kdu` its
+/// workspace), v = 2 du/Δt − v. `state` = (u, f, v).
+pub(crate) fn complete(
+    sys: &System,
+    dt: f64,
+    du: &[f64],
+    kdu: &mut [f64],
+    state: (&mut [f64], &mut [f64], &mut [f64]),
+) {
+    let (u, f, v) = state;
+    sys.k_mul(du, kdu);
+    for i in 0..du.len() {
+        u[i] += du[i];
+        f[i] += kdu[i];
+        v[i] = 2.0 * du[i] / dt - v[i];
+    }
+}
+
 /// The contact's load factor ψ over a step of the trapezoidal rule, solving
 /// α = α* + s·ψ(α) (α* the indentation of the contact-free predictor, s the condensed
 /// compliance, `a_prev` the indentation at the start of the step); with the
@@ -184,18 +224,10 @@ pub(crate) fn contact_load(
 
 impl Stepper for Newmark<'_> {
     fn advance(&mut self, step: usize, time: f64) -> Result<(), SolveError> {
-        let (n, dt) = (self.u.len(), self.dt);
-        // rhs = 4M v/Δt − 2f (+ g φ(n) for the endpoint form)
-        self.sys.m_mul(&self.v, &mut self.mv);
-        for i in 0..n {
-            self.du[i] = 4.0 / dt * self.mv[i] - 2.0 * self.f[i];
-        }
-        if self.form == ContactForm::Endpoint && self.phi_n != 0.0 {
-            for i in 0..n {
-                self.du[i] += self.g[i] * self.phi_n;
-            }
-        }
-        self.factor.solve_in_place(&mut self.du);
+        let n = self.u.len();
+        let load = (self.form == ContactForm::Endpoint && self.phi_n != 0.0).then_some((&self.g[..], self.phi_n));
+        let step_vectors = (&self.v[..], &self.f[..], &mut self.mv[..], &mut self.du[..]);
+        predictor(self.sys, &mut self.factor, self.dt, step_vectors, load);
         // Contact: α = α* + s ψ(α), α* the indentation of the contact-free predictor.
         let mut psi = 0.0;
         if let Some(ct) = self.contact {
@@ -207,12 +239,13 @@ impl Stepper for Newmark<'_> {
                 }
             }
         }
-        self.sys.k_mul(&self.du, &mut self.kdu);
-        for i in 0..n {
-            self.u[i] += self.du[i];
-            self.f[i] += self.kdu[i];
-            self.v[i] = 2.0 * self.du[i] / dt - self.v[i];
-        }
+        complete(
+            self.sys,
+            self.dt,
+            &self.du,
+            &mut self.kdu,
+            (&mut self.u, &mut self.f, &mut self.v),
+        );
         let alpha = apply(&self.c, &self.u);
         let phi_new = self.contact.map_or(0.0, |ct| ct.law(alpha));
         self.work_factor = match self.form {

@@ -19,7 +19,7 @@ use super::{
 };
 use crate::assembly::System;
 use crate::integrate::convolution::{contact_history, convolve_at, unit_response, ConvStep, RunFailure, UnitResponse};
-use crate::integrate::{ContactForm, RunStats, Scheme};
+use crate::integrate::RunStats;
 use crate::ledger::EnergyRow;
 use crate::model::{apply, Model};
 use indicatif::ProgressBar;
@@ -41,10 +41,7 @@ pub fn run_convolution(model: &Model, sys: &System, opts: &RunOptions) -> Result
     let bar = opts.progress.clone().unwrap_or_else(ProgressBar::hidden);
     bar.set_length(2 * steps as u64);
     bar.set_position(0);
-    let (kernels, cache) = match &opts.kernel_cache {
-        Some(dir) => Kernels::cached(model, sys, dt, steps, dir, &bar)?,
-        None => (Kernels::compute(model, sys, dt, steps, &bar)?, CacheUse::Off),
-    };
+    let (kernels, cache) = Kernels::for_run(model, sys, dt, steps, opts.kernel_cache.as_deref(), &bar)?;
     let mut run = kernels.run(model, opts, &bar)?;
     run.summary.run.kernel_cache = (cache != CacheUse::Off).then_some(cache);
     bar.finish_and_clear();
@@ -91,6 +88,22 @@ const CACHE_FORMAT: u32 = 1;
 const CACHE_MAGIC: &[u8; 18] = b"impactlab-kernels\n";
 
 impl Kernels {
+    /// The kernels of a model: through the cache in `cache` when given
+    /// ([`Kernels::cached`]), computed otherwise.
+    pub fn for_run(
+        model: &Model,
+        sys: &System,
+        dt: f64,
+        steps: usize,
+        cache: Option<&std::path::Path>,
+        bar: &ProgressBar,
+    ) -> Result<(Kernels, CacheUse), RunError> {
+        match cache {
+            Some(dir) => Kernels::cached(model, sys, dt, steps, dir, bar),
+            None => Ok((Kernels::compute(model, sys, dt, steps, bar)?, CacheUse::Off)),
+        }
+    }
+
     /// The kernels of a model from the cache directory `dir` when a file there holds
     /// them for exactly this input, else computed and stored (atomically). The file is
     /// named by a SHA-256 of everything the kernels depend on: the format version, Δt,
@@ -175,15 +188,12 @@ impl Kernels {
     /// these kernels; `opts` as for any run, its Δt and steps those of the kernels.
     pub fn run(&self, model: &Model, opts: &RunOptions, bar: &ProgressBar) -> Result<RunResult, RunError> {
         let t0 = std::time::Instant::now();
-        let form = match opts.scheme {
-            Scheme::Newmark => ContactForm::Endpoint,
-            Scheme::Energy => ContactForm::DiscreteGradient,
-            s => {
-                return Err(RunError::Engine(format!(
-                    "the convolution engine runs the trapezoidal schemes (newmark, energy), not {s}"
-                )))
-            }
-        };
+        let form = opts.scheme.newmark_params().map(|p| p.contact).ok_or_else(|| {
+            RunError::Engine(format!(
+                "the convolution engine runs the trapezoidal schemes (newmark, energy), not {}",
+                opts.scheme
+            ))
+        })?;
         if !opts.snapshot_times.is_empty() {
             return Err(RunError::Engine(
                 "field snapshots need the whole field: run them on the direct engine".into(),
@@ -377,20 +387,20 @@ pub fn engine_difference(direct: &RunResult, conv: &RunResult) -> Option<(f64, S
     );
     let times: Vec<f64> = direct.history.iter().map(|r| r[0]).collect();
     let cols = &direct.history_columns;
+    let column = |h: &[Vec<f64>], j: usize| h.iter().map(|r| r[j]).collect::<Vec<f64>>();
+    let peaks: Vec<f64> = (0..cols.len())
+        .map(|j| peak(&mut direct.history.iter().map(|r| r[j])))
+        .collect();
+    let unit: Vec<String> = cols.iter().map(|c| c.unit(units)).collect();
     for (j, c) in cols.iter().enumerate().skip(1) {
-        let column = |h: &[Vec<f64>]| h.iter().map(|r| r[j]).collect::<Vec<f64>>();
-        let (a, b) = (column(&direct.history), column(&conv.history));
-        let unit = c.unit(units);
-        let family = cols
-            .iter()
-            .enumerate()
-            .filter(|(_, o)| o.unit(units) == unit)
-            .map(|(i, _)| peak(&mut direct.history.iter().map(|r| r[i])))
+        let family = (0..cols.len())
+            .filter(|&i| unit[i] == unit[j])
+            .map(|i| peaks[i])
             .fold(0.0, f64::max);
         // A column below 1e-8 of its family's peak is zero in exact arithmetic (by
         // symmetry): its own peak is round-off, so the family's is the scale.
-        let own = peak(&mut a.iter().copied());
-        let scale = if own < 1e-8 * family { family } else { own };
+        let scale = if peaks[j] < 1e-8 * family { family } else { peaks[j] };
+        let (a, b) = (column(&direct.history, j), column(&conv.history, j));
         judge(c.header(units), scale, &a, &b, &times);
     }
     Some(worst)

@@ -460,29 +460,9 @@ fn history_row(m: &Model, h: &RowHead, linear: &[f64]) -> Vec<f64> {
 pub fn run_model(model: &Model, opts: &RunOptions) -> Result<RunResult, RunError> {
     preflight(model, opts)?;
     let t0 = std::time::Instant::now();
-    let sys = assemble(model);
-    // A DOF with neither stiffness nor mass is a mechanism whether or not anything
-    // loads it: say so rather than drop it as inert.
-    let (kd, md) = (sys.k_diag(), sys.m_diag());
-    if let Some(i) = (0..sys.n).find(|&i| kd[i] <= 0.0 && md[i] <= 0.0) {
-        return Err(SolveError::Mechanism {
-            dof: model.dofs[i].to_string(),
-        }
-        .into());
-    }
-    let reduced = if opts.skip_inert {
-        drop_inert(model, &sys).map(|m| {
-            let s = assemble(&m);
-            (m, s)
-        })
-    } else {
-        None
-    };
+    let (model, sys) = solved_system(model, opts.skip_inert)?;
     let assembly_time = t0.elapsed();
-    let (model, sys) = match &reduced {
-        Some((m, s)) => (m, s),
-        None => (model, &sys),
-    };
+    let (model, sys) = (model.as_ref(), &sys);
     let with_assembly = |run: &mut RunResult| {
         run.stats.assembly_time = assembly_time;
         run.summary.run.assembly_s = assembly_time.as_secs_f64();
@@ -497,6 +477,28 @@ pub fn run_model(model: &Model, opts: &RunOptions) -> Result<RunResult, RunError
             Err(RunError::EnergyGuard { trip, partial })
         }
         Err(e) => Err(e),
+    }
+}
+
+/// The model as a run solves it, with its assembled system: refused when a DOF has
+/// neither stiffness nor mass (a mechanism, whether or not anything loads it), its
+/// inert DOFs dropped when `skip_inert` ([`drop_inert`]; the model is then a reduced
+/// copy).
+pub fn solved_system(model: &Model, skip_inert: bool) -> Result<(std::borrow::Cow<'_, Model>, System), RunError> {
+    let sys = assemble(model);
+    let (kd, md) = (sys.k_diag(), sys.m_diag());
+    if let Some(i) = (0..sys.n).find(|&i| kd[i] <= 0.0 && md[i] <= 0.0) {
+        return Err(SolveError::Mechanism {
+            dof: model.dofs[i].to_string(),
+        }
+        .into());
+    }
+    match skip_inert.then(|| drop_inert(model, &sys)).flatten() {
+        Some(m) => {
+            let s = assemble(&m);
+            Ok((std::borrow::Cow::Owned(m), s))
+        }
+        None => Ok((std::borrow::Cow::Borrowed(model), sys)),
     }
 }
 

@@ -12,7 +12,7 @@
 use crate::integrate::Scheme;
 use crate::model::{Model, Modify};
 use crate::run::convolution::{engine_difference, CacheUse, Kernels};
-use crate::run::{run_model, Column, Engine, RunError, RunOptions, RunResult};
+use crate::run::{run_model, solved_system, Column, Engine, RunError, RunOptions, RunResult};
 use crate::Error;
 use indicatif::ProgressBar;
 use std::path::Path;
@@ -252,24 +252,18 @@ pub fn sweep(base: &Model, run: &RunOptions, opts: &SweepOptions) -> Result<Swee
         .filter(|i| opts.shard.is_none_or(|(k, n)| i % n == k - 1))
         .collect();
     let bar = opts.progress.clone().unwrap_or_else(ProgressBar::hidden);
-    let sys = crate::assembly::assemble(base);
-    let reduced = crate::assembly::drop_inert(base, &sys);
-    let (model, sys) = match reduced {
-        Some(m) => {
-            let s = crate::assembly::assemble(&m);
-            (m, s)
-        }
-        None => (base.clone(), sys),
-    };
+    let (model, sys) = solved_system(base, run.skip_inert)?;
+    let model = model.as_ref();
     let dt = run.dt.unwrap_or(model.time.dt);
     let steps = run.steps.unwrap_or(model.time.steps);
-    let (kernels, cache) = match &run.kernel_cache {
-        Some(dir) => Kernels::cached(&model, &sys, dt, steps, dir, &ProgressBar::hidden())?,
-        None => (
-            Kernels::compute(&model, &sys, dt, steps, &ProgressBar::hidden())?,
-            CacheUse::Off,
-        ),
-    };
+    let (kernels, cache) = Kernels::for_run(
+        model,
+        &sys,
+        dt,
+        steps,
+        run.kernel_cache.as_deref(),
+        &ProgressBar::hidden(),
+    )?;
     bar.set_length(mine.len() as u64);
     let t0 = std::time::Instant::now();
     let opts_conv = RunOptions {
@@ -287,7 +281,7 @@ pub fn sweep(base: &Model, run: &RunOptions, opts: &SweepOptions) -> Result<Swee
                 let k = next.fetch_add(1, Ordering::Relaxed);
                 let Some(&i) = mine.get(k) else { break };
                 let result = (|| -> Result<Vec<f64>, Error> {
-                    let m = point_model(&model, &opts.varies, &all[i])?;
+                    let m = point_model(model, &opts.varies, &all[i])?;
                     let conv = match kernels.run(&m, &opts_conv, &ProgressBar::hidden()) {
                         Ok(r) => r,
                         Err(RunError::EnergyGuard { partial, .. }) => *partial,
@@ -321,19 +315,24 @@ pub fn sweep(base: &Model, run: &RunOptions, opts: &SweepOptions) -> Result<Swee
     let mut rows = rows.into_inner().expect("no worker panics");
     rows.sort_by_key(|(i, _)| *i);
     let rows: Vec<Vec<f64>> = rows.into_iter().map(|(_, r)| r).collect::<Result<_, _>>()?;
-    let col = header(&model, &opts.varies).len() - 1;
-    let checks: Vec<f64> = rows.iter().map(|r| r[col]).filter(|v| !v.is_nan()).collect();
+    let (direct_checks, worst_direct_check) = direct_checks(&rows);
     Ok(SweepOutcome {
-        header: header(&model, &opts.varies),
-        direct_checks: checks.len(),
-        worst_direct_check: checks
-            .iter()
-            .fold(0.0, |a: f64, &v| if v > a || v.is_nan() { v } else { a }),
+        header: header(model, &opts.varies),
+        direct_checks,
+        worst_direct_check,
         rows,
         kernel_pass_s: kernels.pass_s,
         kernel_cache: cache,
         points_s: t0.elapsed().as_secs_f64(),
     })
+}
+
+/// The points of `sweep.csv` rows also run on the direct engine: how many, and the
+/// largest difference (0 when none; `direct_check` is the last column, empty where a
+/// point was not checked).
+pub fn direct_checks(rows: &[Vec<f64>]) -> (usize, f64) {
+    let checks = rows.iter().filter_map(|r| r.last().copied()).filter(|v| !v.is_nan());
+    checks.fold((0, 0.0), |(n, worst), v| (n + 1, worst.max(v)))
 }
 
 /// `sweep.csv`: the header, then the rows; numbers in the shortest form that reads
