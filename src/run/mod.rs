@@ -53,7 +53,9 @@ pub struct RunOptions {
     pub max_memory: Option<u64>,
 }
 
-/// The default memory limit of a run: 4 GiB.
+/// The default memory limit of a run: 4 GiB, a sixth of the project machine's 24 GiB,
+/// so that two jobs (`--jobs 2`) stay well inside it; the paper's plate over 3000
+/// steps is estimated at about 0.1 GiB.
 pub const DEFAULT_MAX_MEMORY: u64 = 4 << 30;
 
 /// Bytes a run of `steps` steps would hold beyond the model: the assembled system
