@@ -165,7 +165,15 @@ fn all_errors_of_a_deck_are_reported_together() {
 #[test]
 fn unknown_cards_are_warnings_with_allow_unknown() {
     let text = format!("{HEAD}FOO,1\nENDDATA\n");
-    let d = parse_deck_str("t.bdf", &text, ReadOptions { allow_unknown: true }).unwrap();
+    let d = parse_deck_str(
+        "t.bdf",
+        &text,
+        ReadOptions {
+            allow_unknown: true,
+            ..Default::default()
+        },
+    )
+    .unwrap();
     assert!(d.warnings.iter().any(|w| w.to_string().contains("FOO")));
 }
 
@@ -243,4 +251,65 @@ fn embedded_paper_decks_are_the_reference_files() {
         assert_eq!(embedded.n(), from_file.n(), "{file}");
         assert_eq!(embedded.elements.len(), from_file.elements.len(), "{file}");
     }
+}
+
+#[test]
+fn limits_stop_a_deck_that_asks_for_too_much() {
+    use impactlab::deck::Limits;
+    let read = |text: &str, limits: Limits| {
+        let e = parse_deck_str(
+            "t.bdf",
+            text,
+            ReadOptions {
+                limits,
+                ..Default::default()
+            },
+        )
+        .unwrap_err();
+        e.diagnostics.iter().map(|d| d.to_string()).collect::<Vec<_>>()
+    };
+    let small = Limits {
+        max_cards: 10,
+        max_replication: 5,
+        max_include_depth: 0,
+    };
+    // Cards, written one by one or replicated (HEAD holds one: its TSTEP).
+    let grids: String = (1..=10).map(|g| format!("GRID,{g}\n")).collect();
+    let e = read(&format!("{HEAD}{grids}ENDDATA\n"), small);
+    assert!(
+        e[0].starts_with("t.bdf:15:1: error: the deck has more than 10 bulk data cards"),
+        "{e:?}"
+    );
+    assert!(e[0].ends_with("| GRID,10"), "{e:?}");
+    let e = read(&format!("{HEAD}GRID,1\n=(5),*(1)\n=(5),*(1)\nENDDATA\n"), small);
+    assert!(
+        e[0].contains("t.bdf:8:1: error: the deck has more than 10 bulk data cards"),
+        "{e:?}"
+    );
+    let e = read(&format!("{HEAD}GRID,1\n=(6),*(1)\nENDDATA\n"), small);
+    assert!(e[0].contains("replicates 6 cards, more than the limit of 5"), "{e:?}");
+    // INCLUDE: refused outright by the untrusted limits, and past the depth otherwise.
+    let e = read(
+        &format!("{HEAD}INCLUDE '/etc/hostname'\nENDDATA\n"),
+        Limits::untrusted(),
+    );
+    assert!(e[0].contains("INCLUDE is not allowed for this input"), "{e:?}");
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("main.bdf"), format!("{HEAD}INCLUDE 'a.bdf'\nENDDATA\n")).unwrap();
+    std::fs::write(dir.path().join("a.bdf"), "INCLUDE 'b.bdf'\n").unwrap();
+    std::fs::write(dir.path().join("b.bdf"), "GRID,1\n").unwrap();
+    let opts = |depth| ReadOptions {
+        limits: Limits {
+            max_include_depth: depth,
+            ..Limits::default()
+        },
+        ..Default::default()
+    };
+    let main = dir.path().join("main.bdf");
+    assert_eq!(impactlab::deck::read_deck(&main, opts(2)).unwrap().bulk.grids.len(), 1);
+    let e = impactlab::deck::read_deck(&main, opts(1)).unwrap_err().to_string();
+    assert!(
+        e.contains("a.bdf:1:1: error: INCLUDE: INCLUDE nested more than 1 deep"),
+        "{e}"
+    );
 }

@@ -197,3 +197,27 @@ fn command_line_options_on_a_scene_apply_or_are_refused() {
         assert!(err.contains("rod.toml") && err.contains("effects.membrane"), "{err}");
     }
 }
+
+/// Goal: a mesh whose deck the reader would refuse is refused while the scene is
+/// read, before any of the deck is generated (10^12 rod elements would otherwise be
+/// written out line by line).
+#[test]
+fn a_mesh_too_large_to_read_is_refused_before_it_is_generated() {
+    let at = std::path::Path::new("big.toml");
+    let rod = scene_text("rod.toml").replace("elements = 144 ", "elements = 1000000000000 ");
+    let e = impactlab::scene::parse(at, &rod).unwrap_err().to_string();
+    assert!(
+        e.contains("target.elements = 1000000000000 would generate about 2000000000002 deck cards, more than the reader's limit of 5000000"),
+        "{e}"
+    );
+    let plate = scene_text("plate.toml");
+    let mesh = plate.lines().find(|l| l.starts_with("mesh")).unwrap();
+    let e = impactlab::scene::parse(at, &plate.replace(mesh, "mesh = 1999"))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("target.mesh = 1999 would generate about 7996001 deck cards"),
+        "{e}"
+    );
+    assert!(impactlab::scene::parse(at, &plate.replace(mesh, "mesh = 1499")).is_ok());
+}

@@ -93,6 +93,7 @@ pub fn run(a: RunArgs) -> Result<u8, Error> {
     } else {
         let read = deck::ReadOptions {
             allow_unknown: a.allow_unknown,
+            ..Default::default()
         };
         let (model, warnings) = impactlab::load_deck(&a.deck, read)?;
         for w in &warnings {

@@ -9,6 +9,7 @@
 use super::diag::{Diagnostic, Diagnostics, Pos};
 use super::number::{format_real, parse_int, parse_real, RealToken};
 use super::source::SrcLine;
+use super::Limits;
 use std::collections::HashMap;
 
 /// One data field of a card.
@@ -165,7 +166,8 @@ struct Pattern {
 }
 
 /// Assembles bulk data lines into logical cards.
-pub fn assemble(lines: &[SrcLine], diags: &mut Diagnostics) -> Vec<RawCard> {
+/// Stops with an error at the first card past [`Limits::max_cards`].
+pub fn assemble(lines: &[SrcLine], limits: Limits, diags: &mut Diagnostics) -> Vec<RawCard> {
     let mut cards: Vec<RawCard> = Vec::new();
     // Open continuation markers: marker key -> card index.
     let mut open: HashMap<String, usize> = HashMap::new();
@@ -174,7 +176,17 @@ pub fn assemble(lines: &[SrcLine], diags: &mut Diagnostics) -> Vec<RawCard> {
         for phys in cut(line, diags) {
             let first = phys.first.text.clone();
             if first.starts_with('=') {
-                replicate(&phys, &mut cards, &mut last_pattern, diags);
+                let room = limits.max_cards.saturating_sub(cards.len());
+                if !replicate(
+                    &phys,
+                    limits.max_replication,
+                    room,
+                    &mut cards,
+                    &mut last_pattern,
+                    diags,
+                ) {
+                    return cards;
+                }
                 continue;
             }
             if is_continuation(&first) {
@@ -215,6 +227,10 @@ pub fn assemble(lines: &[SrcLine], diags: &mut Diagnostics) -> Vec<RawCard> {
                 continue;
             }
             let name = first.trim_end_matches('*').trim().to_ascii_uppercase();
+            if cards.len() == limits.max_cards {
+                diags.push(too_many_cards(&phys, limits.max_cards));
+                return cards;
+            }
             let i = cards.len();
             cards.push(RawCard {
                 name,
@@ -258,24 +274,29 @@ fn pad(card: &mut RawCard, large_next: bool) {
     }
 }
 
-/// The most cards one replication line may generate: far above any real mesh line,
-/// low enough that a typo (`=(100000000)`) is an error rather than exhausted memory.
-pub const MAX_REPLICATION: usize = 1_000_000;
+/// The error at the first card past the limit; the reader stops there.
+fn too_many_cards(phys: &PhysLine, max: usize) -> Diagnostic {
+    Diagnostic::error(
+        Some(phys.first.pos.clone()),
+        format!("the deck has more than {max} bulk data cards (the reader's limit); reading stops here"),
+    )
+    .quote(&phys.src)
+}
 
 /// The repeat count of a replication line's field 1: `=` (1), `=(n)` or `=n`.
-fn repeat_count(first: &Field, src: &str, diags: &mut Diagnostics) -> Option<usize> {
+fn repeat_count(first: &Field, max: usize, src: &str, diags: &mut Diagnostics) -> Option<usize> {
     let t = first.text.trim();
     if t == "=" {
         return Some(1);
     }
     let inner = t[1..].trim().trim_start_matches('(').trim_end_matches(')').trim();
     match parse_int(inner) {
-        Some(n) if n >= 1 && n as u64 <= MAX_REPLICATION as u64 => Some(n as usize),
+        Some(n) if n >= 1 && n as u64 <= max as u64 => Some(n as usize),
         Some(n) if n >= 1 => {
             diags.push(
                 Diagnostic::error(
                     Some(first.pos.clone()),
-                    format!("replicates {n} cards, more than the limit of {MAX_REPLICATION}"),
+                    format!("replicates {n} cards, more than the limit of {max}"),
                 )
                 .field(1, "replication")
                 .token(t)
@@ -298,10 +319,23 @@ fn repeat_count(first: &Field, src: &str, diags: &mut Diagnostics) -> Option<usi
     }
 }
 
-fn replicate(phys: &PhysLine, cards: &mut Vec<RawCard>, last_pattern: &mut Option<Pattern>, diags: &mut Diagnostics) {
-    let Some(count) = repeat_count(&phys.first, &phys.src, diags) else {
-        return;
+/// Generates a replication line's cards; false when they would pass the deck's card
+/// limit (`room` cards are left), which ends the reading.
+fn replicate(
+    phys: &PhysLine,
+    max_replication: usize,
+    room: usize,
+    cards: &mut Vec<RawCard>,
+    last_pattern: &mut Option<Pattern>,
+    diags: &mut Diagnostics,
+) -> bool {
+    let Some(count) = repeat_count(&phys.first, max_replication, &phys.src, diags) else {
+        return true;
     };
+    if count > room {
+        diags.push(too_many_cards(phys, cards.len() + room));
+        return false;
+    }
     if cards.is_empty() {
         diags.push(
             Diagnostic::error(
@@ -310,7 +344,7 @@ fn replicate(phys: &PhysLine, cards: &mut Vec<RawCard>, last_pattern: &mut Optio
             )
             .quote(&phys.src),
         );
-        return;
+        return true;
     }
     let bare = phys.data.iter().all(|f| f.text.is_empty());
     let pattern = if bare {
@@ -367,7 +401,7 @@ fn replicate(phys: &PhysLine, cards: &mut Vec<RawCard>, last_pattern: &mut Optio
                 });
             }
             if !ok {
-                return;
+                return true;
             }
         }
         while fields.last().is_some_and(|f| f.text.is_empty()) {
@@ -384,6 +418,7 @@ fn replicate(phys: &PhysLine, cards: &mut Vec<RawCard>, last_pattern: &mut Optio
     if !bare {
         *last_pattern = Some(pattern);
     }
+    true
 }
 
 /// Why a replication increment cannot be applied.

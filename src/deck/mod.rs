@@ -120,12 +120,55 @@ impl std::error::Error for DeckError {}
 pub struct ReadOptions {
     /// Unknown cards become warnings instead of errors.
     pub allow_unknown: bool,
+    /// What one deck may ask of the reader.
+    pub limits: Limits,
+}
+
+/// What one deck may ask of the reader: past these a deck is an error naming the
+/// limit, never exhausted memory or an endless read.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Limits {
+    /// Bulk data cards in all, replicated ones included: bounds the grids, elements
+    /// and DOFs a deck can describe (and what the reader holds for them).
+    pub max_cards: usize,
+    /// Cards one replication line may generate.
+    pub max_replication: usize,
+    /// How deep INCLUDEs may nest (a file the deck includes is depth 1); 0 refuses INCLUDE.
+    pub max_include_depth: usize,
+}
+
+impl Default for Limits {
+    /// For decks from the analyst's own disk: 5 million cards (the 199×199 plate has
+    /// about 80 thousand; a million-line deck fits, at about 0.4 kB held per card),
+    /// a million cards per replication line (far above any real mesh line, low enough
+    /// that a typo such as `=(100000000)` is an error), INCLUDEs 16 deep.
+    fn default() -> Self {
+        Limits {
+            max_cards: 5_000_000,
+            max_replication: 1_000_000,
+            max_include_depth: 16,
+        }
+    }
+}
+
+impl Limits {
+    /// For input from anywhere, such as a fuzzer's: 1 000 cards (the paper's rod deck
+    /// has 300, its plate 5 100), 1 000 per replication line, no INCLUDE (it would
+    /// read files named by the input). What one such deck costs to read is then
+    /// bounded by what a small deck costs.
+    pub fn untrusted() -> Self {
+        Limits {
+            max_cards: 1_000,
+            max_replication: 1_000,
+            max_include_depth: 0,
+        }
+    }
 }
 
 /// Reads a deck file.
 pub fn read_deck(path: &Path, opts: ReadOptions) -> Result<Deck, DeckError> {
     let mut diags = Diagnostics::default();
-    let sections = source::read_sections(path, &mut diags);
+    let sections = source::read_sections(path, opts.limits, &mut diags);
     let name = path
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
@@ -136,7 +179,7 @@ pub fn read_deck(path: &Path, opts: ReadOptions) -> Result<Deck, DeckError> {
 /// Reads deck text held in memory.
 pub fn parse_deck_str(name: &str, text: &str, opts: ReadOptions) -> Result<Deck, DeckError> {
     let mut diags = Diagnostics::default();
-    let sections = source::sections_from_str(name, text, &mut diags);
+    let sections = source::sections_from_str(name, text, opts.limits, &mut diags);
     finish(name.to_string(), sections, opts, diags)
 }
 
@@ -158,7 +201,7 @@ fn finish(
             line: l.line,
             column: 1,
         });
-    let raw = bulk::assemble(&sections.bulk, &mut diags);
+    let raw = bulk::assemble(&sections.bulk, opts.limits, &mut diags);
     let (bulk, unknown) = cards::type_cards(&raw, &mut diags);
     report_unknown(&unknown, opts, &mut diags);
     check_duplicates(&bulk, &mut diags);

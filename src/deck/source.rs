@@ -2,6 +2,7 @@
 //! case control and bulk data.
 
 use super::diag::{Diagnostic, Diagnostics, Pos};
+use super::Limits;
 use sha2::{Digest, Sha256};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -44,8 +45,11 @@ pub struct Sections {
 }
 
 /// Reads `path`, expands INCLUDEs (relative to the including file) and splits sections.
-pub fn read_sections(path: &Path, diags: &mut Diagnostics) -> Sections {
-    let mut read = Read::default();
+pub fn read_sections(path: &Path, limits: Limits, diags: &mut Diagnostics) -> Sections {
+    let mut read = Read {
+        max_depth: limits.max_include_depth,
+        ..Default::default()
+    };
     let errors = diags.items.iter().filter(|d| d.is_error()).count();
     expand(path, None, &mut read, diags);
     if read.lines.is_empty() && diags.items.iter().filter(|d| d.is_error()).count() > errors {
@@ -60,10 +64,11 @@ pub fn read_sections(path: &Path, diags: &mut Diagnostics) -> Sections {
 
 /// Reads deck text held in memory (used by tests and fuzzing); INCLUDEs are resolved
 /// relative to the working directory.
-pub fn sections_from_str(name: &str, text: &str, diags: &mut Diagnostics) -> Sections {
+pub fn sections_from_str(name: &str, text: &str, limits: Limits, diags: &mut Diagnostics) -> Sections {
     let file: Arc<str> = Arc::from(name);
     let mut read = Read {
         stack: vec![PathBuf::from(name)],
+        max_depth: limits.max_include_depth,
         ..Default::default()
     };
     read.hasher.update(text.as_bytes());
@@ -78,6 +83,8 @@ pub fn sections_from_str(name: &str, text: &str, diags: &mut Diagnostics) -> Sec
 struct Read {
     /// The files being read, innermost last (to find INCLUDE cycles).
     stack: Vec<PathBuf>,
+    /// [`Limits::max_include_depth`].
+    max_depth: usize,
     lines: Vec<SrcLine>,
     hasher: Sha256,
 }
@@ -93,6 +100,17 @@ fn expand(path: &Path, from: Option<Pos>, read: &mut Read, diags: &mut Diagnosti
             Diagnostic::error(from, format!("INCLUDE cycle: '{}' includes itself", path.display())).card("INCLUDE"),
         );
         return;
+    }
+    // Only regular files: a device or FIFO (`/dev/zero`, `/dev/stdin`) never ends.
+    if let Ok(meta) = std::fs::metadata(path) {
+        if !meta.is_file() {
+            let mut d = Diagnostic::error(from.clone(), format!("'{}' is not a regular file", path.display()));
+            if from.is_some() {
+                d = d.card("INCLUDE");
+            }
+            diags.push(d);
+            return;
+        }
     }
     let bytes = match std::fs::read(path) {
         Ok(b) => b,
@@ -124,6 +142,17 @@ fn push_lines(file: Arc<str>, text: &str, dir: &Path, read: &mut Read, diags: &m
         };
         if let Some(target) = include_target(&line.text) {
             match target {
+                Ok(_) if read.stack.len() > read.max_depth => diags.push(
+                    Diagnostic::error(
+                        Some(line.pos(1)),
+                        match read.max_depth {
+                            0 => "INCLUDE is not allowed for this input (the reader's limit: no INCLUDE)".to_string(),
+                            n => format!("INCLUDE nested more than {n} deep (the reader's limit)"),
+                        },
+                    )
+                    .card("INCLUDE")
+                    .quote(&line.text),
+                ),
                 Ok(name) => {
                     let p = dir.join(&name);
                     expand(&p, Some(line.pos(1)), read, diags);

@@ -34,15 +34,18 @@ impl fmt::Display for ModelError {
 
 impl std::error::Error for ModelError {}
 
+#[derive(Default)]
 struct Ctx {
     diags: Vec<Diagnostic>,
+    /// The text of every error recorded, to report each once in linear time.
+    seen: std::collections::HashSet<String>,
 }
 
 impl Ctx {
     /// Records an error once: the same message at the same place (a property used by
     /// many elements) is reported once.
     fn err(&mut self, d: Diagnostic) {
-        if !self.diags.iter().any(|e| e.to_string() == d.to_string()) {
+        if self.seen.insert(d.to_string()) {
             self.diags.push(d);
         }
     }
@@ -175,7 +178,7 @@ struct Elements {
 /// Builds the model of a deck, collecting every error: named stages, each reporting
 /// its problems against the cards.
 pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> {
-    let mut cx = Ctx { diags: Vec::new() };
+    let mut cx = Ctx::default();
     let case = &deck.case;
     let sel = select_cards(&mut cx, deck);
     let constrained = constrained_grids(&mut cx, deck, &sel);

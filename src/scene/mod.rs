@@ -239,13 +239,30 @@ pub fn read(path: &Path) -> Result<Scene, SceneError> {
         path: path.display().to_string(),
         source,
     })?;
-    let s: Scene = toml::from_str(&text).map_err(|e| SceneError::Invalid {
+    parse(path, &text)
+}
+
+/// Reads a scene from its text; `path` names it in errors.
+pub fn parse(path: &Path, text: &str) -> Result<Scene, SceneError> {
+    let s: Scene = toml::from_str(text).map_err(|e| SceneError::Invalid {
         path: path.display().to_string(),
         line: e.span().map(|r| text[..r.start].lines().count().max(1)),
         issue: SceneIssue(e.message().to_string()),
     })?;
     validate(&s).map_err(|e| invalid(path, e))?;
     Ok(s)
+}
+
+/// Refuses a mesh whose generated deck would have more than `cards` bulk cards
+/// (the reader's [`crate::deck::Limits`]), before any of it is generated.
+fn mesh_fits(name: &str, size: usize, cards: u128) -> Result<(), SceneIssue> {
+    let max = crate::deck::Limits::default().max_cards as u128;
+    if cards > max {
+        return Err(SceneIssue(format!(
+            "{name} = {size} would generate about {cards} deck cards, more than the reader's limit of {max}"
+        )));
+    }
+    Ok(())
 }
 
 /// A positive finite number, or why not.
@@ -309,6 +326,8 @@ fn validate_target(s: &Scene) -> Result<(), SceneIssue> {
                     "target.elements must be even and at least 2, not {elements}"
                 )));
             }
+            // A GRID and a CROD per element.
+            mesh_fits("target.elements", *elements, 2 * *elements as u128 + 2)?;
             for e in ends {
                 if e != "free" && e != "fixed" {
                     return Err(SceneIssue(format!(
@@ -344,6 +363,9 @@ fn validate_target(s: &Scene) -> Result<(), SceneIssue> {
                     "target.mesh must be odd and at least 3, not {mesh}"
                 )));
             }
+            // A GRID per node and a CQUAD4 per element.
+            let n = *mesh as u128;
+            mesh_fits("target.mesh", *mesh, (n + 1) * (n + 1) + n * n)?;
             for e in edges {
                 if e != "clamped" && e != "free" {
                     return Err(SceneIssue(format!(
