@@ -302,6 +302,7 @@ fn engine_parser() -> impl clap::builder::TypedValueParser<Value = Engine> {
 }
 
 fn main() -> ExitCode {
+    cli::handle_signals();
     let result = match Cli::parse().command {
         Command::Run(a) => cli::run(a),
         Command::Scene(a) => cli::scene(a),

@@ -11,6 +11,7 @@ use impactlab::{deck, output, verify, Error};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
 
 // Printing never panics: a closed pipe (`impactlab ... | head`) just ends the output.
 fn say(s: &str) {
@@ -22,6 +23,42 @@ fn sayln(s: &str) {
 /// A line on standard error.
 pub fn say_err(s: &str) {
     let _ = writeln!(std::io::stderr(), "{s}");
+}
+
+/// The output directory the running command is about to write, named by the
+/// interrupt message.
+static DESTINATION: Mutex<Option<PathBuf>> = Mutex::new(None);
+
+fn set_destination(dir: Option<&Path>) {
+    *DESTINATION.lock().unwrap_or_else(|e| e.into_inner()) = dir.map(Path::to_path_buf);
+}
+
+/// SIGINT, SIGTERM and SIGHUP end the command, with exit code 128 + the signal's
+/// number, only between output writes ([`output::stop_writes`]): a file being written
+/// is finished first, none is started after, so every output path holds its previous
+/// contents or complete new ones. SIGXFSZ (a file-size limit reached) is caught so
+/// that the write fails with an error naming its path instead of killing the process.
+pub fn handle_signals() {
+    use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM, SIGXFSZ};
+    let _ = signal_hook::flag::register(SIGXFSZ, std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false)));
+    let Ok(mut signals) = signal_hook::iterator::Signals::new([SIGINT, SIGTERM, SIGHUP]) else {
+        return;
+    };
+    std::thread::spawn(move || {
+        if let Some(sig) = signals.forever().next() {
+            let _stopped = output::stop_writes();
+            let name = signal_hook::low_level::signal_name(sig).unwrap_or("a signal");
+            let dest = DESTINATION.lock().unwrap_or_else(|e| e.into_inner()).clone();
+            say_err(&match dest {
+                Some(d) => format!(
+                    "interrupted by {name}: {} was not written and holds what it held before",
+                    d.display()
+                ),
+                None => format!("interrupted by {name}; no output was left half-written"),
+            });
+            std::process::exit(128 + sig);
+        }
+    });
 }
 
 /// A progress bar on standard error when it is a terminal.
@@ -124,6 +161,7 @@ pub fn run(a: RunArgs) -> Result<u8, Error> {
         );
     }
     let dir = a.out.unwrap_or_else(|| PathBuf::from("out").join(&model.name));
+    set_destination(Some(&dir));
     let (mut r, failure) = match impactlab::run::run_model(&model, &opts) {
         Ok(r) => (r, None),
         Err(impactlab::run::RunError::EnergyGuard { trip, partial }) => (*partial, Some(trip)),
@@ -140,6 +178,7 @@ pub fn run(a: RunArgs) -> Result<u8, Error> {
     }
     report_cache(&r.summary.run.kernel_cache);
     output::write_dir_atomically(&dir, &output::run_files(&model, &r)).map_err(io_error(&dir))?;
+    set_destination(a.fields.as_deref());
     say(&output::human_summary(&model, &r));
     sayln(&format!("  outputs:  {}", dir.display()));
     if let Some(trip) = failure {

@@ -104,7 +104,9 @@ fn expand(path: &Path, from: Option<Pos>, read: &mut Read, diags: &mut Diagnosti
     // Only regular files: a device or FIFO (`/dev/zero`, `/dev/stdin`) never ends.
     if let Ok(meta) = std::fs::metadata(path) {
         if !meta.is_file() {
-            let mut d = Diagnostic::error(from.clone(), format!("'{}' is not a regular file", path.display()));
+            let what = if from.is_some() { "INCLUDE file" } else { "deck" };
+            let msg = format!("cannot read {what} '{}': not a regular file", path.display());
+            let mut d = Diagnostic::error(from.clone(), msg);
             if from.is_some() {
                 d = d.card("INCLUDE");
             }

@@ -1,8 +1,11 @@
 //! Writing a run's files: `history.csv`, `energy.csv`, `summary.json`.
 //!
-//! A run's outputs are staged in a fresh directory beside the target and swapped in
-//! with renames, so an interrupted or failed run leaves either the previous complete
-//! outputs or the new complete outputs, never a mix or a half-written file.
+//! A run's outputs are staged in a fresh directory beside the target and exchanged
+//! with it in one rename (`renameat2(RENAME_EXCHANGE)`), so that an interrupted,
+//! failed or concurrent run leaves either the previous complete outputs or one run's
+//! complete new outputs, never a mix, a half-written file or a missing directory.
+//! Every write holds [`WRITES`] shared: [`stop_writes`] waits for the writes in
+//! progress and lets no new one start, which is how an interrupted command ends.
 
 use crate::ledger;
 use crate::model::Model;
@@ -10,14 +13,36 @@ use crate::run::RunResult;
 use std::fs;
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
+use std::sync::{RwLock, RwLockWriteGuard};
 
-/// Writes named files into `dir` all at once (stage, then swap).
-pub fn write_dir_atomically(dir: &Path, files: &[(&str, Vec<u8>)]) -> io::Result<()> {
-    let parent = match dir.parent() {
+/// Held shared by every write of this module, taken exclusively by [`stop_writes`].
+static WRITES: RwLock<()> = RwLock::new(());
+
+/// Waits until no output is being written and keeps it so: no write starts while
+/// the guard lives. An interrupted command takes it, then exits.
+pub fn stop_writes() -> RwLockWriteGuard<'static, ()> {
+    WRITES.write().unwrap_or_else(|e| e.into_inner())
+}
+
+/// The directory `path` sits in (`.` for a bare name), created if missing.
+fn parent_of(path: &Path) -> io::Result<PathBuf> {
+    let parent = match path.parent() {
         Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
         _ => PathBuf::from("."),
     };
     fs::create_dir_all(&parent)?;
+    Ok(parent)
+}
+
+/// Writes named files into `dir` all at once (stage beside it, then exchange).
+///
+/// An existing `dir` is replaced only when it holds nothing but regular files (an
+/// earlier output directory), so that `--out .` or `--out ~` is an error instead of
+/// a deleted directory tree.
+pub fn write_dir_atomically(dir: &Path, files: &[(&str, Vec<u8>)]) -> io::Result<()> {
+    let _writing = WRITES.read().unwrap_or_else(|e| e.into_inner());
+    check_replaceable(dir)?;
+    let parent = parent_of(dir)?;
     let name = dir
         .file_name()
         .map(|s| s.to_string_lossy().into_owned())
@@ -31,41 +56,76 @@ pub fn write_dir_atomically(dir: &Path, files: &[(&str, Vec<u8>)]) -> io::Result
         f.sync_all()?;
     }
     set_mode(stage.path(), 0o755)?;
-    let staged = stage.keep();
-    if dir.exists() {
-        let old = tempfile::Builder::new()
-            .prefix(&format!(".{name}.previous-"))
-            .tempdir_in(&parent)?
-            .keep();
-        fs::remove_dir(&old)?;
-        fs::rename(dir, &old)?;
-        if let Err(e) = fs::rename(&staged, dir) {
-            // Put the previous outputs back.
-            let _ = fs::rename(&old, dir);
-            let _ = fs::remove_dir_all(&staged);
-            return Err(e);
+    if swap_in(stage.path(), dir)? {
+        // The stage now holds the previous outputs; dropping it removes them.
+        drop(stage);
+    } else {
+        let _ = stage.keep();
+    }
+    sync_dir(&parent)
+}
+
+/// Refuses to replace anything but a directory of regular files.
+fn check_replaceable(dir: &Path) -> io::Result<()> {
+    let Ok(meta) = fs::symlink_metadata(dir) else {
+        return Ok(());
+    };
+    let refuse = |why: String| {
+        Err(io::Error::new(
+            io::ErrorKind::AlreadyExists,
+            format!("{why}; refusing to replace it (choose another output directory or remove it)"),
+        ))
+    };
+    if !meta.is_dir() {
+        return refuse("it exists and is not a directory".into());
+    }
+    for entry in fs::read_dir(dir)? {
+        let entry = entry?;
+        if !entry.file_type()?.is_file() {
+            return refuse(format!(
+                "it holds '{}', which is not a regular file, so it is not an output directory",
+                entry.file_name().to_string_lossy()
+            ));
         }
-        fs::remove_dir_all(&old)?;
-    } else if let Err(e) = fs::rename(&staged, dir) {
-        let _ = fs::remove_dir_all(&staged);
-        return Err(e);
     }
     Ok(())
 }
 
+/// Puts the staged directory at `dir`: renamed there if `dir` does not exist, else
+/// exchanged with it in one step. True when `staged` now holds the previous `dir`.
+fn swap_in(staged: &Path, dir: &Path) -> io::Result<bool> {
+    use rustix::fs::{renameat_with, RenameFlags, CWD};
+    use rustix::io::Errno;
+    loop {
+        match renameat_with(CWD, staged, CWD, dir, RenameFlags::NOREPLACE) {
+            Ok(()) => return Ok(false),
+            Err(Errno::EXIST) => {}
+            Err(e) => return Err(e.into()),
+        }
+        match renameat_with(CWD, staged, CWD, dir, RenameFlags::EXCHANGE) {
+            Ok(()) => return Ok(true),
+            // Removed by someone else between the two calls: try again.
+            Err(Errno::NOENT) => {}
+            Err(e) => return Err(e.into()),
+        }
+    }
+}
+
+/// Makes a rename in `dir` durable.
+fn sync_dir(dir: &Path) -> io::Result<()> {
+    fs::File::open(dir)?.sync_all()
+}
+
 /// Writes one file atomically (temporary file in the same directory, then rename).
 pub fn write_file_atomically(path: &Path, bytes: &[u8]) -> io::Result<()> {
-    let parent = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
-    fs::create_dir_all(&parent)?;
+    let _writing = WRITES.read().unwrap_or_else(|e| e.into_inner());
+    let parent = parent_of(path)?;
     let mut tmp = tempfile::NamedTempFile::new_in(&parent)?;
     tmp.write_all(bytes)?;
     tmp.as_file().sync_all()?;
     set_mode(tmp.path(), 0o644)?;
     tmp.persist(path).map_err(|e| e.error)?;
-    Ok(())
+    sync_dir(&parent)
 }
 
 /// Temporary files and directories are private (0600/0700); outputs are not.
