@@ -430,6 +430,8 @@ enum IncrementError {
     NotANumber(String),
     #[error("is not a number to increment by")]
     BadIncrement,
+    #[error("'{0}' incremented by '{1}' is out of range")]
+    OutOfRange(String, String),
 }
 
 /// `previous + increment`, integer when both are integers, real otherwise.
@@ -437,15 +439,17 @@ fn increment(prev: &str, inc: &str) -> Result<String, IncrementError> {
     if prev.is_empty() {
         return Err(IncrementError::Blank);
     }
+    let out_of_range = || IncrementError::OutOfRange(prev.to_string(), inc.to_string());
     if let (Some(a), Some(b)) = (parse_int(prev), parse_int(inc)) {
-        return Ok((a + b).to_string());
+        return a.checked_add(b).map(|v| v.to_string()).ok_or_else(out_of_range);
     }
     let val = |s: &str| match parse_real(s) {
         Some(RealToken::Real(v)) | Some(RealToken::Integer(v)) => Some(v),
         None => None,
     };
     match (val(prev), val(inc)) {
-        (Some(a), Some(b)) => Ok(format_real(a + b)),
+        (Some(a), Some(b)) if (a + b).is_finite() => Ok(format_real(a + b)),
+        (Some(_), Some(_)) => Err(out_of_range()),
         (None, _) => Err(IncrementError::NotANumber(prev.to_string())),
         (_, None) => Err(IncrementError::BadIncrement),
     }
