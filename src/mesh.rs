@@ -21,8 +21,8 @@ pub const GAGE_Y: [f64; 2] = [8.0 * 6.0 / 49.0, 16.0 * 6.0 / 49.0];
 /// A mesh size a generated deck cannot have.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum MeshError {
-    /// An even or too small plate mesh size.
-    #[error("the plate mesh needs an odd N ≥ 3 (an element at the centre), not {0}")]
+    /// An even, too small or too large plate mesh size.
+    #[error("the plate mesh needs an odd N from 3 to 997 (an element at the centre; grid ids 1000·row + col unique), not {0}")]
     Plate(usize),
     /// An odd or too small rod element count.
     #[error("the rod mesh needs an even number of elements (at least 2), not {0}")]
@@ -39,15 +39,24 @@ pub struct PlateMesh {
 }
 
 impl PlateMesh {
-    /// The mesh of `n` elements a side (odd, at least 3).
+    /// The largest mesh: 998 grids a side keep 1000·row + col unique.
+    pub const MAX_N: usize = 997;
+
+    /// The mesh of `n` elements a side (odd, from 3 to [`Self::MAX_N`]).
     pub fn new(n: usize) -> Result<Self, MeshError> {
-        if n < 3 || n % 2 == 0 {
+        if n < 3 || n % 2 == 0 || n > Self::MAX_N {
             return Err(MeshError::Plate(n));
         }
         Ok(PlateMesh {
             n,
             base: if n + 1 < 100 { 100 } else { 1000 },
         })
+    }
+
+    /// The EPOINT of the indentation: 10001 as in the paper's deck, base² + 1 in
+    /// general, above every grid id (the largest is base·(base − 1) + base − 1).
+    pub fn indentation_point(&self) -> usize {
+        self.base * self.base + 1
     }
 
     /// The id of the grid at `row`, `col`.
@@ -102,12 +111,13 @@ impl PlateMesh {
         }
     }
 
-    /// The TF defining the indentation (EPOINT 10001) as the impactor's T3 minus the
-    /// mean T3 of the contact grids.
+    /// The TF defining the indentation ([`Self::indentation_point`]) as the
+    /// impactor's T3 minus the mean T3 of the contact grids.
     pub fn write_indentation_tf(&self, w: &mut String) {
         let _ = writeln!(
             w,
-            "TF,111,10001,0,+1.0,0.0,0.0,,,+TF-1\n+TF-1,999,3,-1.0,0.0,0.0,,,,+TF-2"
+            "TF,111,{},0,+1.0,0.0,0.0,,,+TF-1\n+TF-1,999,3,-1.0,0.0,0.0,,,,+TF-2",
+            self.indentation_point()
         );
         for (k, g) in self.contact_grids().iter().enumerate() {
             let next = if k < 3 {
@@ -156,7 +166,8 @@ pub fn plate_deck(n: usize) -> Result<String, MeshError> {
     let _ = writeln!(w, "  NLLOAD = 15\n  DISP = 15");
     let _ = writeln!(w, "  SET 20 = {e},{ga},{gb}\n  STRESS = 20");
     let _ = writeln!(w, "BEGIN BULK");
-    let _ = writeln!(w, "EPOINT,10001\nGRID,999,,0.0,0.0,-0.1875");
+    let ep = m.indentation_point();
+    let _ = writeln!(w, "EPOINT,{ep}\nGRID,999,,0.0,0.0,-0.1875");
     let _ = writeln!(
         w,
         "CONM2,200,999,0,8.096-5,0.0,0.0,0.0,,+CON2-2\n+CON2-2,7.459-6,,7.459-6,,,1.423-6"
@@ -176,9 +187,9 @@ pub fn plate_deck(n: usize) -> Result<String, MeshError> {
     }
     let _ = writeln!(w, "SPC1,1,12456,999\nGRDSET,,,,,,,6\nTSTEP,1,2000,1.0-7,10");
     for g in contact {
-        let _ = writeln!(w, "NOLIN3,5,{g},3,+1.945+5,10001,0,1.5");
+        let _ = writeln!(w, "NOLIN3,5,{g},3,+1.945+5,{ep},0,1.5");
     }
-    let _ = writeln!(w, "NOLIN3,5,999,3,-7.779+5,10001,0,1.5");
+    let _ = writeln!(w, "NOLIN3,5,999,3,-7.779+5,{ep},0,1.5");
     m.write_indentation_tf(w);
     let _ = writeln!(w, "TIC,3,999,3,0.0,1470.0\nENDDATA");
     Ok(d)

@@ -198,26 +198,36 @@ fn command_line_options_on_a_scene_apply_or_are_refused() {
     }
 }
 
-/// Goal: a mesh whose deck the reader would refuse is refused while the scene is
-/// read, before any of the deck is generated (10^12 rod elements would otherwise be
-/// written out line by line).
+/// Goal: a mesh the generators cannot number is refused while the scene is read,
+/// before any of its deck is generated (10^12 rod elements would otherwise be
+/// written out line by line; rod grid 999 would be the impactor's, plate grid ids
+/// 1000·row + col repeat past 998 a side).
 #[test]
-fn a_mesh_too_large_to_read_is_refused_before_it_is_generated() {
+fn a_mesh_too_large_to_number_is_refused_before_it_is_generated() {
     let at = std::path::Path::new("big.toml");
-    let rod = scene_text("rod.toml").replace("elements = 144 ", "elements = 1000000000000 ");
-    let e = impactlab::scene::parse(at, &rod).unwrap_err().to_string();
-    assert!(
-        e.contains("target.elements = 1000000000000 would generate about 2000000000002 deck cards, more than the reader's limit of 5000000"),
-        "{e}"
-    );
+    let rod = scene_text("rod.toml");
+    for n in ["998", "1000000000000"] {
+        let e = impactlab::scene::parse(at, &rod.replace("elements = 144 ", &format!("elements = {n} ")))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains(&format!(
+                "target.elements must be even, from 2 to 996 (grid 999 is the impactor), not {n}"
+            )),
+            "{e}"
+        );
+    }
     let plate = scene_text("plate.toml");
     let mesh = plate.lines().find(|l| l.starts_with("mesh")).unwrap();
-    let e = impactlab::scene::parse(at, &plate.replace(mesh, "mesh = 1999"))
+    let e = impactlab::scene::parse(at, &plate.replace(mesh, "mesh = 999"))
         .unwrap_err()
         .to_string();
+    assert!(e.contains("target.mesh must be odd, from 3 to 997, not 999"), "{e}");
+    let s = impactlab::scene::parse(at, &plate.replace(mesh, "mesh = 101")).unwrap();
+    let deck = impactlab::scene::to_deck(&s).unwrap();
     assert!(
-        e.contains("target.mesh = 1999 would generate about 7996001 deck cards"),
-        "{e}"
+        deck.contains("EPOINT,1000001"),
+        "the indentation point is above every grid id"
     );
-    assert!(impactlab::scene::parse(at, &plate.replace(mesh, "mesh = 1499")).is_ok());
+    impactlab::model_from_text("big", &deck).unwrap();
 }

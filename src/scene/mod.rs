@@ -253,18 +253,6 @@ pub fn parse(path: &Path, text: &str) -> Result<Scene, SceneError> {
     Ok(s)
 }
 
-/// Refuses a mesh whose generated deck would have more than `cards` bulk cards
-/// (the reader's [`crate::deck::Limits`]), before any of it is generated.
-fn mesh_fits(name: &str, size: usize, cards: u128) -> Result<(), SceneIssue> {
-    let max = crate::deck::Limits::default().max_cards as u128;
-    if cards > max {
-        return Err(SceneIssue(format!(
-            "{name} = {size} would generate about {cards} deck cards, more than the reader's limit of {max}"
-        )));
-    }
-    Ok(())
-}
-
 /// A positive finite number, or why not.
 fn pos(name: &str, v: f64) -> Result<(), SceneIssue> {
     if v.is_finite() && v > 0.0 {
@@ -321,13 +309,12 @@ fn validate_target(s: &Scene) -> Result<(), SceneIssue> {
             pos("target.area", *area)?;
             pos("target.material.e", material.e)?;
             pos("target.material.rho", material.rho)?;
-            if *elements < 2 || elements % 2 != 0 {
+            // Grids 1..=elements+1; 999 is the impactor and EPOINT 10001 the indentation.
+            if *elements < 2 || elements % 2 != 0 || *elements > 996 {
                 return Err(SceneIssue(format!(
-                    "target.elements must be even and at least 2, not {elements}"
+                    "target.elements must be even, from 2 to 996 (grid 999 is the impactor), not {elements}"
                 )));
             }
-            // A GRID and a CROD per element.
-            mesh_fits("target.elements", *elements, 2 * *elements as u128 + 2)?;
             for e in ends {
                 if e != "free" && e != "fixed" {
                     return Err(SceneIssue(format!(
@@ -358,14 +345,12 @@ fn validate_target(s: &Scene) -> Result<(), SceneIssue> {
                     "target: the plate generator meshes square plates; a = {a} but b = {b}"
                 )));
             }
-            if *mesh < 3 || mesh % 2 == 0 {
+            if *mesh < 3 || mesh % 2 == 0 || *mesh > crate::mesh::PlateMesh::MAX_N {
                 return Err(SceneIssue(format!(
-                    "target.mesh must be odd and at least 3, not {mesh}"
+                    "target.mesh must be odd, from 3 to {}, not {mesh}",
+                    crate::mesh::PlateMesh::MAX_N
                 )));
             }
-            // A GRID per node and a CQUAD4 per element.
-            let n = *mesh as u128;
-            mesh_fits("target.mesh", *mesh, (n + 1) * (n + 1) + n * n)?;
             for e in edges {
                 if e != "clamped" && e != "free" {
                     return Err(SceneIssue(format!(
@@ -495,7 +480,7 @@ fn rod_bulk(w: &mut String, s: &Scene, k: f64, tstep: &str) {
     };
     let mut pts = vec![999, 1];
     pts.extend(s.output.points.iter().copied());
-    output_requests(w, &pts, &s.output.gages);
+    output_requests(w, &pts, &s.output.gages, 10001);
     let r = s.impactor.radius.unwrap_or(0.0);
     let _ = writeln!(w, "GRID,999,,{},0.0,0.0", format_real(-r));
     for i in 0..=*n {
@@ -556,7 +541,8 @@ fn plate_bulk(w: &mut String, s: &Scene, k: f64, tstep: &str) -> Result<(), Scen
     let mut pts: Vec<i64> = vec![999];
     pts.extend(contact.iter().map(|&g| g as i64));
     pts.extend(s.output.points.iter().copied());
-    output_requests(w, &pts, &s.output.gages);
+    let ep = m.indentation_point();
+    output_requests(w, &pts, &s.output.gages, ep);
     let _ = writeln!(
         w,
         "GRID,999,,0.0,0.0,{}",
@@ -585,9 +571,9 @@ fn plate_bulk(w: &mut String, s: &Scene, k: f64, tstep: &str) -> Result<(), Scen
     let _ = writeln!(w, "SPC1,1,12456,999\nGRDSET,,,,,,,6");
     let _ = writeln!(w, "{tstep}");
     for g in contact {
-        let _ = writeln!(w, "NOLIN3,5,{g},3,{},10001,0,1.5", format_real(k / 4.0));
+        let _ = writeln!(w, "NOLIN3,5,{g},3,{},{ep},0,1.5", format_real(k / 4.0));
     }
-    let _ = writeln!(w, "NOLIN3,5,999,3,{},10001,0,1.5", format_real(-k));
+    let _ = writeln!(w, "NOLIN3,5,999,3,{},{ep},0,1.5", format_real(-k));
     m.write_indentation_tf(w);
     let _ = writeln!(w, "TIC,3,999,3,0.0,{}", format_real(v0));
     Ok(())
@@ -595,13 +581,13 @@ fn plate_bulk(w: &mut String, s: &Scene, k: f64, tstep: &str) -> Result<(), Scen
 
 /// Case control output requests (the contact points and `points` displaced, the
 /// gages' stress and strain), then the start of the bulk data with the EPOINT.
-fn output_requests(w: &mut String, points: &[i64], gages: &[i64]) {
+fn output_requests(w: &mut String, points: &[i64], gages: &[i64], epoint: usize) {
     let _ = writeln!(w, "  SET 15 = {}", join(points));
     let _ = writeln!(w, "  NLLOAD = 15\n  DISP = 15");
     if !gages.is_empty() {
         let _ = writeln!(w, "  SET 20 = {}\n  STRESS = 20", join(gages));
     }
-    let _ = writeln!(w, "BEGIN BULK\nEPOINT,10001");
+    let _ = writeln!(w, "BEGIN BULK\nEPOINT,{epoint}");
 }
 
 fn join<T: std::fmt::Display>(v: &[T]) -> String {
