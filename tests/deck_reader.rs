@@ -272,6 +272,7 @@ fn limits_stop_a_deck_that_asks_for_too_much() {
         max_cards: 10,
         max_replication: 5,
         max_include_depth: 0,
+        max_listed_ids: 20,
     };
     // Cards, written one by one or replicated (HEAD holds one: its TSTEP).
     let grids: String = (1..=10).map(|g| format!("GRID,{g}\n")).collect();
@@ -288,6 +289,20 @@ fn limits_stop_a_deck_that_asks_for_too_much() {
     );
     let e = read(&format!("{HEAD}GRID,1\n=(6),*(1)\nENDDATA\n"), small);
     assert!(e[0].contains("replicates 6 cards, more than the limit of 5"), "{e:?}");
+    // Listed ids, THRU ranges expanded, in the bulk data and in case control.
+    let e = read(&format!("{HEAD}SPC1,1,123,1,THRU,100000000000\nENDDATA\n"), small);
+    assert!(
+        e[0].contains("SPC1 field 6 (G): '100000000000' lists more ids than the reader's limit allows (19 left"),
+        "{e:?}"
+    );
+    let e = read(
+        "SOL 9\nCEND\nSET 3 = 1 THRU 15, 20 THRU 30\nBEGIN BULK\nENDDATA\n",
+        small,
+    );
+    assert!(
+        e[0].contains("SET: lists more ids than the reader's limit allows (4 left"),
+        "{e:?}"
+    );
     // INCLUDE: refused outright by the untrusted limits, and past the depth otherwise.
     let e = read(
         &format!("{HEAD}INCLUDE '/etc/hostname'\nENDDATA\n"),

@@ -314,12 +314,19 @@ pub struct Bulk {
 struct Reader<'a> {
     card: &'a RawCard,
     diags: &'a mut Diagnostics,
+    /// What is left of [`super::Limits::max_listed_ids`].
+    ids_left: &'a mut usize,
     ok: bool,
 }
 
 impl<'a> Reader<'a> {
-    fn new(card: &'a RawCard, diags: &'a mut Diagnostics) -> Self {
-        Reader { card, diags, ok: true }
+    fn new(card: &'a RawCard, diags: &'a mut Diagnostics, ids_left: &'a mut usize) -> Self {
+        Reader {
+            card,
+            diags,
+            ids_left,
+            ok: true,
+        }
     }
 
     fn at(&self) -> CardRef {
@@ -525,12 +532,23 @@ impl<'a> Reader<'a> {
                     );
                     return out;
                 }
+                let span = (b as i128 - a as i128) as u128;
+                if span > *self.ids_left as u128 {
+                    self.fail(k + 1, name, too_many_ids(*self.ids_left));
+                    return out;
+                }
+                *self.ids_left -= span as usize;
                 out.extend(a + 1..=b);
                 k += 2;
                 continue;
             }
             let v = self.id(k, name);
             if self.ok {
+                if *self.ids_left == 0 {
+                    self.fail(k, name, too_many_ids(0));
+                    return out;
+                }
+                *self.ids_left -= 1;
                 out.push(v);
             }
             k += 1;
@@ -559,11 +577,17 @@ pub const KNOWN_CARDS: [&str; 19] = [
 ];
 
 /// Types all raw cards. Unknown card names are collected and returned.
-pub fn type_cards(raw: &[RawCard], diags: &mut Diagnostics) -> (Bulk, Vec<(String, Pos)>) {
+/// The error of an id list past [`super::Limits::max_listed_ids`].
+pub(crate) fn too_many_ids(left: usize) -> String {
+    format!("lists more ids than the reader's limit allows ({left} left of the deck's listed-id limit)")
+}
+
+/// Types the raw cards; `ids_left` is what remains of [`super::Limits::max_listed_ids`].
+pub fn type_cards(raw: &[RawCard], ids_left: &mut usize, diags: &mut Diagnostics) -> (Bulk, Vec<(String, Pos)>) {
     let mut b = Bulk::default();
     let mut unknown = Vec::new();
     for card in raw {
-        let mut r = Reader::new(card, diags);
+        let mut r = Reader::new(card, diags, ids_left);
         match card.name.as_str() {
             "GRID" => card_grid(&mut r, &mut b),
             "GRDSET" => card_grdset(&mut r, &mut b),

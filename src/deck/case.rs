@@ -143,7 +143,7 @@ pub fn parse_executive(lines: &[SrcLine], diags: &mut Diagnostics) -> Executive 
 }
 
 /// Parses a comma/space separated id list with THRU ranges, as in SET and SPC1.
-fn parse_id_list(text: &str, pos: &Pos, src: &str, diags: &mut Diagnostics) -> Vec<i64> {
+fn parse_id_list(text: &str, pos: &Pos, src: &str, ids_left: &mut usize, diags: &mut Diagnostics) -> Vec<i64> {
     let toks: Vec<String> = text
         .split([',', ' '])
         .map(str::trim)
@@ -157,7 +157,18 @@ fn parse_id_list(text: &str, pos: &Pos, src: &str, diags: &mut Diagnostics) -> V
         if t == "THRU" {
             let (a, b) = (out.last().copied(), toks.get(i + 1).and_then(|s| parse_int(s)));
             match (a, b) {
-                (Some(a), Some(b)) if b >= a => out.extend(a + 1..=b),
+                (Some(a), Some(b)) if b >= a && ((b as i128 - a as i128) as u128) <= *ids_left as u128 => {
+                    *ids_left -= (b - a) as usize;
+                    out.extend(a + 1..=b)
+                }
+                (Some(_), Some(b)) if b >= out[out.len() - 1] => {
+                    diags.push(
+                        Diagnostic::error(Some(pos.clone()), super::cards::too_many_ids(*ids_left))
+                            .card("SET")
+                            .quote(src),
+                    );
+                    return out;
+                }
                 (Some(a), Some(b)) => diags.push(
                     Diagnostic::error(Some(pos.clone()), format!("THRU range {a} THRU {b} is reversed"))
                         .card("SET")
@@ -173,7 +184,18 @@ fn parse_id_list(text: &str, pos: &Pos, src: &str, diags: &mut Diagnostics) -> V
             continue;
         }
         match parse_int(t) {
-            Some(v) => out.push(v),
+            Some(_) if *ids_left == 0 => {
+                diags.push(
+                    Diagnostic::error(Some(pos.clone()), super::cards::too_many_ids(0))
+                        .card("SET")
+                        .quote(src),
+                );
+                return out;
+            }
+            Some(v) => {
+                *ids_left -= 1;
+                out.push(v)
+            }
             None => diags.push(
                 Diagnostic::error(Some(pos.clone()), "is not an integer set member")
                     .card("SET")
@@ -193,7 +215,8 @@ const IGNORED: [&str; 8] = [
 ];
 
 /// Reads case control from its lines; findings go to `diags`.
-pub fn parse_case(lines: &[SrcLine], diags: &mut Diagnostics) -> CaseControl {
+/// Parses case control; `ids_left` is what remains of [`super::Limits::max_listed_ids`].
+pub fn parse_case(lines: &[SrcLine], ids_left: &mut usize, diags: &mut Diagnostics) -> CaseControl {
     let mut cc = CaseControl::default();
     let mut i = 0;
     while i < lines.len() {
@@ -223,7 +246,7 @@ pub fn parse_case(lines: &[SrcLine], diags: &mut Diagnostics) -> CaseControl {
                     src.push_str(&lines[i].text);
                     i += 1;
                 }
-                set_definition(&mut cc, n, &rhs, &src, pos, diags);
+                set_definition(&mut cc, n, &rhs, &src, pos, ids_left, diags);
             }
             [k] if SELECTORS.contains(k) => selector(&mut cc, k, &rhs, pos, &l.text, diags),
             [k] if OUTPUTS.contains(k) => output_request(&mut cc, k, &rhs, pos, &l.text, diags),
@@ -249,7 +272,15 @@ pub fn parse_case(lines: &[SrcLine], diags: &mut Diagnostics) -> CaseControl {
 }
 
 /// `SET n = …`: the set's members (its lines joined in `src`).
-fn set_definition(cc: &mut CaseControl, n: &str, rhs: &str, src: &str, pos: Pos, diags: &mut Diagnostics) {
+fn set_definition(
+    cc: &mut CaseControl,
+    n: &str,
+    rhs: &str,
+    src: &str,
+    pos: Pos,
+    ids_left: &mut usize,
+    diags: &mut Diagnostics,
+) {
     let Some(id) = parse_int(n) else {
         diags.push(
             Diagnostic::error(Some(pos), "is not a set number")
@@ -259,7 +290,7 @@ fn set_definition(cc: &mut CaseControl, n: &str, rhs: &str, src: &str, pos: Pos,
         );
         return;
     };
-    let members = parse_id_list(rhs, &pos, src, diags);
+    let members = parse_id_list(rhs, &pos, src, ids_left, diags);
     let def = SetDef {
         members,
         pos: pos.clone(),

@@ -135,18 +135,23 @@ pub struct Limits {
     pub max_replication: usize,
     /// How deep INCLUDEs may nest (a file the deck includes is depth 1); 0 refuses INCLUDE.
     pub max_include_depth: usize,
+    /// Ids listed in all, `THRU` ranges expanded (SPC1, EPOINT, SPOINT, case-control
+    /// SETs): `SET 1 = 1 THRU 100000000000` is an error, not exhausted memory.
+    pub max_listed_ids: usize,
 }
 
 impl Default for Limits {
     /// For decks from the analyst's own disk: 5 million cards (the 199×199 plate has
     /// about 80 thousand; a million-line deck fits, at about 0.4 kB held per card),
     /// a million cards per replication line (far above any real mesh line, low enough
-    /// that a typo such as `=(100000000)` is an error), INCLUDEs 16 deep.
+    /// that a typo such as `=(100000000)` is an error), INCLUDEs 16 deep, 50 million
+    /// listed ids (0.4 GB).
     fn default() -> Self {
         Limits {
             max_cards: 5_000_000,
             max_replication: 1_000_000,
             max_include_depth: 16,
+            max_listed_ids: 50_000_000,
         }
     }
 }
@@ -154,13 +159,14 @@ impl Default for Limits {
 impl Limits {
     /// For input from anywhere, such as a fuzzer's: 1 000 cards (the paper's rod deck
     /// has 300, its plate 5 100), 1 000 per replication line, no INCLUDE (it would
-    /// read files named by the input). What one such deck costs to read is then
-    /// bounded by what a small deck costs.
+    /// read files named by the input), 100 000 listed ids. What one such deck costs to
+    /// read is then bounded by what a small deck costs.
     pub fn untrusted() -> Self {
         Limits {
             max_cards: 1_000,
             max_replication: 1_000,
             max_include_depth: 0,
+            max_listed_ids: 100_000,
         }
     }
 }
@@ -190,7 +196,8 @@ fn finish(
     mut diags: Diagnostics,
 ) -> Result<Deck, DeckError> {
     let executive = case::parse_executive(&sections.executive, &mut diags);
-    let mut case = case::parse_case(&sections.case, &mut diags);
+    let mut ids_left = opts.limits.max_listed_ids;
+    let mut case = case::parse_case(&sections.case, &mut ids_left, &mut diags);
     case.at = sections
         .case
         .last()
@@ -202,7 +209,7 @@ fn finish(
             column: 1,
         });
     let raw = bulk::assemble(&sections.bulk, opts.limits, &mut diags);
-    let (bulk, unknown) = cards::type_cards(&raw, &mut diags);
+    let (bulk, unknown) = cards::type_cards(&raw, &mut ids_left, &mut diags);
     report_unknown(&unknown, opts, &mut diags);
     check_duplicates(&bulk, &mut diags);
     let units = sections
