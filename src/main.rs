@@ -200,6 +200,10 @@ pub struct RunArgs {
     /// zero; dropping them is exact). For measuring what dropping them saves.
     #[arg(long)]
     pub all_dofs: bool,
+    /// Report progress on standard error even when it is not a terminal (a line every
+    /// 10 s, for logs); on a terminal a progress bar is always drawn.
+    #[arg(long)]
+    pub progress: bool,
 }
 
 #[derive(clap::Args)]
@@ -244,6 +248,11 @@ pub struct BenchArgs {
     /// Number of steps.
     #[arg(long, default_value_t = 3000)]
     pub steps: usize,
+    /// Instead: how the reader, assembly, factorisation, stepping and peak memory
+    /// scale over the 49, 99 and 199 plates (each run --steps steps), and the reader
+    /// over decks up to a million lines.
+    #[arg(long)]
+    pub size: bool,
 }
 
 #[derive(clap::Args)]

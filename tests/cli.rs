@@ -265,6 +265,33 @@ fn bench_runs_from_any_directory() {
     assert!(out.contains("plate 49x49 (6913 solved DOF)"), "{out}");
 }
 
+/// Goal: the size benchmark reports every stage and the peak memory of each plate
+/// (the full one, `bench --size`, runs the 49, 99 and 199 plates and a million-line
+/// deck: minutes, so here two small plates).
+#[test]
+fn size_benchmark_reports_each_plate() {
+    let out = impactlab::study::bench_size(&[3, 5], &[3, 7], 2).unwrap();
+    let rows: Vec<Vec<&str>> = out.lines().map(|l| l.split_whitespace().collect()).collect();
+    let plate = |n: &str| {
+        rows.iter()
+            .find(|r| r.len() == 9 && r[0] == n)
+            .unwrap_or_else(|| panic!("{out}"))
+    };
+    // The 5×5 plate: 6×6 grids with the edges clamped leave 4×4 free grids of 3 DOF
+    // (w, two rotations) and the impactor's one.
+    assert_eq!(plate("5")[2], "49", "{out}");
+    assert!(
+        plate("5")[7].parse::<f64>().is_ok_and(|g| g > 0.0),
+        "a peak memory on Linux: {out}"
+    );
+    let read = |n: &str| {
+        rows.iter()
+            .find(|r| r.len() == 4 && r[0] == n)
+            .unwrap_or_else(|| panic!("{out}"))
+    };
+    assert!(read("7")[1].parse::<usize>().unwrap() > read("3")[1].parse::<usize>().unwrap());
+}
+
 /// Goal: the CSV files hold every digit: each value reads back to the same f64
 /// (shortest round-trip form), so `audit` sees any change. Also the GLSTAT-style
 /// `energy_ratio` = total/(initial + external work) is there and equals

@@ -76,6 +76,51 @@ fn progress(message: String) -> Option<ProgressBar> {
     Some(b)
 }
 
+/// How long a run must look to take before its estimate is printed.
+const ANNOUNCE_AFTER: std::time::Duration = std::time::Duration::from_secs(10);
+
+/// Watches a run's progress bar from its own thread: once a second of stepping has
+/// passed, prints the estimate of the whole run (time and memory) if it exceeds
+/// [`ANNOUNCE_AFTER`]; with `log_every`, also a line at that interval (for standard
+/// error that is not a terminal, where no bar is drawn). Ends when the bar finishes.
+fn watch_run(bar: ProgressBar, memory: u64, log_every: Option<std::time::Duration>) -> std::thread::JoinHandle<()> {
+    use std::time::{Duration, Instant};
+    std::thread::spawn(move || {
+        let (mut announced, mut logged) = (false, Instant::now());
+        while !bar.is_finished() {
+            std::thread::sleep(Duration::from_millis(100));
+            let (done, len) = (bar.position(), bar.length().unwrap_or(0));
+            if done == 0 || len == 0 {
+                continue;
+            }
+            let elapsed = bar.elapsed();
+            let left = elapsed.mul_f64((len - done.min(len)) as f64 / done as f64);
+            if !announced && elapsed >= Duration::from_secs(1) {
+                announced = true;
+                if elapsed + left > ANNOUNCE_AFTER {
+                    bar.suspend(|| {
+                        say_err(&format!(
+                            "estimate: about {:.0} s for {len} steps ({done} done in {:.1} s), memory about {:.2} GiB",
+                            (elapsed + left).as_secs_f64(),
+                            elapsed.as_secs_f64(),
+                            memory as f64 / (1u64 << 30) as f64
+                        ))
+                    });
+                }
+            }
+            if log_every.is_some_and(|every| logged.elapsed() >= every) {
+                logged = Instant::now();
+                say_err(&format!(
+                    "progress: step {done}/{len} ({:.0} %), {:.0} s elapsed, about {:.0} s left",
+                    100.0 * done as f64 / len as f64,
+                    elapsed.as_secs_f64(),
+                    left.as_secs_f64()
+                ));
+            }
+        }
+    })
+}
+
 /// The kernel cache directory of `--cache`/`--no-cache`: the given one, else
 /// `$XDG_CACHE_HOME/impactlab`, else `~/.cache/impactlab`.
 fn kernel_cache(dir: Option<PathBuf>, off: bool) -> Option<PathBuf> {
@@ -148,7 +193,7 @@ pub fn run(a: RunArgs) -> Result<u8, Error> {
         steps: a.steps.or(opts.steps),
         max_energy_error: a.max_energy_error.0,
         max_memory: Some((a.max_memory.max(0.0) * (1u64 << 30) as f64) as u64),
-        progress: progress(format!("{} {}", model.name, opts.scheme)),
+        progress: Some(progress(format!("{} {}", model.name, opts.scheme)).unwrap_or_else(ProgressBar::hidden)),
         engine: a.engine,
         kernel_cache: kernel_cache(a.cache, a.no_cache),
         ..opts
@@ -162,7 +207,19 @@ pub fn run(a: RunArgs) -> Result<u8, Error> {
     }
     let dir = a.out.unwrap_or_else(|| PathBuf::from("out").join(&model.name));
     set_destination(Some(&dir));
-    let (mut r, failure) = match impactlab::run::run_model(&model, &opts) {
+    let steps = opts.steps.unwrap_or(model.time.steps);
+    let watcher = opts.progress.clone().map(|bar| {
+        let log = (a.progress && !std::io::stderr().is_terminal()).then(|| std::time::Duration::from_secs(10));
+        watch_run(bar, impactlab::run::memory_estimate(&model, steps, opts.engine), log)
+    });
+    let result = impactlab::run::run_model(&model, &opts);
+    if let Some(bar) = &opts.progress {
+        bar.finish_and_clear();
+    }
+    if let Some(w) = watcher {
+        let _ = w.join();
+    }
+    let (mut r, failure) = match result {
         Ok(r) => (r, None),
         Err(impactlab::run::RunError::EnergyGuard { trip, partial }) => (*partial, Some(trip)),
         Err(e) => return Err(e.into()),
@@ -348,6 +405,14 @@ pub fn audit(a: AuditArgs) -> Result<u8, Error> {
 
 /// `impactlab bench`: where the plate's time goes.
 pub fn bench(a: BenchArgs) -> Result<u8, Error> {
+    if a.size {
+        say(&impactlab::study::bench_size(
+            &[49, 99, 199],
+            &[177, 353, 705],
+            a.steps,
+        )?);
+        return Ok(0);
+    }
     say(&impactlab::study::bench_plate(a.repeats.max(1), a.steps)?);
     Ok(0)
 }

@@ -41,6 +41,8 @@ pub fn run_convolution(model: &Model, sys: &System, opts: &RunOptions) -> Result
     let bar = opts.progress.clone().unwrap_or_else(ProgressBar::hidden);
     bar.set_length(2 * steps as u64);
     bar.set_position(0);
+    // The bar's clock (its rate and estimate) starts with the stepping.
+    bar.reset_elapsed();
     let (kernels, cache) = Kernels::for_run(model, sys, dt, steps, opts.kernel_cache.as_deref(), &bar)?;
     let mut run = kernels.run(model, opts, &bar)?;
     run.summary.run.kernel_cache = (cache != CacheUse::Off).then_some(cache);

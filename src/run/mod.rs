@@ -515,6 +515,8 @@ pub fn run_system(model: &Model, sys: &System, opts: &RunOptions) -> Result<RunR
     let bar = opts.progress.clone().unwrap_or_else(ProgressBar::hidden);
     bar.set_length(steps as u64);
     bar.set_position(0);
+    // The bar's clock (its rate and estimate) starts with the stepping.
+    bar.reset_elapsed();
     let mut rec = Recorder {
         model,
         ledger: opts.ledger.then(|| Ledger::new(model, sys)),

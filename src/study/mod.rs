@@ -270,3 +270,73 @@ pub fn scene_costs(model: &crate::model::Model, opts: &RunOptions) -> Result<Str
     }
     Ok(out)
 }
+
+/// The peak resident memory of this process since the last [`reset_peak_memory`]
+/// (`VmHWM` of `/proc/self/status`, Linux), in bytes; `None` elsewhere.
+fn peak_memory() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let kb = status.lines().find_map(|l| l.strip_prefix("VmHWM:"))?;
+    Some(kb.trim().trim_end_matches("kB").trim().parse::<u64>().ok()? * 1024)
+}
+
+/// Resets the peak that [`peak_memory`] reads (`5` into `/proc/self/clear_refs`).
+fn reset_peak_memory() {
+    let _ = std::fs::write("/proc/self/clear_refs", "5");
+}
+
+/// How the reader, the model build, the factorisation and the stepping scale with
+/// the plate mesh: for each N of `sizes`, the N×N plate deck (`mesh plate --n N`)
+/// read and built, assembled, factorised and run `steps` steps, each stage timed,
+/// with the peak resident memory of the whole (Linux) beside the run's
+/// [`crate::run::memory_estimate`]. Then the reader and model build alone on the
+/// plates of `read_sizes` (N = 705 is about a million lines), per line.
+pub fn bench_size(sizes: &[usize], read_sizes: &[usize], steps: usize) -> Result<String, Error> {
+    use std::time::Instant;
+    let gib = |b: u64| b as f64 / (1u64 << 30) as f64;
+    let mut out = format!(
+        "plate N×N, newmark, dt 1e-7 s, {steps} steps, one run each\n\
+         {:>5} {:>8} {:>8} {:>9} {:>10} {:>10} {:>12} {:>10} {:>10}\n",
+        "N", "lines", "solved", "read [s]", "assemb [s]", "factor [s]", "step [ms]", "peak [GiB]", "est. [GiB]"
+    );
+    for &n in sizes {
+        let deck = crate::mesh::plate_deck(n)?;
+        reset_peak_memory();
+        let t0 = Instant::now();
+        let model = crate::model_from_text("plate", &deck)?;
+        let read = t0.elapsed().as_secs_f64();
+        let opts = RunOptions {
+            steps: Some(steps),
+            ..Default::default()
+        };
+        let run = run_model(&model, &opts)?;
+        let peak = peak_memory().map_or("-".into(), |b| format!("{:.3}", gib(b)));
+        let s = &run.stats;
+        let per_step = (s.total_time - s.factor_time).as_secs_f64() / steps as f64;
+        let estimate = crate::run::memory_estimate(&model, steps, opts.engine);
+        let _ = writeln!(
+            out,
+            "{n:>5} {:>8} {:>8} {read:>9.3} {:>10.3} {:>10.3} {:>12.3} {peak:>10} {:>10.3}",
+            deck.lines().count(),
+            run.summary.model.solved_dofs,
+            run.summary.run.assembly_s,
+            s.factor_time.as_secs_f64(),
+            1e3 * per_step,
+            gib(estimate)
+        );
+    }
+    let _ = writeln!(
+        out,
+        "\nreader and model build alone, by deck length\n{:>5} {:>9} {:>9} {:>12}",
+        "N", "lines", "read [s]", "µs per line"
+    );
+    for &n in read_sizes {
+        let deck = crate::mesh::plate_deck(n)?;
+        let lines = deck.lines().count();
+        let t0 = Instant::now();
+        let model = crate::model_from_text("plate", &deck)?;
+        let read = t0.elapsed().as_secs_f64();
+        drop(model);
+        let _ = writeln!(out, "{n:>5} {lines:>9} {read:>9.3} {:>12.3}", 1e6 * read / lines as f64);
+    }
+    Ok(out)
+}
