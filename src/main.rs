@@ -122,6 +122,13 @@ pub enum StudyKind {
         #[arg(long, default_value = "reports/stability")]
         out: PathBuf,
     },
+    /// The stability suite's hard cases on the N×N plate (edge impact, velocity ×100,
+    /// Δt ×64, K ×1000) for the implicit schemes; exit 1 if any fails.
+    HardCases {
+        /// Elements per side (odd).
+        #[arg(long, default_value_t = 99)]
+        n: usize,
+    },
     /// Work-precision study: every scheme over Δt and mesh, errors against references.
     Accuracy {
         #[arg(long, default_value = "reports/accuracy")]

@@ -408,3 +408,19 @@ fn nan_in_the_state_is_named() {
         other => panic!("expected NonFinite, got {:?}", other.map(|r| r.summary)),
     }
 }
+
+/// Case 12: the hard cases of `impactlab study hard-cases` (edge impact, velocity
+/// ×100, Δt ×64, K ×1000; newmark, energy, nastran) on a 9×9 plate: every run
+/// finite and complete, `energy` at round-off, the others within the energy guard.
+/// (`study hard-cases --n 99` runs them on the 99×99 plate; README has the result.)
+#[test]
+fn hard_cases_on_a_plate_stay_stable() {
+    let rows = impactlab::study::stability::hard_cases(9, &|_| {}).unwrap();
+    assert_eq!(rows.len(), 12);
+    let table = impactlab::study::stability::hard_cases_table(9, &rows);
+    assert!(rows.iter().all(|r| r.passed()), "{table}");
+    assert!(rows
+        .iter()
+        .filter(|r| r.scheme == Scheme::Energy)
+        .all(|r| r.max_energy_error.unwrap() < 1e-10));
+}

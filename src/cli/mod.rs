@@ -284,6 +284,22 @@ pub fn mesh(what: MeshKind) -> Result<u8, Error> {
 /// `impactlab study mesh|stability|accuracy`.
 pub fn study(what: StudyKind) -> Result<u8, Error> {
     match what {
+        StudyKind::HardCases { n } => {
+            use impactlab::study::stability;
+            let bar = progress(format!("hard cases, {n}x{n} plate"));
+            let rows = stability::hard_cases(n, &|what| {
+                if let Some(b) = &bar {
+                    b.set_message(what.to_string());
+                } else {
+                    say_err(what);
+                }
+            })?;
+            if let Some(b) = bar {
+                b.finish_and_clear();
+            }
+            say(&stability::hard_cases_table(n, &rows));
+            return Ok(if rows.iter().all(|r| r.passed()) { 0 } else { 1 });
+        }
         StudyKind::Mesh { out, redraw: true, .. } => {
             impactlab::study::mesh::redraw(&out)?;
             sayln(&format!("redrawn from its CSVs: {}", out.display()));

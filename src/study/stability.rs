@@ -305,3 +305,155 @@ pub fn readme(cells: &[Cell]) -> String {
     }
     s
 }
+
+/// One run of the plate's hard cases ([`hard_cases`]).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct HardCase {
+    /// What the case stresses.
+    pub case: &'static str,
+    /// The scheme.
+    pub scheme: Scheme,
+    /// Time step (the deck's time unit).
+    pub dt: f64,
+    /// Steps run.
+    pub steps: usize,
+    /// Max |relative energy error| (None when the run failed).
+    pub max_energy_error: Option<f64>,
+    /// The scheme's bound: round-off (1e-10) for `energy`, the energy guard
+    /// ([`crate::run::DEFAULT_ENERGY_GUARD`]) for the others.
+    pub bound: f64,
+    /// Every contact force, indentation and ledger entry finite.
+    pub finite: bool,
+    /// Why the run failed, if it did.
+    pub failure: Option<String>,
+}
+
+impl HardCase {
+    /// Finite, completed, and within the scheme's bound.
+    pub fn passed(&self) -> bool {
+        self.finite && self.failure.is_none() && self.max_energy_error.is_some_and(|e| e <= self.bound)
+    }
+}
+
+/// The stability suite's hard cases on the paper's plate with an N×N mesh, for the
+/// implicit schemes (`newmark`, `energy`, `nastran`) over 200 µs: the impact moved
+/// next to the clamped edge (the element in the second row, same column), the
+/// impact velocity ×100, the time step ×64, and a stiff chattering contact (K ×1000).
+pub fn hard_cases(n: usize, progress: &dyn Fn(&str)) -> Result<Vec<HardCase>, Error> {
+    let text = crate::mesh::plate_deck(n)?;
+    let centre = crate::model_from_text("plate", &text)?;
+    let edge = crate::model_from_text("plate-edge", &next_to_the_edge(n, &text)?)?;
+    let dt0 = centre.time.dt;
+    let scaled = |m: Modify| m.apply(&centre);
+    let cases: Vec<(&'static str, Model, f64)> = vec![
+        ("impact next to the clamped edge", edge, dt0),
+        (
+            "impact velocity x100",
+            scaled(Modify {
+                velocity_scale: Some(100.0),
+                ..Default::default()
+            })?,
+            dt0,
+        ),
+        ("time step x64", centre.clone(), 64.0 * dt0),
+        (
+            "stiff chattering contact (K x1000)",
+            scaled(Modify {
+                contact_stiffness_scale: Some(1000.0),
+                ..Default::default()
+            })?,
+            dt0,
+        ),
+    ];
+    let t_end = 2000.0 * dt0;
+    let mut rows = Vec::new();
+    for (case, model, dt) in &cases {
+        for scheme in [Scheme::Newmark, Scheme::Energy, Scheme::Nastran] {
+            progress(&format!("{case}, {scheme}"));
+            let steps = (t_end / dt).round() as usize;
+            let opts = RunOptions {
+                scheme,
+                dt: Some(*dt),
+                steps: Some(steps),
+                ..Default::default()
+            };
+            let bound = if scheme == Scheme::Energy {
+                1e-10
+            } else {
+                crate::run::DEFAULT_ENERGY_GUARD
+            };
+            let (max_energy_error, finite, failure) = match run_model(model, &opts) {
+                Ok(r) => {
+                    let s = &r.series;
+                    let finite = s.force.iter().chain(&s.alpha).all(|v| v.is_finite())
+                        && r.energy.iter().all(|e| e.values().iter().all(|v| v.is_finite()));
+                    (r.summary.energy.max_relative_error, finite, None)
+                }
+                Err(RunError::EnergyGuard { trip, .. }) => (Some(trip.error.abs()), true, Some(trip.to_string())),
+                Err(e) => (None, false, Some(e.to_string())),
+            };
+            rows.push(HardCase {
+                case,
+                scheme,
+                dt: *dt,
+                steps,
+                max_energy_error,
+                bound,
+                finite,
+                failure,
+            });
+        }
+    }
+    Ok(rows)
+}
+
+/// The plate deck with its contact (the NOLIN3 and TF grids, output SET 15) moved
+/// from the centre element to the one in the second row of the same column.
+fn next_to_the_edge(n: usize, deck: &str) -> Result<String, Error> {
+    let m = crate::mesh::PlateMesh::new(n)?;
+    let centre = m.contact_grids();
+    let col = n.div_ceil(2);
+    let edge = [m.grid(2, col), m.grid(2, col + 1), m.grid(3, col), m.grid(3, col + 1)];
+    let moved: BTreeMap<String, String> = centre
+        .iter()
+        .zip(edge)
+        .map(|(a, b)| (a.to_string(), b.to_string()))
+        .collect();
+    let mut out = String::new();
+    for l in deck.lines() {
+        if ["NOLIN3", "+TF", "  SET 15"].iter().any(|p| l.starts_with(p)) {
+            let fields: Vec<&str> = l.split(',').map(|f| moved.get(f).map_or(f, String::as_str)).collect();
+            out.push_str(&fields.join(","));
+        } else {
+            out.push_str(l);
+        }
+        out.push('\n');
+    }
+    Ok(out)
+}
+
+/// The hard cases as a table (Markdown), each row passed or FAILED.
+pub fn hard_cases_table(n: usize, rows: &[HardCase]) -> String {
+    let mut out = format!(
+        "Hard cases on the {n}x{n} plate, 200 µs each\n\n| case | scheme | Δt | steps | max energy error | bound | finite | verdict |\n|---|---|---|---|---|---|---|---|\n"
+    );
+    for r in rows {
+        let _ = writeln!(
+            out,
+            "| {} | {} | {:e} | {} | {} | {:e} | {} | {} |",
+            r.case,
+            r.scheme,
+            r.dt,
+            r.steps,
+            r.max_energy_error.map_or("-".into(), |e| format!("{e:.2e}")),
+            r.bound,
+            if r.finite { "yes" } else { "no" },
+            match (&r.failure, r.passed()) {
+                (Some(f), _) => format!("FAILED: {f}"),
+                (None, true) => "passed".into(),
+                (None, false) => "FAILED: over the bound".into(),
+            }
+        );
+    }
+    out
+}
