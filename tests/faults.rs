@@ -309,3 +309,32 @@ fn concurrent_runs_into_one_directory_leave_one_complete_set() {
         assert!(leftovers(&out).is_empty(), "{:?}", leftovers(&out));
     }
 }
+
+/// Goal: a run that will take long says so after its first second of stepping
+/// (time and memory), before its bulk; here the plate asked for 10^6 steps (hours),
+/// stopped by SIGTERM once the estimate is out.
+#[test]
+fn a_long_run_prints_its_estimate_first() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("out");
+    let plate = deck("plate.bdf").display().to_string();
+    let args = ["run", &plate, "--steps", "1000000", "--out", out.to_str().unwrap()];
+    let o = interrupted(&args, "TERM", Duration::from_secs(4));
+    let err = stderr(&o);
+    let line = err
+        .lines()
+        .find(|l| l.starts_with("estimate: about "))
+        .unwrap_or_else(|| panic!("{err}"));
+    let secs: f64 = line["estimate: about ".len()..]
+        .split(' ')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(
+        secs > 100.0 && line.contains("for 1000000 steps") && line.contains("memory about"),
+        "{line}"
+    );
+    assert_eq!(o.status.code(), Some(143), "{err}");
+    assert!(!out.exists());
+}
