@@ -338,3 +338,34 @@ fn a_long_run_prints_its_estimate_first() {
     assert_eq!(o.status.code(), Some(143), "{err}");
     assert!(!out.exists());
 }
+
+/// Goal: a kernel cache that cannot be written (below a regular file here; a full
+/// disk alike) costs the convolution run its cache, not its result: the run
+/// completes, writes its outputs and warns, naming the cache file.
+#[test]
+fn a_kernel_cache_that_cannot_be_written_is_a_warning() {
+    let tmp = tempfile::tempdir().unwrap();
+    let file = tmp.path().join("file");
+    std::fs::write(&file, "x").unwrap();
+    let cache = file.join("cache");
+    let out = tmp.path().join("out");
+    let o = run(&[
+        "run",
+        &rod(),
+        "--engine",
+        "convolution",
+        "--cache",
+        cache.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains(&format!("warning: kernel cache: {}/", cache.display()))
+            && stderr(&o).contains("computed, not stored"),
+        "{}",
+        stderr(&o)
+    );
+    let s: serde_json::Value = serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
+    assert!(s["run"]["kernel_cache"]["not_stored"].is_string(), "{s}");
+}

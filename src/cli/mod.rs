@@ -137,8 +137,13 @@ fn kernel_cache(dir: Option<PathBuf>, off: bool) -> Option<PathBuf> {
 
 /// Says where the kernels came from when the cache could not be used.
 fn report_cache(c: &Option<impactlab::run::convolution::CacheUse>) {
-    if let Some(impactlab::run::convolution::CacheUse::Recomputed(why)) = c {
-        say_err(&format!("warning: kernel cache: {why}; recomputed and stored again"));
+    use impactlab::run::convolution::CacheUse;
+    match c {
+        Some(CacheUse::Recomputed(why)) => {
+            say_err(&format!("warning: kernel cache: {why}; recomputed and stored again"))
+        }
+        Some(CacheUse::NotStored(why)) => say_err(&format!("warning: kernel cache: {why}; computed, not stored")),
+        _ => {}
     }
 }
 

@@ -83,6 +83,9 @@ pub enum CacheUse {
     Miss,
     /// Computed and stored again: the cached file could not be used (why).
     Recomputed(String),
+    /// Computed, but the cache could not store them (why: a full disk, a directory
+    /// that cannot be written); the run goes on without.
+    NotStored(String),
 }
 
 /// The version of the kernel file format; a file of another version is recomputed.
@@ -112,7 +115,8 @@ impl Kernels {
     /// steps, the deck's SHA-256, the solved DOFs, K, M (the impactor's excluded),
     /// the contact operator and the non-conservative part, and the output columns.
     /// A file that is truncated, corrupt (its own SHA-256 fails) or of another
-    /// format is recomputed, and the reason returned, never read as data.
+    /// format is recomputed, and the reason returned, never read as data; kernels
+    /// the cache cannot store are used all the same ([`CacheUse::NotStored`]).
     pub fn cached(
         model: &Model,
         sys: &System,
@@ -143,7 +147,9 @@ impl Kernels {
             tmp.persist(&path).map_err(|e| e.error)?;
             Ok(())
         };
-        store().map_err(|e| RunError::Input(format!("kernel cache {}: {e}", path.display())))?;
+        if let Err(e) = store() {
+            return Ok((k, CacheUse::NotStored(format!("{}: {e}", path.display()))));
+        }
         Ok((k, why.map_or(CacheUse::Miss, CacheUse::Recomputed)))
     }
 
