@@ -4,7 +4,7 @@
 //! with it in one rename (`renameat2(RENAME_EXCHANGE)`), so that an interrupted,
 //! failed or concurrent run leaves either the previous complete outputs or one run's
 //! complete new outputs, never a mix, a half-written file or a missing directory.
-//! Every write holds [`WRITES`] shared: [`stop_writes`] waits for the writes in
+//! Every write holds a shared lock: [`stop_writes`] waits for the writes in
 //! progress and lets no new one start, which is how an interrupted command ends.
 
 use crate::ledger;
