@@ -532,23 +532,20 @@ impl<'a> Reader<'a> {
                     );
                     return out;
                 }
-                let span = (b as i128 - a as i128) as u128;
-                if span > *self.ids_left as u128 {
-                    self.fail(k + 1, name, too_many_ids(*self.ids_left));
+                if let Err(e) = super::take_ids(self.ids_left, (b as i128 - a as i128) as u128) {
+                    self.fail(k + 1, name, e);
                     return out;
                 }
-                *self.ids_left -= span as usize;
                 out.extend(a + 1..=b);
                 k += 2;
                 continue;
             }
             let v = self.id(k, name);
             if self.ok {
-                if *self.ids_left == 0 {
-                    self.fail(k, name, too_many_ids(0));
+                if let Err(e) = super::take_ids(self.ids_left, 1) {
+                    self.fail(k, name, e);
                     return out;
                 }
-                *self.ids_left -= 1;
                 out.push(v);
             }
             k += 1;
@@ -576,13 +573,8 @@ pub const KNOWN_CARDS: [&str; 19] = [
     "TSTEP", "NOLIN3", "TIC", "PARAM", "INCLUDE", "ENDDATA",
 ];
 
-/// Types all raw cards. Unknown card names are collected and returned.
-/// The error of an id list past [`super::Limits::max_listed_ids`].
-pub(crate) fn too_many_ids(left: usize) -> String {
-    format!("lists more ids than the reader's limit allows ({left} left of the deck's listed-id limit)")
-}
-
-/// Types the raw cards; `ids_left` is what remains of [`super::Limits::max_listed_ids`].
+/// Types all raw cards. Unknown card names are collected and returned. `ids_left` is
+/// what remains of [`super::Limits::max_listed_ids`].
 pub fn type_cards(raw: &[RawCard], ids_left: &mut usize, diags: &mut Diagnostics) -> (Bulk, Vec<(String, Pos)>) {
     let mut b = Bulk::default();
     let mut unknown = Vec::new();

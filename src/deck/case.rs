@@ -152,48 +152,31 @@ fn parse_id_list(text: &str, pos: &Pos, src: &str, ids_left: &mut usize, diags: 
         .collect();
     let mut out = Vec::new();
     let mut i = 0;
+    let error = |message: String| Diagnostic::error(Some(pos.clone()), message).card("SET").quote(src);
     while i < toks.len() {
         let t = &toks[i];
         if t == "THRU" {
             let (a, b) = (out.last().copied(), toks.get(i + 1).and_then(|s| parse_int(s)));
             match (a, b) {
-                (Some(a), Some(b)) if b >= a && ((b as i128 - a as i128) as u128) <= *ids_left as u128 => {
-                    *ids_left -= (b - a) as usize;
+                (Some(a), Some(b)) if b >= a => {
+                    if let Err(e) = super::take_ids(ids_left, (b as i128 - a as i128) as u128) {
+                        diags.push(error(e));
+                        return out;
+                    }
                     out.extend(a + 1..=b)
                 }
-                (Some(_), Some(b)) if b >= out[out.len() - 1] => {
-                    diags.push(
-                        Diagnostic::error(Some(pos.clone()), super::cards::too_many_ids(*ids_left))
-                            .card("SET")
-                            .quote(src),
-                    );
-                    return out;
-                }
-                (Some(a), Some(b)) => diags.push(
-                    Diagnostic::error(Some(pos.clone()), format!("THRU range {a} THRU {b} is reversed"))
-                        .card("SET")
-                        .quote(src),
-                ),
-                _ => diags.push(
-                    Diagnostic::error(Some(pos.clone()), "THRU needs an integer on each side")
-                        .card("SET")
-                        .quote(src),
-                ),
+                (Some(a), Some(b)) => diags.push(error(format!("THRU range {a} THRU {b} is reversed"))),
+                _ => diags.push(error("THRU needs an integer on each side".into())),
             }
             i += 2;
             continue;
         }
         match parse_int(t) {
-            Some(_) if *ids_left == 0 => {
-                diags.push(
-                    Diagnostic::error(Some(pos.clone()), super::cards::too_many_ids(0))
-                        .card("SET")
-                        .quote(src),
-                );
-                return out;
-            }
             Some(v) => {
-                *ids_left -= 1;
+                if let Err(e) = super::take_ids(ids_left, 1) {
+                    diags.push(error(e));
+                    return out;
+                }
                 out.push(v)
             }
             None => diags.push(
@@ -214,8 +197,8 @@ const IGNORED: [&str; 8] = [
     "ECHO", "LINE", "MAXLINES", "OUTPUT", "ELFORCE", "FORCE", "OLOAD", "SPCFORCE",
 ];
 
-/// Reads case control from its lines; findings go to `diags`.
-/// Parses case control; `ids_left` is what remains of [`super::Limits::max_listed_ids`].
+/// Reads case control from its lines; findings go to `diags`; `ids_left` is what
+/// remains of [`super::Limits::max_listed_ids`].
 pub fn parse_case(lines: &[SrcLine], ids_left: &mut usize, diags: &mut Diagnostics) -> CaseControl {
     let mut cc = CaseControl::default();
     let mut i = 0;

@@ -171,6 +171,20 @@ impl Limits {
     }
 }
 
+/// Takes `n` ids from `ids_left`, what remains of [`Limits::max_listed_ids`]; the
+/// error's text when there are not that many left.
+pub(crate) fn take_ids(ids_left: &mut usize, n: u128) -> Result<(), String> {
+    match usize::try_from(n).ok().filter(|&n| n <= *ids_left) {
+        Some(n) => {
+            *ids_left -= n;
+            Ok(())
+        }
+        None => Err(format!(
+            "lists more ids than the reader's limit allows ({ids_left} left of the deck's listed-id limit)"
+        )),
+    }
+}
+
 /// Reads a deck file.
 pub fn read_deck(path: &Path, opts: ReadOptions) -> Result<Deck, DeckError> {
     let mut diags = Diagnostics::default();

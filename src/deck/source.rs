@@ -102,19 +102,14 @@ fn expand(path: &Path, from: Option<Pos>, read: &mut Read, diags: &mut Diagnosti
         return;
     }
     // Only regular files: a device or FIFO (`/dev/zero`, `/dev/stdin`) never ends.
-    if let Ok(meta) = std::fs::metadata(path) {
-        if !meta.is_file() {
-            let what = if from.is_some() { "INCLUDE file" } else { "deck" };
-            let msg = format!("cannot read {what} '{}': not a regular file", path.display());
-            let mut d = Diagnostic::error(from.clone(), msg);
-            if from.is_some() {
-                d = d.card("INCLUDE");
-            }
-            diags.push(d);
-            return;
+    let regular = std::fs::metadata(path).and_then(|m| {
+        if m.is_file() {
+            std::fs::read(path)
+        } else {
+            Err(std::io::Error::other("not a regular file"))
         }
-    }
-    let bytes = match std::fs::read(path) {
+    });
+    let bytes = match regular {
         Ok(b) => b,
         Err(e) => {
             let what = if from.is_some() { "INCLUDE file" } else { "deck" };
