@@ -340,9 +340,8 @@ impl HardCase {
 /// next to the clamped edge (the element in the second row, same column), the
 /// impact velocity ×100, the time step ×64, and a stiff chattering contact (K ×1000).
 pub fn hard_cases(n: usize, progress: &dyn Fn(&str)) -> Result<Vec<HardCase>, Error> {
-    let text = crate::mesh::plate_deck(n)?;
-    let centre = crate::model_from_text("plate", &text)?;
-    let edge = crate::model_from_text("plate-edge", &next_to_the_edge(n, &text)?)?;
+    let centre = crate::model_from_text("plate", &crate::mesh::plate_deck(n)?)?;
+    let edge = crate::model_from_text("plate-edge", &plate_deck_next_to_the_edge(n)?)?;
     let dt0 = centre.time.dt;
     let scaled = |m: Modify| m.apply(&centre);
     let cases: Vec<(&'static str, Model, f64)> = vec![
@@ -407,9 +406,11 @@ pub fn hard_cases(n: usize, progress: &dyn Fn(&str)) -> Result<Vec<HardCase>, Er
     Ok(rows)
 }
 
-/// The plate deck with its contact (the NOLIN3 and TF grids, output SET 15) moved
-/// from the centre element to the one in the second row of the same column.
-fn next_to_the_edge(n: usize, deck: &str) -> Result<String, Error> {
+/// The N×N plate deck ([`crate::mesh::plate_deck`]) with its contact (the NOLIN3
+/// and TF grids, output SET 15) moved from the centre element to the one in the
+/// second row of the same column, next to the clamped edge.
+pub fn plate_deck_next_to_the_edge(n: usize) -> Result<String, Error> {
+    let deck = crate::mesh::plate_deck(n)?;
     let m = crate::mesh::PlateMesh::new(n)?;
     let centre = m.contact_grids();
     let col = n.div_ceil(2);
