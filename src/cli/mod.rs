@@ -83,7 +83,14 @@ const ANNOUNCE_AFTER: std::time::Duration = std::time::Duration::from_secs(10);
 /// passed, prints the estimate of the whole run (time and memory) if it exceeds
 /// [`ANNOUNCE_AFTER`]; with `log_every`, also a line at that interval (for standard
 /// error that is not a terminal, where no bar is drawn). Ends when the bar finishes.
-fn watch_run(bar: ProgressBar, memory: u64, log_every: Option<std::time::Duration>) -> std::thread::JoinHandle<()> {
+/// The bar counts the run's `steps`, or twice as many for the convolution engine
+/// (its kernel pass, then the run): time is projected from the fraction done.
+fn watch_run(
+    bar: ProgressBar,
+    steps: usize,
+    memory: u64,
+    log_every: Option<std::time::Duration>,
+) -> std::thread::JoinHandle<()> {
     use std::time::{Duration, Instant};
     std::thread::spawn(move || {
         let (mut announced, mut logged) = (false, Instant::now());
@@ -100,8 +107,9 @@ fn watch_run(bar: ProgressBar, memory: u64, log_every: Option<std::time::Duratio
                 if elapsed + left > ANNOUNCE_AFTER {
                     bar.suspend(|| {
                         say_err(&format!(
-                            "estimate: about {:.0} s for {len} steps ({done} done in {:.1} s), memory about {:.2} GiB",
+                            "estimate: about {:.0} s for {steps} steps ({:.0} % done in {:.1} s), memory about {:.2} GiB",
                             (elapsed + left).as_secs_f64(),
+                            100.0 * done as f64 / len as f64,
                             elapsed.as_secs_f64(),
                             memory as f64 / (1u64 << 30) as f64
                         ))
@@ -111,7 +119,7 @@ fn watch_run(bar: ProgressBar, memory: u64, log_every: Option<std::time::Duratio
             if log_every.is_some_and(|every| logged.elapsed() >= every) {
                 logged = Instant::now();
                 say_err(&format!(
-                    "progress: step {done}/{len} ({:.0} %), {:.0} s elapsed, about {:.0} s left",
+                    "progress: {:.0} % of {steps} steps, {:.0} s elapsed, about {:.0} s left",
                     100.0 * done as f64 / len as f64,
                     elapsed.as_secs_f64(),
                     left.as_secs_f64()
@@ -215,7 +223,12 @@ pub fn run(a: RunArgs) -> Result<u8, Error> {
     let steps = opts.steps.unwrap_or(model.time.steps);
     let watcher = opts.progress.clone().map(|bar| {
         let log = (a.progress && !std::io::stderr().is_terminal()).then(|| std::time::Duration::from_secs(10));
-        watch_run(bar, impactlab::run::memory_estimate(&model, steps, opts.engine), log)
+        watch_run(
+            bar,
+            steps,
+            impactlab::run::memory_estimate(&model, steps, opts.engine),
+            log,
+        )
     });
     let result = impactlab::run::run_model(&model, &opts);
     if let Some(bar) = &opts.progress {
