@@ -71,6 +71,18 @@ fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
+/// Asserts the command ended with `code` and said `text` on standard error.
+fn fails_saying(o: &Output, code: i32, text: &str) {
+    assert_eq!(o.status.code(), Some(code), "{}", stderr(o));
+    assert!(stderr(o).contains(text), "expected {text:?} in:\n{}", stderr(o));
+}
+
+/// Asserts `dir` holds exactly `before` and nothing was left beside it.
+fn intact(dir: &Path, before: &BTreeMap<String, Vec<u8>>) {
+    assert_eq!(&contents(dir), before);
+    assert!(leftovers(dir).is_empty(), "{:?}", leftovers(dir));
+}
+
 fn is_root() -> bool {
     let o = Command::new("id").arg("-u").output().unwrap();
     String::from_utf8_lossy(&o.stdout).trim() == "0"
@@ -86,12 +98,7 @@ fn an_unwritable_output_directory_is_an_error_naming_it() {
     std::fs::write(&file, "x").unwrap();
     let out = file.join("out");
     let o = run(&["run", &rod(), "--out", out.to_str().unwrap()]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(
-        stderr(&o).contains(&format!("cannot write outputs to {}: ", out.display())),
-        "{}",
-        stderr(&o)
-    );
+    fails_saying(&o, 2, &format!("cannot write outputs to {}: ", out.display()));
     // In a directory without write permission (as another user when run as root,
     // whom permissions do not stop).
     let ro = tmp.path().join("ro");
@@ -115,14 +122,12 @@ fn an_unwritable_output_directory_is_an_error_naming_it() {
         run(&args)
     };
     std::fs::set_permissions(&ro, std::fs::Permissions::from_mode(0o755)).unwrap();
-    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
-    assert!(
-        stderr(&o).contains(&format!("cannot write outputs to {}: Permission denied", out.display())),
-        "{}",
-        stderr(&o)
+    fails_saying(
+        &o,
+        2,
+        &format!("cannot write outputs to {}: Permission denied", out.display()),
     );
-    assert_eq!(contents(&out), before);
-    assert!(leftovers(&out).is_empty(), "{:?}", leftovers(&out));
+    intact(&out, &before);
 }
 
 /// Goal: `--out` naming a directory that is not an earlier output (it holds a
@@ -134,14 +139,13 @@ fn a_directory_that_is_not_an_output_is_never_replaced() {
     std::fs::create_dir_all(project.join("src")).unwrap();
     std::fs::write(project.join("notes.txt"), "mine").unwrap();
     let o = run(&["run", &rod(), "--out", project.to_str().unwrap()]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(
-        stderr(&o).contains(&format!(
+    fails_saying(
+        &o,
+        2,
+        &format!(
             "cannot write outputs to {}: it holds 'src', which is not a regular file",
             project.display()
-        )),
-        "{}",
-        stderr(&o)
+        ),
     );
     assert_eq!(std::fs::read_to_string(project.join("notes.txt")).unwrap(), "mine");
     assert!(project.join("src").is_dir());
@@ -159,14 +163,12 @@ fn a_file_size_limit_leaves_the_previous_outputs() {
         .args(["--fsize=100000", BIN, "run", &rod(), "--out", out.to_str().unwrap()])
         .output()
         .unwrap();
-    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
-    assert!(
-        stderr(&o).contains(&format!("cannot write outputs to {}: File too large", out.display())),
-        "{}",
-        stderr(&o)
+    fails_saying(
+        &o,
+        2,
+        &format!("cannot write outputs to {}: File too large", out.display()),
     );
-    assert_eq!(contents(&out), before);
-    assert!(leftovers(&out).is_empty(), "{:?}", leftovers(&out));
+    intact(&out, &before);
 }
 
 /// Goal: a full disk (a 256 kB tmpfs, mounted in a private mount namespace) is an
@@ -242,17 +244,15 @@ fn an_interrupted_run_keeps_the_previous_outputs() {
     for (signal, code) in [("INT", 130), ("TERM", 143)] {
         let args = ["run", &plate, "--steps", "100000", "--out", out.to_str().unwrap()];
         let o = interrupted(&args, signal, Duration::from_millis(500));
-        assert_eq!(o.status.code(), Some(code), "{}", stderr(&o));
-        assert!(
-            stderr(&o).contains(&format!(
+        fails_saying(
+            &o,
+            code,
+            &format!(
                 "interrupted by SIG{signal}: {} was not written and holds what it held before",
                 out.display()
-            )),
-            "{}",
-            stderr(&o)
+            ),
         );
-        assert_eq!(contents(&out), before);
-        assert!(leftovers(&out).is_empty(), "{:?}", leftovers(&out));
+        intact(&out, &before);
     }
 }
 
