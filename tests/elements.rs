@@ -1,7 +1,7 @@
 //! The element interface: what the ledger books is what assembly assembled, for every
 //! element kind.
 
-use impactlab::assembly::{assemble, mul};
+use impactlab::assembly::assemble;
 use impactlab::deck::{parse_deck_str, ReadOptions};
 use impactlab::ledger::strain_energy;
 use impactlab::model::build_model;
@@ -39,7 +39,7 @@ fn strain_energy_is_half_utku_for_a_model_with_every_element_kind() {
     let n = model.n();
     let u: Vec<f64> = (0..n).map(|i| 1e-3 * (1.0 + (i as f64 * 0.7).sin())).collect();
     let mut ku = vec![0.0; n];
-    mul(&sys.k_csc, &u, &mut ku);
+    sys.k_mul(&u, &mut ku);
     let reference = 0.5 * u.iter().zip(&ku).map(|(a, b)| a * b).sum::<f64>();
     let booked = strain_energy(&model, &u);
     assert!(reference > 0.0);
