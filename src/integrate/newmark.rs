@@ -154,12 +154,16 @@ pub(crate) fn predictor(
 ) {
     let (v, f, mv, du) = vectors;
     sys.m_mul(v, mv);
-    for i in 0..du.len() {
-        du[i] = 4.0 / dt * mv[i] - 2.0 * f[i];
-    }
-    if let Some((g, phi)) = load {
-        for i in 0..du.len() {
-            du[i] += g[i] * phi;
+    match load {
+        None => {
+            for i in 0..du.len() {
+                du[i] = 4.0 / dt * mv[i] - 2.0 * f[i];
+            }
+        }
+        Some((g, phi)) => {
+            for i in 0..du.len() {
+                du[i] = 4.0 / dt * mv[i] - 2.0 * f[i] + g[i] * phi;
+            }
         }
     }
     factor.solve_in_place(du);

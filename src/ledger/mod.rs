@@ -113,7 +113,7 @@ impl<'a> Ledger<'a> {
             direction: model.dofs.iter().map(|d| d.comp == comp).collect(),
             mv: vec![0.0; n],
             u_prev: model.u0.clone(),
-            eq16: eq16_elements(model),
+            eq16: Eq16Elements::new(model),
             external_work: 0.0,
             initial: None,
         }
@@ -123,7 +123,10 @@ impl<'a> Ledger<'a> {
     pub fn record(&mut self, s: &StepState) -> EnergyRow {
         let m = self.model;
         self.sys.m_mul(s.v, &mut self.mv);
-        let (mut ke_t, mut ke_i, mut p) = (0.0, 0.0, 0.0);
+        // One pass: KE_t and KE_i, the momentum, and ½ u·Ku from the scheme's own K u
+        // where it keeps one (the impactor has no stiffness: only the target
+        // contributes), element by element otherwise.
+        let (mut ke_t, mut ke_i, mut p, mut uf) = (0.0, 0.0, 0.0, 0.0);
         for i in 0..m.n() {
             let k = 0.5 * s.v[i] * self.mv[i];
             if self.target[i] {
@@ -134,11 +137,12 @@ impl<'a> Ledger<'a> {
             if self.direction[i] {
                 p += self.mv[i];
             }
+            if let Some(f) = s.internal_force {
+                uf += s.u[i] * f[i];
+            }
         }
-        // ½ u·Ku from the scheme's own K u where it keeps one (the impactor has no
-        // stiffness: only the target contributes), element by element otherwise.
         let se_t = match s.internal_force {
-            Some(f) => 0.5 * s.u.iter().zip(f).map(|(u, f)| u * f).sum::<f64>(),
+            Some(_) => 0.5 * uf,
             None => strain_energy(m, s.u),
         };
         let se_i = m.contact.as_ref().map(|c| c.potential(s.alpha)).unwrap_or(0.0);
@@ -162,7 +166,7 @@ impl<'a> Ledger<'a> {
             ke_impactor: ke_i,
             se_impactor: se_i,
             ke_target: ke_t,
-            ke_target_eq16: ke_eq16(&self.eq16, s.v),
+            ke_target_eq16: self.eq16.kinetic_energy(s.v),
             se_target: se_t,
             total,
             external_work: self.external_work,
@@ -218,33 +222,48 @@ pub fn strain_energy(model: &Model, u: &[f64]) -> f64 {
     model.elements.iter().map(|e| e.strain_energy(u)).sum()
 }
 
-/// The element masses and corner translation DOFs the paper's Eq. 16 sums over.
-pub type Eq16Elements = Vec<(f64, Vec<[Option<usize>; 3]>)>;
-
-/// Element masses and corners for [`ke_eq16`], computed once per model.
-pub fn eq16_elements(model: &Model) -> Eq16Elements {
-    model
-        .elements
-        .iter()
-        .filter_map(|e| Some((e.kernel.eq16_mass()?, e.translations())))
-        .collect()
+/// What the paper's Eq. 16 sums over, computed once per model: each element's mass,
+/// the weight 1/corners of a corner in the mean velocity, and the end of its solved
+/// corner translations in `translations` as (component, DOF), corner by corner.
+struct Eq16Elements {
+    elements: Vec<(f64, f64, usize)>,
+    translations: Vec<(usize, usize)>,
 }
-/// The paper's Eq. 16: element mass times the square of the mean nodal velocity.
-pub fn ke_eq16(elements: &Eq16Elements, v: &[f64]) -> f64 {
-    let mut ke = 0.0;
-    for (me, corners) in elements {
-        let mut vm = [0.0; 3];
-        let w = 1.0 / corners.len() as f64;
-        for c in corners {
-            for (k, d) in c.iter().enumerate() {
-                if let Some(i) = d {
-                    vm[k] += w * v[*i];
+
+impl Eq16Elements {
+    fn new(model: &Model) -> Self {
+        let mut elements = Vec::new();
+        let mut translations = Vec::new();
+        for e in &model.elements {
+            let Some(mass) = e.kernel.eq16_mass() else { continue };
+            let corners = e.translations();
+            for c in &corners {
+                translations.extend(c.iter().enumerate().filter_map(|(k, d)| Some((k, (*d)?))));
+            }
+            elements.push((mass, 1.0 / corners.len() as f64, translations.len()));
+        }
+        Eq16Elements { elements, translations }
+    }
+
+    /// The paper's Eq. 16: element mass times the square of the mean nodal velocity.
+    fn kinetic_energy(&self, v: &[f64]) -> f64 {
+        let mut ke = 0.0;
+        let mut start = 0;
+        for &(mass, w, end) in &self.elements {
+            // The mean velocity's components, kept apart so that they stay in registers.
+            let (mut x, mut y, mut z) = (0.0, 0.0, 0.0);
+            for &(k, i) in &self.translations[start..end] {
+                match k {
+                    0 => x += w * v[i],
+                    1 => y += w * v[i],
+                    _ => z += w * v[i],
                 }
             }
+            start = end;
+            ke += 0.5 * mass * (x * x + y * y + z * z);
         }
-        ke += 0.5 * me * (vm[0] * vm[0] + vm[1] * vm[1] + vm[2] * vm[2]);
+        ke
     }
-    ke
 }
 
 /// U_t/(U_0 + W_ext): 1 for a balanced ledger; 1 too when there is no energy at all.
