@@ -131,7 +131,8 @@ fn symmetric_from_lower(n: usize, t: &[Triplet<usize, usize, f64>]) -> SparseCol
 /// A symmetric sparse matrix for y = A x, stored as its lower triangle by rows: half
 /// the values and, with 32-bit column indices, a third of the bytes of the whole
 /// matrix, which is what a product costs once the factor's solves have pushed the
-/// matrix out of cache (2.6× faster than the whole matrix by columns on the plate).
+/// matrix out of cache (on the plate, caches flushed between products: 0.18 ms, 3×
+/// faster than the whole matrix scattered by columns).
 #[derive(Debug, Clone)]
 struct LowerRows {
     row_ptr: Vec<usize>,
@@ -206,4 +207,60 @@ pub fn lowest_frequencies(model: &Model, count: usize) -> Option<Vec<f64>> {
     ev.sort_by(f64::total_cmp);
     ev.truncate(count);
     Some(ev)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Goal: the product from the lower triangle is the symmetric matrix's product,
+    /// to the last bit of a row-by-row sum in column order. Model: a 40×40 symmetric
+    /// matrix with a scattered pattern, some rows empty, built from triplets whose
+    /// upper entries differ from their mirror in the last bits (as element matrices
+    /// do): the lower triangle must win.
+    #[test]
+    fn lower_triangle_product_is_the_symmetric_product_bit_for_bit() {
+        let n = 40;
+        let mut t = Vec::new();
+        for i in 0..n {
+            if i % 7 == 3 {
+                continue;
+            }
+            t.push(Triplet::new(i, i, 4.0 + i as f64));
+            for j in (0..i).filter(|j| (i * 31 + j * 17) % 5 == 0 && j % 7 != 3) {
+                let a = ((i * j) as f64).sin();
+                t.push(Triplet::new(i, j, a));
+                t.push(Triplet::new(j, i, a * (1.0 + f64::EPSILON)));
+            }
+        }
+        let sym = symmetric_from_lower(n, &t);
+        let dense = |i: usize, j: usize| {
+            let (r, c) = if i >= j { (i, j) } else { (j, i) };
+            t.iter()
+                .filter(|e| e.row == r && e.col == c)
+                .map(|e| e.val)
+                .sum::<f64>()
+        };
+        let x: Vec<f64> = (0..n).map(|i| (0.3 * i as f64).cos()).collect();
+        let expected: Vec<f64> = (0..n)
+            .map(|i| {
+                (0..n)
+                    .filter(|&j| dense(i, j) != 0.0)
+                    .fold(0.0, |acc, j| acc + dense(i, j) * x[j])
+            })
+            .collect();
+        let mut y = vec![f64::NAN; n];
+        LowerRows::new(&sym).mul(&x, &mut y);
+        assert_eq!(y, expected);
+        for j in 0..n {
+            for p in sym.symbolic().col_ptr()[j]..sym.symbolic().col_ptr()[j + 1] {
+                assert_eq!(
+                    sym.val()[p],
+                    dense(sym.symbolic().row_idx()[p], j),
+                    "({}, {j})",
+                    sym.symbolic().row_idx()[p]
+                );
+            }
+        }
+    }
 }
