@@ -540,6 +540,7 @@ pub fn sweep(a: SweepArgs) -> Result<u8, Error> {
         "passed": out.passed(),
         "kernel_pass_s": out.kernel_pass_s,
         "kernel_cache": out.kernel_cache,
+        "checks_s": out.checks_s,
         "points_s": out.points_s,
     });
     let files = [
@@ -557,11 +558,12 @@ pub fn sweep(a: SweepArgs) -> Result<u8, Error> {
     };
     let figures = sweep::figures(&out.header, &out.rows, &cx, &dir)?;
     sayln(&format!(
-        "{}: {} of {points} points ({} jobs), kernel pass {:.2} s, points {:.2} s; {} direct checks, worst {:.2e} (max {:.0e})",
+        "{}: {} of {points} points ({} jobs): kernel pass {:.2} s beside the direct checks, {:.2} s; points {:.2} s; {} direct checks, worst {:.2e} (max {:.0e})",
         model.name,
         out.rows.len(),
         jobs,
         out.kernel_pass_s,
+        out.checks_s,
         out.points_s,
         out.direct_checks,
         out.worst_direct_check,
@@ -614,7 +616,7 @@ pub fn collect(a: CollectArgs) -> Result<u8, Error> {
         .map(|d| d.display().to_string())
         .collect::<Vec<_>>()
         .into();
-    for key in ["kernel_pass_s", "points_s"] {
+    for key in ["kernel_pass_s", "checks_s", "points_s"] {
         summary[key] = summaries.iter().filter_map(|s| s[key].as_f64()).sum::<f64>().into();
     }
     let files = [

@@ -15,6 +15,7 @@ use crate::run::convolution::{engine_difference, CacheUse, Kernels};
 use crate::run::{run_model, solved_system, Column, Engine, RunError, RunOptions, RunResult};
 use crate::Error;
 use indicatif::ProgressBar;
+use std::collections::HashMap;
 use std::path::Path;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
@@ -188,11 +189,14 @@ pub struct SweepOutcome {
     pub direct_checks: usize,
     /// The largest direct check (0 when none ran).
     pub worst_direct_check: f64,
-    /// Seconds of the kernel pass (0 when read from the cache).
+    /// Seconds of the kernel pass within the first phase (0 when read from the cache).
     pub kernel_pass_s: f64,
     /// Where the kernels came from.
     pub kernel_cache: CacheUse,
-    /// Seconds of all the points (direct checks included).
+    /// Wall seconds of the first phase: the kernel pass side by side with the direct
+    /// runs of the checked points.
+    pub checks_s: f64,
+    /// Wall seconds of the second phase: every point on the convolution engine.
     pub points_s: f64,
 }
 
@@ -245,79 +249,108 @@ fn row(index: usize, values: &[f64], run: &RunResult, direct_check: Option<f64>)
     r
 }
 
-/// One point's row, or why it could not be run.
-type PointRow = Result<Vec<f64>, Error>;
+/// Runs `count` tasks, numbered from 0 and taken in order, on `jobs` threads; their
+/// results in task order.
+fn in_parallel<T: Send>(jobs: usize, count: usize, task: impl Fn(usize) -> T + Sync) -> Vec<T> {
+    let next = AtomicUsize::new(0);
+    let done = Mutex::new(Vec::with_capacity(count));
+    std::thread::scope(|scope| {
+        for _ in 0..jobs.max(1).min(count.max(1)) {
+            scope.spawn(|| loop {
+                let k = next.fetch_add(1, Ordering::Relaxed);
+                if k >= count {
+                    break;
+                }
+                let result = task(k);
+                done.lock().expect("no worker panics").push((k, result));
+            });
+        }
+    });
+    let mut done = done.into_inner().expect("no worker panics");
+    done.sort_by_key(|(k, _)| *k);
+    done.into_iter().map(|(_, r)| r).collect()
+}
 
-/// Runs a sweep of `base` (its Δt and steps from `run`).
+/// A run that the energy guard stopped still gives its outputs up to the stop.
+fn outputs(run: Result<RunResult, RunError>) -> Result<RunResult, Error> {
+    match run {
+        Ok(r) => Ok(r),
+        Err(RunError::EnergyGuard { partial, .. }) => Ok(*partial),
+        Err(e) => Err(e.into()),
+    }
+}
+
+/// Runs a sweep of `base` (its Δt and steps from `run`) in two phases on `jobs`
+/// threads: first the kernel pass side by side with the direct runs of the checked
+/// points (the longest tasks, and independent of the kernels), then every point on
+/// the convolution engine.
 pub fn sweep(base: &Model, run: &RunOptions, opts: &SweepOptions) -> Result<SweepOutcome, Error> {
     let all = points(&opts.varies);
+    let last = all.len() - 1;
     let mine: Vec<usize> = (0..all.len())
         .filter(|i| opts.shard.is_none_or(|(k, n)| i % n == k - 1))
+        .collect();
+    let checked: Vec<usize> = mine
+        .iter()
+        .copied()
+        .filter(|&i| i == 0 || i == last || i % 10 == 0)
         .collect();
     let bar = opts.progress.clone().unwrap_or_else(ProgressBar::hidden);
     let (model, sys) = solved_system(base, run.skip_inert)?;
     let model = model.as_ref();
     let dt = run.dt.unwrap_or(model.time.dt);
     let steps = run.steps.unwrap_or(model.time.steps);
-    let (kernels, cache) = Kernels::for_run(
-        model,
-        &sys,
-        dt,
-        steps,
-        run.kernel_cache.as_deref(),
-        &ProgressBar::hidden(),
-    )?;
-    bar.set_length(mine.len() as u64);
-    let t0 = std::time::Instant::now();
-    let opts_conv = RunOptions {
+    let on = |engine| RunOptions {
         scheme: opts.scheme,
-        engine: Engine::Convolution,
+        engine,
         progress: None,
         ..run.clone()
     };
-    let next = AtomicUsize::new(0);
-    let rows: Mutex<Vec<(usize, PointRow)>> = Mutex::new(Vec::new());
-    let last = all.len() - 1;
-    std::thread::scope(|scope| {
-        for _ in 0..opts.jobs.max(1).min(mine.len().max(1)) {
-            scope.spawn(|| loop {
-                let k = next.fetch_add(1, Ordering::Relaxed);
-                let Some(&i) = mine.get(k) else { break };
-                let result = (|| -> Result<Vec<f64>, Error> {
-                    let m = point_model(model, &opts.varies, &all[i])?;
-                    let conv = match kernels.run(&m, &opts_conv, &ProgressBar::hidden()) {
-                        Ok(r) => r,
-                        Err(RunError::EnergyGuard { partial, .. }) => *partial,
-                        Err(e) => return Err(e.into()),
-                    };
-                    let check = if i == 0 || i == last || i % 10 == 0 {
-                        let direct = run_model(
-                            &m,
-                            &RunOptions {
-                                engine: Engine::Direct,
-                                ..opts_conv.clone()
-                            },
-                        );
-                        let direct = match direct {
-                            Ok(r) => r,
-                            Err(RunError::EnergyGuard { partial, .. }) => *partial,
-                            Err(e) => return Err(e.into()),
-                        };
-                        Some(engine_difference(&direct, &conv).map_or(f64::INFINITY, |w| w.0))
-                    } else {
-                        None
-                    };
-                    Ok(row(i, &all[i], &conv, check))
-                })();
-                rows.lock().expect("no worker panics").push((i, result));
-                bar.inc(1);
-            });
+    let (opts_conv, opts_direct) = (on(Engine::Convolution), on(Engine::Direct));
+    bar.set_length((mine.len() + checked.len()) as u64);
+
+    let t0 = std::time::Instant::now();
+    let kernels = Mutex::new(None);
+    let direct = in_parallel(opts.jobs, checked.len() + 1, |k| {
+        if k == 0 {
+            let pass = Kernels::for_run(
+                model,
+                &sys,
+                dt,
+                steps,
+                run.kernel_cache.as_deref(),
+                &ProgressBar::hidden(),
+            );
+            *kernels.lock().expect("no worker panics") = Some(pass);
+            return None;
         }
+        let i = checked[k - 1];
+        let result = point_model(model, &opts.varies, &all[i]).and_then(|m| outputs(run_model(&m, &opts_direct)));
+        bar.inc(1);
+        Some(result.map(|r| (i, r)))
+    });
+    let (kernels, cache) = kernels
+        .into_inner()
+        .expect("no worker panics")
+        .expect("task 0 is the kernel pass")?;
+    let direct: HashMap<usize, RunResult> = direct.into_iter().flatten().collect::<Result<_, _>>()?;
+    let checks_s = t0.elapsed().as_secs_f64();
+
+    let t1 = std::time::Instant::now();
+    let rows = in_parallel(opts.jobs, mine.len(), |k| {
+        let i = mine[k];
+        let result = point_model(model, &opts.varies, &all[i]).and_then(|m| {
+            let conv = outputs(kernels.run(&m, &opts_conv, &ProgressBar::hidden()))?;
+            let check = direct
+                .get(&i)
+                .map(|d| engine_difference(d, &conv).map_or(f64::INFINITY, |w| w.0));
+            Ok(row(i, &all[i], &conv, check))
+        });
+        bar.inc(1);
+        result
     });
     bar.finish_and_clear();
-    let mut rows = rows.into_inner().expect("no worker panics");
-    rows.sort_by_key(|(i, _)| *i);
-    let rows: Vec<Vec<f64>> = rows.into_iter().map(|(_, r)| r).collect::<Result<_, _>>()?;
+    let rows: Vec<Vec<f64>> = rows.into_iter().collect::<Result<_, _>>()?;
     let (direct_checks, worst_direct_check) = direct_checks(&rows);
     Ok(SweepOutcome {
         header: header(model, &opts.varies),
@@ -326,7 +359,8 @@ pub fn sweep(base: &Model, run: &RunOptions, opts: &SweepOptions) -> Result<Swee
         rows,
         kernel_pass_s: kernels.pass_s,
         kernel_cache: cache,
-        points_s: t0.elapsed().as_secs_f64(),
+        checks_s,
+        points_s: t1.elapsed().as_secs_f64(),
     })
 }
 
