@@ -223,43 +223,47 @@ pub fn strain_energy(model: &Model, u: &[f64]) -> f64 {
 }
 
 /// What the paper's Eq. 16 sums over, computed once per model: each element's mass,
-/// the weight 1/corners of a corner in the mean velocity, and the end of its solved
-/// corner translations in `translations` as (component, DOF), corner by corner.
+/// the weight 1/corners of a corner in the mean velocity, and where its solved corner
+/// translations end in `dofs`, which holds each element's x DOFs, then its y, then
+/// its z, each in corner order.
 struct Eq16Elements {
-    elements: Vec<(f64, f64, usize)>,
-    translations: Vec<(usize, usize)>,
+    elements: Vec<(f64, f64, [usize; 3])>,
+    dofs: Vec<u32>,
 }
 
 impl Eq16Elements {
     fn new(model: &Model) -> Self {
         let mut elements = Vec::new();
-        let mut translations = Vec::new();
+        let mut dofs = Vec::new();
         for e in &model.elements {
             let Some(mass) = e.kernel.eq16_mass() else { continue };
             let corners = e.translations();
-            for c in &corners {
-                translations.extend(c.iter().enumerate().filter_map(|(k, d)| Some((k, (*d)?))));
-            }
-            elements.push((mass, 1.0 / corners.len() as f64, translations.len()));
+            let ends = std::array::from_fn(|k| {
+                dofs.extend(
+                    corners
+                        .iter()
+                        .filter_map(|c| c[k])
+                        .map(|i| u32::try_from(i).expect("fewer than 2³² DOFs (the memory check refuses far fewer)")),
+                );
+                dofs.len()
+            });
+            elements.push((mass, 1.0 / corners.len() as f64, ends));
         }
-        Eq16Elements { elements, translations }
+        Eq16Elements { elements, dofs }
     }
 
     /// The paper's Eq. 16: element mass times the square of the mean nodal velocity.
     fn kinetic_energy(&self, v: &[f64]) -> f64 {
         let mut ke = 0.0;
         let mut start = 0;
-        for &(mass, w, end) in &self.elements {
-            // The mean velocity's components, kept apart so that they stay in registers.
-            let (mut x, mut y, mut z) = (0.0, 0.0, 0.0);
-            for &(k, i) in &self.translations[start..end] {
-                match k {
-                    0 => x += w * v[i],
-                    1 => y += w * v[i],
-                    _ => z += w * v[i],
-                }
-            }
-            start = end;
+        for &(mass, w, ends) in &self.elements {
+            let [x, y, z] = ends.map(|end| {
+                let mean = self.dofs[start..end]
+                    .iter()
+                    .fold(0.0, |acc, &i| acc + w * v[i as usize]);
+                start = end;
+                mean
+            });
             ke += 0.5 * mass * (x * x + y * y + z * z);
         }
         ke
