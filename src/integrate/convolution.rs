@@ -156,8 +156,7 @@ pub fn linear_response(
     record: &mut dyn FnMut(&[f64], &[f64]),
 ) -> Result<StepCosts, SolveError> {
     let n = model.n();
-    let a = sys.combine(4.0 / (dt * dt), 1.0);
-    let mut factor = Factor::new(&a, &model.dofs)?;
+    let mut factor = Factor::effective(sys, 4.0 / (dt * dt), 1.0, &model.dofs)?;
     let (mut u, mut v, mut f) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
     let (mut du, mut kdu, mut mv) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
     for k in 1..=steps {

@@ -58,8 +58,7 @@ impl<'a> ThreePoint<'a> {
         // state is reported at step 0 here, not as a NaN at step 1.
         check_finite(model, 0, 0.0, &model.u0)?;
         check_finite(model, 0, 0.0, &model.v0)?;
-        let a = sys.combine(1.0 / (dt * dt), params.beta);
-        let factor = Factor::new(&a, &model.dofs)?;
+        let factor = Factor::effective(sys, 1.0 / (dt * dt), params.beta, &model.dofs)?;
         let (g, c) = contact_vectors(model);
         let contact = model.contact.as_ref();
         let u_prev: Vec<f64> = (0..n).map(|i| model.u0[i] - dt * model.v0[i]).collect();

@@ -95,8 +95,7 @@ impl<'a> Newmark<'a> {
     /// Factorises A = 4M/Δt² + K and sets up the initial state.
     pub fn new(model: &'a Model, sys: &'a System, dt: f64, params: NewmarkParams) -> Result<Self, SolveError> {
         let n = model.n();
-        let a = sys.combine(4.0 / (dt * dt), 1.0);
-        let mut factor = Factor::new(&a, &model.dofs)?;
+        let mut factor = Factor::effective(sys, 4.0 / (dt * dt), 1.0, &model.dofs)?;
         let (g, c) = contact_vectors(model);
         let mut z = g.clone();
         let mut s = 0.0;
