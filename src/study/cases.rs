@@ -59,28 +59,10 @@ pub fn evaluate(case: &Case) -> Result<CaseOutcome, crate::Error> {
 
 /// Evaluates cases on up to `jobs` threads; outcomes in case order, each named.
 pub fn evaluate_all(cases: &[Case], jobs: usize) -> Vec<(String, Result<CaseOutcome, crate::Error>)> {
-    let next = std::sync::atomic::AtomicUsize::new(0);
-    type Slot = std::sync::Mutex<Option<Result<CaseOutcome, crate::Error>>>;
-    let slots: Vec<Slot> = cases.iter().map(|_| std::sync::Mutex::new(None)).collect();
-    std::thread::scope(|s| {
-        for _ in 0..jobs.max(1).min(cases.len().max(1)) {
-            s.spawn(|| loop {
-                let i = next.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
-                if i >= cases.len() {
-                    break;
-                }
-                let r = evaluate(&cases[i]);
-                *slots[i].lock().expect("no poisoning") = Some(r);
-            });
-        }
-    });
-    cases
-        .iter()
-        .zip(slots)
-        .map(|(c, slot)| {
-            let r = slot.into_inner().expect("no poisoning").expect("every case was taken");
-            (c.name.clone(), r)
-        })
+    super::in_parallel(jobs, cases.len(), |i| evaluate(&cases[i]))
+        .into_iter()
+        .zip(cases)
+        .map(|(r, c)| (c.name.clone(), r))
         .collect()
 }
 

@@ -233,6 +233,28 @@ pub fn bench_plate(repeats: usize, steps: usize) -> Result<String, Error> {
     }
     Ok(out)
 }
+/// Runs `count` tasks, numbered from 0 and taken in order, on `jobs` threads; their
+/// results in task order.
+pub(crate) fn in_parallel<T: Send>(jobs: usize, count: usize, task: impl Fn(usize) -> T + Sync) -> Vec<T> {
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let done = std::sync::Mutex::new(Vec::with_capacity(count));
+    std::thread::scope(|scope| {
+        for _ in 0..jobs.max(1).min(count.max(1)) {
+            scope.spawn(|| loop {
+                let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                if k >= count {
+                    break;
+                }
+                let result = task(k);
+                done.lock().expect("no worker panics").push((k, result));
+            });
+        }
+    });
+    let mut done = done.into_inner().expect("no worker panics");
+    done.sort_by_key(|(k, _)| *k);
+    done.into_iter().map(|(_, r)| r).collect()
+}
+
 pub mod accuracy;
 pub mod stability;
 pub mod sweep;

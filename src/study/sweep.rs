@@ -9,6 +9,7 @@
 //! runs the points whose number is I−1 modulo N; [`collect`] merges shards into the
 //! `sweep.csv` an unsharded run writes.
 
+use super::in_parallel;
 use crate::integrate::Scheme;
 use crate::model::{Model, Modify};
 use crate::run::convolution::{engine_difference, CacheUse, Kernels};
@@ -17,7 +18,6 @@ use crate::Error;
 use indicatif::ProgressBar;
 use std::collections::HashMap;
 use std::path::Path;
-use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 
 /// The largest `direct_check` a sweep accepts, relative to each quantity's peak: the
@@ -247,28 +247,6 @@ fn row(index: usize, values: &[f64], run: &RunResult, direct_check: Option<f64>)
     }
     r.push(direct_check.unwrap_or(nan));
     r
-}
-
-/// Runs `count` tasks, numbered from 0 and taken in order, on `jobs` threads; their
-/// results in task order.
-fn in_parallel<T: Send>(jobs: usize, count: usize, task: impl Fn(usize) -> T + Sync) -> Vec<T> {
-    let next = AtomicUsize::new(0);
-    let done = Mutex::new(Vec::with_capacity(count));
-    std::thread::scope(|scope| {
-        for _ in 0..jobs.max(1).min(count.max(1)) {
-            scope.spawn(|| loop {
-                let k = next.fetch_add(1, Ordering::Relaxed);
-                if k >= count {
-                    break;
-                }
-                let result = task(k);
-                done.lock().expect("no worker panics").push((k, result));
-            });
-        }
-    });
-    let mut done = done.into_inner().expect("no worker panics");
-    done.sort_by_key(|(k, _)| *k);
-    done.into_iter().map(|(_, r)| r).collect()
 }
 
 /// A run that the energy guard stopped still gives its outputs up to the stop.
