@@ -6,7 +6,7 @@ mod reduce;
 pub use reduce::drop_inert;
 
 use crate::model::Model;
-use faer::sparse::{SparseColMat, Triplet};
+use faer::sparse::{SparseColMat, SparseRowMat, SymbolicSparseColMat, Triplet};
 
 /// Global stiffness and mass as triplet lists (duplicates summed when compressed).
 #[derive(Debug, Clone)]
@@ -42,8 +42,13 @@ pub fn assemble(model: &Model) -> System {
         v.into_iter().map(|(i, j, x)| Triplet::new(i, j, x)).collect()
     };
     let (k, m) = (triplets(k), triplets(m));
-    let k_csc = symmetric_from_lower(n, &k);
-    let (k_lower, m_lower) = (LowerRows::new(&k_csc), LowerRows::new(&symmetric_from_lower(n, &m)));
+    let by_rows =
+        |lower: &SparseColMat<usize, f64>| lower.to_row_major().expect("a transpose fits where the matrix did");
+    let k_lower_by_columns = lower_triangle(n, &k);
+    let k_lower_by_rows = by_rows(&k_lower_by_columns);
+    let k_csc = mirrored(&k_lower_by_columns, &k_lower_by_rows);
+    let k_lower = LowerRows::new(&k_lower_by_rows);
+    let m_lower = LowerRows::new(&by_rows(&lower_triangle(n, &m)));
     let lumped = m.iter().all(|t| t.row == t.col || t.val == 0.0);
     let mut sys = System {
         m_lumped: None,
@@ -108,24 +113,44 @@ impl System {
     }
 }
 
-/// The symmetric matrix whose lower triangle (row ≥ column) is that of the summed
-/// triplets `t`, compressed.
-fn symmetric_from_lower(n: usize, t: &[Triplet<usize, usize, f64>]) -> SparseColMat<usize, f64> {
+/// The lower triangle (row ≥ column) of the summed triplets `t`, compressed: the
+/// whole matrix compressed first, so that each entry is summed as in it.
+fn lower_triangle(n: usize, t: &[Triplet<usize, usize, f64>]) -> SparseColMat<usize, f64> {
     let a = SparseColMat::try_new_from_triplets(n, n, t).expect("indices are in range");
-    let (cp, ri, val) = (a.symbolic().col_ptr(), a.symbolic().row_idx(), a.val());
-    let mut mirrored = Vec::with_capacity(val.len());
+    let (cp, ri, v) = (a.symbolic().col_ptr(), a.symbolic().row_idx(), a.val());
+    let (mut ptr, mut idx, mut val) = (vec![0], Vec::new(), Vec::new());
     for j in 0..n {
-        for p in cp[j]..cp[j + 1] {
-            let i = ri[p];
-            if i >= j {
-                mirrored.push(Triplet::new(i, j, val[p]));
-            }
-            if i > j {
-                mirrored.push(Triplet::new(j, i, val[p]));
-            }
+        for p in (cp[j]..cp[j + 1]).filter(|&p| ri[p] >= j) {
+            idx.push(ri[p]);
+            val.push(v[p]);
         }
+        ptr.push(idx.len());
     }
-    SparseColMat::try_new_from_triplets(n, n, &mirrored).expect("indices are in range")
+    SparseColMat::new(SymbolicSparseColMat::new_checked(n, n, ptr, None, idx), val)
+}
+
+/// The symmetric matrix whose lower triangle is `lower`, given by columns and by
+/// rows: its column j is the lower triangle's row j (rows up to the diagonal) followed
+/// by the lower triangle's column j below the diagonal, both already sorted.
+fn mirrored(lower: &SparseColMat<usize, f64>, lower_rows: &SparseRowMat<usize, f64>) -> SparseColMat<usize, f64> {
+    let (cp, ri, cv) = (lower.symbolic().col_ptr(), lower.symbolic().row_idx(), lower.val());
+    let (rp, ci, rv) = (
+        lower_rows.symbolic().row_ptr(),
+        lower_rows.symbolic().col_idx(),
+        lower_rows.val(),
+    );
+    let n = lower.ncols();
+    let (mut ptr, mut idx, mut val) = (vec![0], Vec::new(), Vec::new());
+    for j in 0..n {
+        idx.extend_from_slice(&ci[rp[j]..rp[j + 1]]);
+        val.extend_from_slice(&rv[rp[j]..rp[j + 1]]);
+        for p in (cp[j]..cp[j + 1]).filter(|&p| ri[p] > j) {
+            idx.push(ri[p]);
+            val.push(cv[p]);
+        }
+        ptr.push(idx.len());
+    }
+    SparseColMat::new(SymbolicSparseColMat::new_checked(n, n, ptr, None, idx), val)
 }
 
 /// A symmetric sparse matrix for y = A x, stored as its lower triangle by rows: half
@@ -151,20 +176,13 @@ enum Columns {
 }
 
 impl LowerRows {
-    /// The lower triangle of `a` (symmetric).
-    fn new(a: &SparseColMat<usize, f64>) -> LowerRows {
-        let a = a.to_row_major().expect("a transpose fits where the matrix did");
-        let (rp, ci, v) = (a.symbolic().row_ptr(), a.symbolic().col_idx(), a.val());
-        let (mut row_ptr, mut cols, mut val) = (vec![0], Vec::new(), Vec::new());
-        for i in 0..a.nrows() {
-            for p in rp[i]..rp[i + 1] {
-                if ci[p] <= i {
-                    cols.push((i, ci[p]));
-                    val.push(v[p]);
-                }
-            }
-            row_ptr.push(cols.len());
-        }
+    /// The symmetric matrix whose lower triangle, by rows, is `lower`.
+    fn new(lower: &SparseRowMat<usize, f64>) -> LowerRows {
+        let (row_ptr, ci) = (lower.symbolic().row_ptr().to_vec(), lower.symbolic().col_idx());
+        let cols: Vec<(usize, usize)> = (0..lower.nrows())
+            .flat_map(|i| ci[row_ptr[i]..row_ptr[i + 1]].iter().map(move |&j| (i, j)))
+            .collect();
+        let val = lower.val().to_vec();
         let columns = match cols.iter().map(|&(i, j)| u16::try_from(i - j)).collect() {
             Ok(band) => Columns::Band(band),
             Err(_) => Columns::Wide(
@@ -253,7 +271,9 @@ mod tests {
                 t.push(Triplet::new(j, i, a * (1.0 + f64::EPSILON)));
             }
         }
-        let sym = symmetric_from_lower(n, &t);
+        let lower_csc = lower_triangle(n, &t);
+        let lower_rows = lower_csc.to_row_major().unwrap();
+        let sym = mirrored(&lower_csc, &lower_rows);
         let dense = |i: usize, j: usize| {
             let (r, c) = if i >= j { (i, j) } else { (j, i) };
             t.iter()
@@ -270,7 +290,7 @@ mod tests {
             })
             .collect();
         let mut y = vec![f64::NAN; n];
-        let lower = LowerRows::new(&sym);
+        let lower = LowerRows::new(&lower_rows);
         assert!(matches!(lower.columns, Columns::Band(_)));
         lower.mul(&x, &mut y);
         assert_eq!(y, expected);
@@ -294,7 +314,7 @@ mod tests {
         let mut t: Vec<_> = (0..n).map(|i| Triplet::new(i, i, 2.0 + i as f64)).collect();
         t.push(Triplet::new(n - 1, 0, -1.5));
         t.push(Triplet::new(0, n - 1, -1.5));
-        let m = LowerRows::new(&symmetric_from_lower(n, &t));
+        let m = LowerRows::new(&lower_triangle(n, &t).to_row_major().unwrap());
         assert!(matches!(m.columns, Columns::Wide(_)));
         let x: Vec<f64> = (0..n).map(|i| 1.0 + i as f64 * 1e-3).collect();
         let mut y = vec![0.0; n];
