@@ -18,7 +18,9 @@ use super::{
     RunResult, Series,
 };
 use crate::assembly::System;
-use crate::integrate::convolution::{contact_history, convolve_at, unit_response, ConvStep, RunFailure, UnitResponse};
+use crate::integrate::convolution::{
+    contact_history, unit_response, ConvStep, Convolver, RunFailure, Spectrum, UnitResponse,
+};
 use crate::integrate::RunStats;
 use crate::ledger::EnergyRow;
 use crate::model::{apply, Model};
@@ -69,6 +71,8 @@ pub struct Kernels {
     steps: usize,
     /// Wall-clock seconds of the kernel pass.
     pub pass_s: f64,
+    /// The kernels' spectra, made by the first run.
+    spectra: std::sync::OnceLock<Spectra>,
 }
 
 /// Where a run's kernels came from.
@@ -189,11 +193,28 @@ impl Kernels {
             dt,
             steps,
             pass_s: t0.elapsed().as_secs_f64(),
+            spectra: Default::default(),
+        })
+    }
+
+    /// The spectra of the columns' kernels and of the work's, computed by the first
+    /// run that needs them and kept for the others.
+    fn spectra(&self) -> &Spectra {
+        self.spectra.get_or_init(|| {
+            let fft = Convolver::new(self.steps);
+            let columns = self.columns.iter().map(|c| fft.spectrum(c)).collect();
+            let work = fft.spectrum(&self.response.work);
+            Spectra { fft, columns, work }
         })
     }
 
     /// A run of `model` (the kernels' target, with any impactor and Hertz law) on
     /// these kernels; `opts` as for any run, its Δt and steps those of the kernels.
+    ///
+    /// Three stages: the contact history, step by step (the only causal part); then,
+    /// from its finished loads, every output column and the ledger's w, work and
+    /// momentum as full convolutions by FFT; then the ledger, whose energy guard, when
+    /// it trips at step n, ends the run's outputs at step n as a direct run's would be.
     pub fn run(&self, model: &Model, opts: &RunOptions, bar: &ProgressBar) -> Result<RunResult, RunError> {
         let t0 = std::time::Instant::now();
         let form = opts.scheme.newmark_params().map(|p| p.contact).ok_or_else(|| {
@@ -215,114 +236,135 @@ impl Kernels {
         // A K scaled by s scales every load, so every kernel (the work's by s²).
         let s = ct.stiffness / self.stiffness;
         let scaled;
-        let (kernel, columns): (&UnitResponse, Vec<std::borrow::Cow<[f64]>>) = if s == 1.0 {
-            (
-                &self.response,
-                self.columns.iter().map(|c| c.as_slice().into()).collect(),
-            )
+        let kernel = if s == 1.0 {
+            &self.response
         } else {
             scaled = self.response.scaled(s);
-            let last = self.columns.len() - 1;
-            let cols = self
-                .columns
-                .iter()
-                .enumerate()
-                .map(|(i, c)| {
-                    let f = if i == last { s * s } else { s };
-                    c.iter().map(|x| x * f).collect::<Vec<f64>>().into()
-                })
-                .collect();
-            (&scaled, cols)
+            &scaled
         };
-        let width = columns.len();
-        let (h_mom, h_nc) = (&columns[width - 2], &columns[width - 1]);
-        let imp = ct.impactor.dof;
-        let nc_imp: f64 = ct
-            .nonconservative
-            .iter()
-            .filter(|&&(j, _)| j == imp)
-            .map(|&(_, r)| r)
-            .sum();
 
-        // The contact history, with the ledger, the energy guard and the planned stop.
-        let mass = ct.impactor.mass;
+        // The contact history, with its planned stop.
         let mut series = Series::default();
-        let mut energy: Vec<EnergyRow> = Vec::with_capacity(steps + 1);
-        let mut loads: Vec<f64> = Vec::with_capacity(steps);
-        let mut heads: Vec<RowHead> = Vec::new();
+        let mut heads: Vec<(usize, RowHead)> = Vec::new();
+        let mut steps_done: Vec<ConvStep> = Vec::with_capacity(steps + 1);
         let every = model.time.every.max(1);
-        let (mut target_energy, mut external, mut initial) = (0.0, 0.0, None);
-        let (mut prev_w, mut prev_x, mut prev_nc) = (0.0, 0.0, 0.0);
-        let (mut in_contact, mut separated_at, mut tripped) = (false, None::<f64>, None);
-        let mut observe = |s: &ConvStep| {
-            if s.step > 0 {
-                loads.push(s.p);
-            }
-            let force = ct.stiffness * s.load_factor;
-            series.time.push(s.time);
-            series.alpha.push(s.alpha);
+        let (mut in_contact, mut separated_at) = (false, None::<f64>);
+        let mut observe = |c: &ConvStep| {
+            let force = ct.stiffness * c.load_factor;
+            series.time.push(c.time);
+            series.alpha.push(c.alpha);
             series.force.push(force);
-            series.impactor_u.push(s.x);
-            series.impactor_v.push(s.xv);
-            if opts.ledger {
-                let nc = convolve_at(h_nc, &loads, s.step);
-                if s.step > 0 {
-                    target_energy += (s.w - prev_w) * s.work_factor;
-                    external += (nc_imp * (s.x - prev_x) + (nc - prev_nc)) * s.work_factor;
-                }
-                (prev_w, prev_x, prev_nc) = (s.w, s.x, nc);
-                let ke_i = 0.5 * mass * s.xv * s.xv;
-                let se_i = ct.potential(s.alpha);
-                let u0 = *initial.get_or_insert(ke_i + se_i + target_energy);
-                let momentum = mass * s.xv + convolve_at(h_mom, &loads, s.step);
-                let row = EnergyRow::with_target_total(s.time, ke_i, se_i, target_energy, external, u0, momentum);
-                if let Some(limit) = opts.max_energy_error {
-                    if row.error.abs() > limit || row.error.is_nan() {
-                        tripped = Some(GuardTrip {
-                            step: s.step,
-                            time: s.time,
-                            error: row.error,
-                            limit,
-                        });
-                    }
-                }
-                energy.push(row);
+            series.impactor_u.push(c.x);
+            series.impactor_v.push(c.xv);
+            steps_done.push(*c);
+            if c.step % every == 0 {
+                heads.push((
+                    c.step,
+                    RowHead {
+                        time: c.time,
+                        force,
+                        alpha: c.alpha,
+                        impactor_u: c.x,
+                        impactor_v: c.xv,
+                        load_factor: c.load_factor,
+                    },
+                ));
             }
-            if s.step % every == 0 {
-                heads.push(RowHead {
-                    time: s.time,
-                    force,
-                    alpha: s.alpha,
-                    impactor_u: s.x,
-                    impactor_v: s.xv,
-                    load_factor: s.load_factor,
-                });
-            }
-            if s.alpha > 0.0 {
+            if c.alpha > 0.0 {
                 in_contact = true;
             } else if in_contact && separated_at.is_none() {
-                separated_at = Some(s.time);
+                separated_at = Some(c.time);
             }
-            if s.step % 64 == 0 {
-                bar.set_position((steps + s.step) as u64);
+            if c.step % 64 == 0 {
+                bar.set_position((steps + c.step) as u64);
             }
-            let done = matches!((separated_at, opts.stop_after_separation), (Some(t), Some(w)) if s.time >= t + w);
-            Ok(!done && tripped.is_none())
+            let done = matches!((separated_at, opts.stop_after_separation), (Some(t), Some(w)) if c.time >= t + w);
+            Ok(!done)
         };
-        let (p, iterations) = contact_history(model, form, kernel, steps, &mut observe)?;
+        let (mut p, _) = contact_history(model, form, kernel, steps, &mut observe)?;
 
-        // The history rows: the impactor's part of each linear output plus the target's sum.
+        // Everything linear in the loads, as convolutions: y(n) = conv[n − 1], y(0) = 0.
+        let spectra = self.spectra();
+        let fft = &spectra.fft;
+        let loads = fft.spectrum(&p);
+        let width = self.columns.len();
+        let conv = |c: usize| fft.convolve(&spectra.columns[c], &loads, if c == width - 1 { s * s } else { s });
+        let at = |y: &[f64], n: usize| if n == 0 { 0.0 } else { y[n - 1] };
+
+        // The ledger, and where its energy guard stops the run.
+        let mut energy: Vec<EnergyRow> = Vec::new();
+        let mut tripped = None;
+        if opts.ledger {
+            let w = fft.convolve(&spectra.work, &loads, s * s);
+            let (momentum_t, nc_t) = (conv(width - 2), conv(width - 1));
+            let imp = ct.impactor.dof;
+            let nc_imp: f64 = ct
+                .nonconservative
+                .iter()
+                .filter(|&&(j, _)| j == imp)
+                .map(|&(_, r)| r)
+                .sum();
+            let mass = ct.impactor.mass;
+            let (mut target_energy, mut external, mut initial) = (0.0, 0.0, None);
+            energy.reserve(steps_done.len());
+            for c in &steps_done {
+                let n = c.step;
+                if n > 0 {
+                    let prev = &steps_done[n - 1];
+                    target_energy += (at(&w, n) - at(&w, n - 1)) * c.work_factor;
+                    external += (nc_imp * (c.x - prev.x) + (at(&nc_t, n) - at(&nc_t, n - 1))) * c.work_factor;
+                }
+                let ke_i = 0.5 * mass * c.xv * c.xv;
+                let se_i = ct.potential(c.alpha);
+                let u0 = *initial.get_or_insert(ke_i + se_i + target_energy);
+                let momentum = mass * c.xv + at(&momentum_t, n);
+                let row = EnergyRow::with_target_total(c.time, ke_i, se_i, target_energy, external, u0, momentum);
+                let trip = opts
+                    .max_energy_error
+                    .filter(|&limit| row.error.abs() > limit || row.error.is_nan())
+                    .map(|limit| GuardTrip {
+                        step: n,
+                        time: c.time,
+                        error: row.error,
+                        limit,
+                    });
+                energy.push(row);
+                if trip.is_some() {
+                    tripped = trip;
+                    break;
+                }
+            }
+        }
+        if let Some(trip) = &tripped {
+            let kept = trip.step + 1;
+            for v in [
+                &mut series.time,
+                &mut series.alpha,
+                &mut series.force,
+                &mut series.impactor_u,
+                &mut series.impactor_v,
+            ] {
+                v.truncate(kept);
+            }
+            steps_done.truncate(kept);
+            heads.retain(|(n, _)| *n <= trip.step);
+            p.truncate(trip.step);
+        }
+        let iterations = steps_done.iter().map(|c| c.iterations).sum();
+
+        // The history rows: the impactor's part of each linear output plus the target's.
         let outputs = width - 2;
+        let columns: Vec<Vec<f64>> = (0..outputs).map(conv).collect();
         let (mut u_imp, mut v_imp) = (model.u0.clone(), model.v0.clone());
+        let imp = ct.impactor.dof;
         let history: Vec<Vec<f64>> = heads
             .iter()
-            .map(|h| {
-                let n = (h.time / dt).round() as usize;
+            .map(|(n, h)| {
                 u_imp[imp] = h.impactor_u;
                 v_imp[imp] = h.impactor_v;
                 let mut linear = linear_outputs(model, &u_imp, &v_imp);
-                for (c, y) in linear.iter_mut().enumerate().take(outputs) {
-                    *y += convolve_at(&columns[c], &p, n);
+                for (y, c) in linear.iter_mut().zip(&columns) {
+                    *y += at(c, *n);
                 }
                 history_row(model, h, &linear)
             })
@@ -361,6 +403,14 @@ impl Kernels {
             }),
         }
     }
+}
+
+/// The kernels' spectra for [`Convolver`]: the output columns' (momentum and the
+/// non-conservative work last) and the work's.
+struct Spectra {
+    fft: Convolver,
+    columns: Vec<Spectrum>,
+    work: Spectrum,
 }
 
 /// How far a run on the convolution engine is from the same run on the direct one:
@@ -529,5 +579,6 @@ fn decode(b: &[u8], key: &str, dt: f64, steps: usize) -> Result<Kernels, String>
         dt,
         steps,
         pass_s: 0.0,
+        spectra: Default::default(),
     })
 }
