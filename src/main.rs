@@ -91,6 +91,15 @@ pub struct SweepArgs {
     /// Compute the convolution engine's kernels afresh and store nothing.
     #[arg(long, conflicts_with = "cache")]
     pub no_cache: bool,
+    /// The self-check: this many points, spread evenly from the first to the last,
+    /// are also run on the direct engine (2: the first and the last), and the point
+    /// nearest the deck's own values when the sweep spans them. 0 turns the
+    /// self-check off (a warning, and `self_check.off` in summary.json).
+    #[arg(long, value_name = "N", default_value_t = 2)]
+    pub checks: usize,
+    /// Also check every N-th point (0, N, 2N, ...) on the direct engine.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
+    pub check_every: Option<u64>,
 }
 
 #[derive(clap::Args)]

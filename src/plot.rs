@@ -1,4 +1,5 @@
-//! Figures with plotters: line charts (linear or log axes) and filled contour maps,
+//! Figures with plotters: line charts (linear or log axes), filled contour maps and
+//! maps of a quantity over two parameters,
 //! each written as PNG (for reading) and SVG (for papers), with the bundled DejaVu
 //! Sans font so they render the same on a bare machine.
 
@@ -785,6 +786,168 @@ where
             (bx + 28, by + (t * 299.0) as i32 - 6),
         )
         .map_err(err)?;
+    }
+    Ok(())
+}
+
+/// A quantity over a grid of two parameters: each grid point a cell reaching halfway
+/// to its neighbours, coloured on a sequential scale from the smallest value to the
+/// largest, with contour lines where the grid is uniform and rings on marked points.
+pub struct HeatMap {
+    /// Title above the map.
+    pub title: String,
+    /// The first parameter's axis label (with its unit) and its values, ascending.
+    pub x_label: String,
+    /// The first parameter's values, ascending.
+    pub x: Vec<f64>,
+    /// The second parameter's axis label (with its unit).
+    pub y_label: String,
+    /// The second parameter's values, ascending.
+    pub y: Vec<f64>,
+    /// The quantity's name and unit, for the colour bar.
+    pub unit: String,
+    /// The values, `values[j * x.len() + i]` at `(x[i], y[j])`; NaN: none (grey).
+    pub values: Vec<f64>,
+    /// Points drawn with a ring.
+    pub rings: Vec<(f64, f64)>,
+    /// What the footer says.
+    pub footer: String,
+}
+
+/// Writes a [`HeatMap`] as `stem.png` and `stem.svg`.
+pub fn heat_map(map: &HeatMap, stem: &Path) -> Result<Vec<PathBuf>, PlotError> {
+    write_figure(map, stem)
+}
+
+impl Figure for HeatMap {
+    fn size(&self) -> (u32, u32) {
+        (900, 700)
+    }
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Res
+    where
+        DB::ErrorType: 'static,
+    {
+        draw_heat_map(self, root)
+    }
+}
+
+/// A sequential map from pale yellow (0) through green and blue to dark purple (1).
+fn sequential(t: f64) -> RGBColor {
+    const STOPS: [(f64, f64, f64); 5] = [
+        (253.0, 231.0, 37.0),
+        (94.0, 201.0, 98.0),
+        (33.0, 145.0, 140.0),
+        (59.0, 82.0, 139.0),
+        (68.0, 1.0, 84.0),
+    ];
+    let t = t.clamp(0.0, 1.0) * (STOPS.len() - 1) as f64;
+    let k = (t.floor() as usize).min(STOPS.len() - 2);
+    let (a, b, s) = (STOPS[k], STOPS[k + 1], t - k as f64);
+    let m = |x: f64, y: f64| (x + (y - x) * s).round() as u8;
+    RGBColor(m(a.0, b.0), m(a.1, b.1), m(a.2, b.2))
+}
+
+/// The edges of the cells around ascending values: halfway between neighbours, the
+/// outer ones as far out as the inner.
+fn cell_edges(v: &[f64]) -> Vec<f64> {
+    if v.len() == 1 {
+        let h = (v[0].abs() * 0.05).max(f64::MIN_POSITIVE);
+        return vec![v[0] - h, v[0] + h];
+    }
+    let mut e = vec![v[0] - 0.5 * (v[1] - v[0])];
+    e.extend(v.windows(2).map(|w| 0.5 * (w[0] + w[1])));
+    let n = v.len();
+    e.push(v[n - 1] + 0.5 * (v[n - 1] - v[n - 2]));
+    e
+}
+
+fn draw_heat_map<DB: DrawingBackend>(m: &HeatMap, root: &DrawingArea<DB, Shift>) -> Res
+where
+    DB::ErrorType: 'static,
+{
+    root.fill(&WHITE).map_err(err)?;
+    let root = root
+        .margin(10, 0, 0, 0)
+        .titled(&m.title, ("sans-serif", 22))
+        .map_err(err)?;
+    let (body, foot) = root.split_vertically(620);
+    foot.draw_text(
+        &m.footer,
+        &("sans-serif", 14).into_font().color(&RGBColor(90, 90, 90)),
+        (12, 8),
+    )
+    .map_err(err)?;
+    let (area, bar) = body.split_horizontally(760);
+    let finite = || m.values.iter().copied().filter(|v| v.is_finite());
+    let lo = finite().fold(f64::INFINITY, f64::min);
+    let hi = finite().fold(f64::NEG_INFINITY, f64::max);
+    let (lo, hi) = if lo.is_finite() { (lo, hi.max(lo)) } else { (0.0, 1.0) };
+    let scale = |v: f64| if hi > lo { (v - lo) / (hi - lo) } else { 0.5 };
+    let (xe, ye) = (cell_edges(&m.x), cell_edges(&m.y));
+    let mut ch = ChartBuilder::on(&area)
+        .margin(12)
+        .x_label_area_size(44)
+        .y_label_area_size(70)
+        .build_cartesian_2d(xe[0]..xe[xe.len() - 1], ye[0]..ye[ye.len() - 1])
+        .map_err(err)?;
+    ch.configure_mesh()
+        .disable_mesh()
+        .x_desc(&m.x_label)
+        .y_desc(&m.y_label)
+        .label_style(("sans-serif", 14))
+        .x_label_formatter(&|v| fmt_tick(*v))
+        .y_label_formatter(&|v| fmt_tick(*v))
+        .draw()
+        .map_err(err)?;
+    let nx = m.x.len();
+    ch.draw_series(m.values.iter().enumerate().map(|(k, &v)| {
+        let (i, j) = (k % nx, k / nx);
+        let colour = if v.is_finite() {
+            sequential(scale(v))
+        } else {
+            RGBColor(200, 200, 200)
+        };
+        Rectangle::new([(xe[i], ye[j]), (xe[i + 1], ye[j + 1])], colour.filled())
+    }))
+    .map_err(err)?;
+    let nodes: Vec<(f64, f64, f64)> = m
+        .values
+        .iter()
+        .enumerate()
+        .map(|(k, &v)| (m.x[k % nx], m.y[k / nx], v))
+        .collect();
+    if let Some(lat) = Lattice::from_nodes(&nodes).filter(|_| hi > lo && m.values.iter().all(|v| v.is_finite())) {
+        let levels: Vec<f64> = (1..5).map(|k| lo + (hi - lo) * k as f64 / 5.0).collect();
+        let style = ShapeStyle::from(&RGBColor(255, 255, 255)).stroke_width(1);
+        for (_, paths) in lat.isolines(&levels) {
+            for path in paths {
+                ch.draw_series(LineSeries::new(path, style)).map_err(err)?;
+            }
+        }
+    }
+    ch.draw_series(
+        m.rings
+            .iter()
+            .map(|&p| Circle::new(p, 7, ShapeStyle::from(&RGBColor(214, 39, 40)).stroke_width(3))),
+    )
+    .map_err(err)?;
+    // Colour bar: the smallest value at the bottom, the largest at the top.
+    let (bx, by, h) = (14, 40, 480);
+    for k in 0..h {
+        let t = 1.0 - k as f64 / (h - 1) as f64;
+        bar.draw(&Rectangle::new(
+            [(bx, by + k), (bx + 24, by + k + 1)],
+            sequential(t).filled(),
+        ))
+        .map_err(err)?;
+    }
+    let font = ("sans-serif", 14).into_font().color(&BLACK);
+    bar.draw_text(&m.unit, &font, (bx - 6, by - 26)).map_err(err)?;
+    for k in 0..=4 {
+        let t = k as f64 / 4.0;
+        let y = by + ((1.0 - t) * (h - 1) as f64) as i32 - 7;
+        bar.draw_text(&fmt_tick(lo + (hi - lo) * t), &font, (bx + 30, y))
+            .map_err(err)?;
     }
     Ok(())
 }

@@ -486,6 +486,18 @@ pub fn sweep(a: SweepArgs) -> Result<u8, Error> {
             a.scheme
         )));
     }
+    let checks = sweep::SelfCheck {
+        spread: a.checks,
+        every: a.check_every.map(|n| n as usize),
+    };
+    if a.checks == 0 && a.check_every.is_some() {
+        return Err(Error::Usage(
+            "--checks 0 turns the self-check off; --check-every needs it on".into(),
+        ));
+    }
+    if checks.is_off() {
+        say_err("warning: --checks 0: no point of this sweep is checked against the direct engine");
+    }
     let (model, warnings) = impactlab::load_deck(&a.deck, Default::default())?;
     for w in &warnings {
         say_err(&w.to_string());
@@ -513,6 +525,7 @@ pub fn sweep(a: SweepArgs) -> Result<u8, Error> {
         jobs,
         shard,
         progress: bar,
+        checks,
     };
     let out = sweep::sweep(&model, &run, &opts)?;
     report_cache(&Some(out.kernel_cache.clone()));
@@ -534,6 +547,13 @@ pub fn sweep(a: SweepArgs) -> Result<u8, Error> {
         "points_total": points,
         "points": out.rows.len(),
         "shard": shard.map(|(i, n)| format!("{i}/{n}")),
+        "self_check": {
+            "off": checks.is_off(),
+            "spread": checks.spread,
+            "every": checks.every,
+            "deck_point": sweep::deck_point(&model, &varies),
+            "points": out.checked,
+        },
         "direct_checks": out.direct_checks,
         "worst_direct_check": out.worst_direct_check,
         "direct_check_max": sweep::DIRECT_CHECK_MAX,
@@ -542,6 +562,7 @@ pub fn sweep(a: SweepArgs) -> Result<u8, Error> {
         "kernel_cache": out.kernel_cache,
         "checks_s": out.checks_s,
         "points_s": out.points_s,
+        "wall_s": out.wall_s,
     });
     let files = [
         ("sweep.csv", sweep::csv_bytes(&out.header, &out.rows)),
@@ -558,10 +579,11 @@ pub fn sweep(a: SweepArgs) -> Result<u8, Error> {
     };
     let figures = sweep::figures(&out.header, &out.rows, &cx, &dir)?;
     sayln(&format!(
-        "{}: {} of {points} points ({} jobs): kernel pass {:.2} s beside the direct checks, {:.2} s; points {:.2} s; {} direct checks, worst {:.2e} (max {:.0e})",
+        "{}: {} of {points} points ({} jobs) in {:.2} s: kernel pass {:.2} s, direct checks {:.2} s, points {:.2} s (each summed over its tasks); {} direct checks, worst {:.2e} (max {:.0e})",
         model.name,
         out.rows.len(),
         jobs,
+        out.wall_s,
         out.kernel_pass_s,
         out.checks_s,
         out.points_s,
@@ -616,7 +638,13 @@ pub fn collect(a: CollectArgs) -> Result<u8, Error> {
         .map(|d| d.display().to_string())
         .collect::<Vec<_>>()
         .into();
-    for key in ["kernel_pass_s", "checks_s", "points_s"] {
+    summary["self_check"]["points"] = rows
+        .iter()
+        .filter(|r| r.last().is_some_and(|c| !c.is_nan()))
+        .map(|r| r[0] as u64)
+        .collect::<Vec<_>>()
+        .into();
+    for key in ["kernel_pass_s", "checks_s", "points_s", "wall_s"] {
         summary[key] = summaries.iter().filter_map(|s| s[key].as_f64()).sum::<f64>().into();
     }
     let files = [

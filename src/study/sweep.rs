@@ -3,11 +3,14 @@
 //! Hertz law's K and exponent (everything outside the target's linear system).
 //!
 //! Points are the Cartesian product of the `--vary` lists, the first varying slowest,
-//! numbered from 0. The first, the last and every tenth point are also run on the
-//! direct engine; their largest difference ([`engine_difference`]) is the row's
-//! `direct_check`, and one over [`DIRECT_CHECK_MAX`] fails the sweep. A shard `I/N`
-//! runs the points whose number is I−1 modulo N; [`collect`] merges shards into the
-//! `sweep.csv` an unsharded run writes.
+//! numbered from 0. The self-check ([`SelfCheck`]) runs a few points on the direct
+//! engine as well: by default the first and the last (the gentlest and the hardest
+//! impact: the range of the contact's nonlinearity; the kernels depend on neither the
+//! impactor nor the Hertz law, so a disagreement of the engines shows at any point),
+//! and the point nearest the deck's own values when the sweep contains them. Their
+//! largest difference ([`engine_difference`]) is the row's `direct_check`, and one over
+//! [`DIRECT_CHECK_MAX`] fails the sweep. A shard `I/N` runs the points whose number is
+//! I−1 modulo N; [`collect`] merges shards into the `sweep.csv` an unsharded run writes.
 
 use super::in_parallel;
 use crate::integrate::Scheme;
@@ -18,7 +21,6 @@ use crate::Error;
 use indicatif::ProgressBar;
 use std::collections::HashMap;
 use std::path::Path;
-use std::sync::Mutex;
 
 /// The largest `direct_check` a sweep accepts, relative to each quantity's peak: the
 /// engines agree to round-off (measured 2.5e-13 to 6.7e-13 on the rod and the plate), so
@@ -152,6 +154,89 @@ pub fn point_model(base: &Model, varies: &[Vary], values: &[f64]) -> Result<Mode
     Ok(model)
 }
 
+/// Which points of a sweep are also run on the direct engine.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SelfCheck {
+    /// Points spread evenly from the first to the last: 2 (the default) is the first
+    /// and the last, 1 the last alone, 0 none (no self-check at all: nor the deck's
+    /// point nor `every`).
+    pub spread: usize,
+    /// Every N-th point besides (points 0, N, 2N, …).
+    pub every: Option<usize>,
+}
+
+impl Default for SelfCheck {
+    fn default() -> Self {
+        SelfCheck { spread: 2, every: None }
+    }
+}
+
+impl SelfCheck {
+    /// No self-check.
+    pub const OFF: SelfCheck = SelfCheck { spread: 0, every: None };
+
+    /// True when no point is checked.
+    pub fn is_off(&self) -> bool {
+        self.spread == 0 && self.every.is_none()
+    }
+
+    /// The checked points of a sweep of `total` points, in order, each once: the
+    /// spread, every N-th, and `deck_point` (the point nearest the deck's own values).
+    pub fn points(&self, total: usize, deck_point: Option<usize>) -> Vec<usize> {
+        if self.is_off() || total == 0 {
+            return Vec::new();
+        }
+        let last = total - 1;
+        let mut p: Vec<usize> = match self.spread {
+            0 => Vec::new(),
+            1 => vec![last],
+            k => (0..k).map(|i| (i * last + (k - 1) / 2) / (k - 1)).collect(),
+        };
+        if let Some(n) = self.every {
+            p.extend((0..total).step_by(n.max(1)));
+        }
+        p.extend(deck_point);
+        p.sort_unstable();
+        p.dedup();
+        p
+    }
+}
+
+/// The point nearest the deck's own values, when every varied parameter's values
+/// span the deck's (nearest: the least sum of squared differences, each relative to
+/// its parameter's span; the lowest number of equals).
+pub fn deck_point(base: &Model, varies: &[Vary]) -> Option<usize> {
+    let ct = base.contact.as_ref()?;
+    let own = |p: Param| match p {
+        Param::Velocity => base.v0[ct.impactor.dof].abs(),
+        Param::Mass => ct.impactor.mass,
+        Param::K => ct.stiffness,
+        Param::Exponent => ct.exponent,
+    };
+    let mut spans = Vec::new();
+    for v in varies {
+        let lo = v.values.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = v.values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let x = own(v.param);
+        if !(lo..=hi).contains(&x) {
+            return None;
+        }
+        spans.push((x, if hi > lo { hi - lo } else { 1.0 }));
+    }
+    let distance = |values: &[f64]| -> f64 {
+        values
+            .iter()
+            .zip(&spans)
+            .map(|(v, (x, span))| ((v - x) / span).powi(2))
+            .sum()
+    };
+    points(varies)
+        .iter()
+        .enumerate()
+        .min_by(|(_, a), (_, b)| distance(a).total_cmp(&distance(b)))
+        .map(|(i, _)| i)
+}
+
 /// How to sweep.
 #[derive(Debug, Clone)]
 pub struct SweepOptions {
@@ -165,6 +250,8 @@ pub struct SweepOptions {
     pub shard: Option<(usize, usize)>,
     /// A progress bar, set up by the caller.
     pub progress: Option<ProgressBar>,
+    /// Which points are also run on the direct engine.
+    pub checks: SelfCheck,
 }
 
 /// The fixed columns of `sweep.csv` after the point number and the varied values.
@@ -189,15 +276,19 @@ pub struct SweepOutcome {
     pub direct_checks: usize,
     /// The largest direct check (0 when none ran).
     pub worst_direct_check: f64,
-    /// Seconds of the kernel pass within the first phase (0 when read from the cache).
+    /// The checked points (numbers), this shard's.
+    pub checked: Vec<usize>,
+    /// Seconds of the kernel pass (0 when read from the cache).
     pub kernel_pass_s: f64,
     /// Where the kernels came from.
     pub kernel_cache: CacheUse,
-    /// Wall seconds of the first phase: the kernel pass side by side with the direct
-    /// runs of the checked points.
+    /// Seconds of the direct runs of the checked points, summed over them.
     pub checks_s: f64,
-    /// Wall seconds of the second phase: every point on the convolution engine.
+    /// Seconds of the points on the convolution engine, summed over them (one
+    /// core's time for them all).
     pub points_s: f64,
+    /// Wall seconds of the whole sweep.
+    pub wall_s: f64,
 }
 
 impl SweepOutcome {
@@ -222,8 +313,8 @@ fn output_columns(model: &Model) -> Vec<Column> {
     crate::run::history_columns(model).into_iter().skip(5).collect()
 }
 
-/// The row of one point.
-fn row(index: usize, values: &[f64], run: &RunResult, direct_check: Option<f64>) -> Vec<f64> {
+/// The row of one point, its `direct_check` empty (NaN) until compared.
+fn row(index: usize, values: &[f64], run: &RunResult) -> Vec<f64> {
     let s = &run.summary;
     let nan = f64::NAN;
     let mut r = vec![index as f64];
@@ -231,7 +322,11 @@ fn row(index: usize, values: &[f64], run: &RunResult, direct_check: Option<f64>)
     r.extend([
         s.contact.peak_force,
         s.contact.peak_force_time.unwrap_or(nan),
-        s.contact.intervals.first().map_or(nan, |i| i[1]),
+        // A contact still open when the run ends has no end: empty, not the run's end.
+        match s.contact.intervals[..] {
+            [_] if s.contact.open_at_end => nan,
+            _ => s.contact.intervals.first().map_or(nan, |i| i[1]),
+        },
         s.contact.intervals.len() as f64,
         s.impactor.rebound_velocity.unwrap_or(nan),
         s.energy.transferred_fraction.unwrap_or(nan),
@@ -245,7 +340,7 @@ fn row(index: usize, values: &[f64], run: &RunResult, direct_check: Option<f64>)
                 .fold(0.0, |a: f64, x| if x.abs() > a.abs() { x } else { a }),
         );
     }
-    r.push(direct_check.unwrap_or(nan));
+    r.push(nan);
     r
 }
 
@@ -258,20 +353,28 @@ fn outputs(run: Result<RunResult, RunError>) -> Result<RunResult, Error> {
     }
 }
 
-/// Runs a sweep of `base` (its Δt and steps from `run`) in two phases on `jobs`
-/// threads: first the kernel pass side by side with the direct runs of the checked
-/// points (the longest tasks, and independent of the kernels), then every point on
-/// the convolution engine.
+/// Runs a sweep of `base` (its Δt and steps from `run`) on `jobs` threads as one
+/// queue of tasks taken in order: the kernel pass, the direct runs of the checked
+/// points (the longest tasks, independent of the kernels), then every point on the
+/// convolution engine, each waiting for the kernels if the pass is not done. The
+/// direct checks are compared with their points once all are done.
+///
+/// The direct runs go side by side with the kernel pass, each with its own
+/// factorisation, rather than in lockstep with it as extra right-hand sides of one
+/// solve: on the plate a supernodal solve of k right-hand sides costs about k/2.3
+/// single solves at k = 11, so the pass and two checks in lockstep would take about as
+/// long on one core as the three tasks take on two.
 pub fn sweep(base: &Model, run: &RunOptions, opts: &SweepOptions) -> Result<SweepOutcome, Error> {
+    let t0 = std::time::Instant::now();
     let all = points(&opts.varies);
-    let last = all.len() - 1;
     let mine: Vec<usize> = (0..all.len())
         .filter(|i| opts.shard.is_none_or(|(k, n)| i % n == k - 1))
         .collect();
-    let checked: Vec<usize> = mine
-        .iter()
-        .copied()
-        .filter(|&i| i == 0 || i == last || i % 10 == 0)
+    let checked: Vec<usize> = opts
+        .checks
+        .points(all.len(), deck_point(base, &opts.varies))
+        .into_iter()
+        .filter(|i| mine.contains(i))
         .collect();
     let bar = opts.progress.clone().unwrap_or_else(ProgressBar::hidden);
     let (model, sys) = solved_system(base, run.skip_inert)?;
@@ -287,58 +390,91 @@ pub fn sweep(base: &Model, run: &RunOptions, opts: &SweepOptions) -> Result<Swee
     let (opts_conv, opts_direct) = (on(Engine::Convolution), on(Engine::Direct));
     bar.set_length((mine.len() + checked.len()) as u64);
 
-    let t0 = std::time::Instant::now();
-    let kernels = Mutex::new(None);
-    let direct = in_parallel(opts.jobs, checked.len() + 1, |k| {
-        if k == 0 {
-            let pass = Kernels::for_run(
+    enum Done {
+        Kernels,
+        Direct(usize, RunResult, f64),
+        Point(Vec<f64>, Option<RunResult>, f64),
+    }
+    let kernels = std::sync::OnceLock::new();
+    let pass = || {
+        kernels.get_or_init(|| {
+            Kernels::for_run(
                 model,
                 &sys,
                 dt,
                 steps,
                 run.kernel_cache.as_deref(),
                 &ProgressBar::hidden(),
-            );
-            *kernels.lock().expect("no worker panics") = Some(pass);
-            return None;
+            )
+        })
+    };
+    let c = checked.len();
+    let done = in_parallel(opts.jobs, 1 + c + mine.len(), |k| -> Result<Done, Error> {
+        let t = std::time::Instant::now();
+        if k == 0 {
+            pass();
+            return Ok(Done::Kernels);
         }
-        let i = checked[k - 1];
-        let result = point_model(model, &opts.varies, &all[i]).and_then(|m| outputs(run_model(&m, &opts_direct)));
+        if k <= c {
+            let i = checked[k - 1];
+            let r = point_model(model, &opts.varies, &all[i]).and_then(|m| outputs(run_model(&m, &opts_direct)));
+            bar.inc(1);
+            return r.map(|r| Done::Direct(i, r, t.elapsed().as_secs_f64()));
+        }
+        let i = mine[k - 1 - c];
+        let Ok((kernels, _)) = pass() else {
+            return Ok(Done::Kernels); // the pass's own error is reported below
+        };
+        let t = std::time::Instant::now();
+        let r = point_model(model, &opts.varies, &all[i])
+            .and_then(|m| outputs(kernels.run(&m, &opts_conv, &ProgressBar::hidden())));
         bar.inc(1);
-        Some(result.map(|r| (i, r)))
-    });
-    let (kernels, cache) = kernels
-        .into_inner()
-        .expect("no worker panics")
-        .expect("task 0 is the kernel pass")?;
-    let direct: HashMap<usize, RunResult> = direct.into_iter().flatten().collect::<Result<_, _>>()?;
-    let checks_s = t0.elapsed().as_secs_f64();
-
-    let t1 = std::time::Instant::now();
-    let rows = in_parallel(opts.jobs, mine.len(), |k| {
-        let i = mine[k];
-        let result = point_model(model, &opts.varies, &all[i]).and_then(|m| {
-            let conv = outputs(kernels.run(&m, &opts_conv, &ProgressBar::hidden()))?;
-            let check = direct
-                .get(&i)
-                .map(|d| engine_difference(d, &conv).map_or(f64::INFINITY, |w| w.0));
-            Ok(row(i, &all[i], &conv, check))
-        });
-        bar.inc(1);
-        result
+        r.map(|conv| {
+            let row = row(i, &all[i], &conv);
+            let keep = checked.contains(&i).then_some(conv);
+            Done::Point(row, keep, t.elapsed().as_secs_f64())
+        })
     });
     bar.finish_and_clear();
-    let rows: Vec<Vec<f64>> = rows.into_iter().collect::<Result<_, _>>()?;
+    let (kernels, cache) = kernels.into_inner().expect("task 0 is the kernel pass")?;
+    let (mut direct, mut checks_s, mut points_s) = (HashMap::new(), 0.0, 0.0);
+    let mut rows = Vec::with_capacity(mine.len());
+    let mut conv_checked = HashMap::new();
+    for d in done {
+        match d? {
+            Done::Kernels => {}
+            Done::Direct(i, r, s) => {
+                checks_s += s;
+                direct.insert(i, r);
+            }
+            Done::Point(row, keep, s) => {
+                points_s += s;
+                if let Some(conv) = keep {
+                    conv_checked.insert(row[0] as usize, conv);
+                }
+                rows.push(row);
+            }
+        }
+    }
+    for r in &mut rows {
+        let i = r[0] as usize;
+        if let (Some(d), Some(c)) = (direct.get(&i), conv_checked.get(&i)) {
+            *r.last_mut().expect("a row ends with direct_check") =
+                engine_difference(d, c).map_or(f64::INFINITY, |w| w.0);
+        }
+    }
     let (direct_checks, worst_direct_check) = direct_checks(&rows);
     Ok(SweepOutcome {
         header: header(model, &opts.varies),
         direct_checks,
         worst_direct_check,
         rows,
+        checked,
         kernel_pass_s: kernels.pass_s,
         kernel_cache: cache,
         checks_s,
-        points_s: t1.elapsed().as_secs_f64(),
+        points_s,
+        wall_s: t0.elapsed().as_secs_f64(),
     })
 }
 
@@ -450,6 +586,45 @@ mod tests {
         }
     }
 
+    /// Goal: the default self-check is the first and the last point, plus the deck's
+    /// point; `every` adds every N-th; a spread of k points includes both ends; off
+    /// is off, whatever the deck's point.
+    #[test]
+    fn self_check_points() {
+        let d = SelfCheck::default();
+        assert_eq!(d.points(100, None), vec![0, 99]);
+        assert_eq!(d.points(100, Some(37)), vec![0, 37, 99]);
+        assert_eq!(d.points(100, Some(99)), vec![0, 99]);
+        assert_eq!(d.points(1, None), vec![0]);
+        let every = SelfCheck {
+            every: Some(30),
+            ..Default::default()
+        };
+        assert_eq!(every.points(100, None), vec![0, 30, 60, 90, 99]);
+        let spread = SelfCheck { spread: 4, every: None };
+        assert_eq!(spread.points(10, None), vec![0, 3, 6, 9]);
+        assert_eq!(SelfCheck { spread: 1, every: None }.points(10, None), vec![9]);
+        assert!(SelfCheck::OFF.points(100, Some(37)).is_empty());
+    }
+
+    /// Goal: the deck's point is the point nearest the deck's own values, and there is
+    /// none when a varied parameter's values do not span the deck's value. Model: the
+    /// paper's rod (impactor at 62.1 in/s).
+    #[test]
+    fn the_deck_point_is_the_nearest_when_the_sweep_spans_the_deck() {
+        let rod = crate::paper::rod_model().unwrap();
+        let v = |spec: &str| Vary::parse(spec, &[]).unwrap();
+        assert_eq!(deck_point(&rod, &[v("velocity=10:100:10")]), Some(5)); // 60 is nearest 62.1
+        assert_eq!(deck_point(&rod, &[v("velocity=70:100:4")]), None);
+        let mass = rod.contact.as_ref().unwrap().impactor.mass;
+        let grid = [
+            v("velocity=10:100:10"),
+            v(&format!("mass={},{}", mass / 2.0, mass * 1.5)),
+        ];
+        let i = deck_point(&rod, &grid).unwrap();
+        assert_eq!(points(&grid)[i][0], 60.0);
+    }
+
     /// Goal: points are the Cartesian product, the first parameter slowest.
     #[test]
     fn points_vary_the_first_parameter_slowest() {
@@ -493,6 +668,9 @@ pub fn figures(
 ) -> Result<Vec<std::path::PathBuf>, crate::plot::PlotError> {
     use crate::plot::{line_chart, Chart, Line};
     let col = |name: &str| header.iter().position(|h| h == name);
+    if let Some(maps) = grid_maps(header, rows, cx, dir)? {
+        return Ok(maps);
+    }
     let (Some(vcol), Some(check)) = (col("velocity"), col("direct_check")) else {
         return Ok(Vec::new()); // no impact energy axis without a velocity sweep
     };
@@ -599,4 +777,90 @@ pub fn figures(
         )?);
     }
     Ok(out)
+}
+
+/// A parameter's axis label, with its unit in the deck's units.
+fn param_label(name: &str, u: &crate::run::UnitSystem) -> String {
+    match name {
+        "velocity" => format!("impact velocity [{}/{}]", u.length, u.time),
+        "mass" => format!("impactor mass [{}]", u.mass),
+        "k" => format!("Hertz K [{}/{}^exponent]", u.force, u.length),
+        _ => format!("{name} [-]"),
+    }
+}
+
+/// The maps of a grid sweep (exactly two varied parameters, each over at least three
+/// values): peak force, end of the first contact and the energy left in the target
+/// over the two parameters, the points also run on the direct engine ringed. `None`
+/// for any other sweep (its figures are line charts).
+fn grid_maps(
+    header: &[String],
+    rows: &[Vec<f64>],
+    cx: &FigureContext,
+    dir: &Path,
+) -> Result<Option<Vec<std::path::PathBuf>>, crate::plot::PlotError> {
+    use crate::plot::{heat_map, HeatMap};
+    let varied: Vec<usize> = (1..header.len())
+        .take_while(|&j| header[j] != RESULT_COLUMNS[0])
+        .collect();
+    let axis = |j: usize| {
+        let mut v: Vec<f64> = rows.iter().map(|r| r[j]).collect();
+        v.sort_by(f64::total_cmp);
+        v.dedup();
+        v
+    };
+    let [a, b] = varied[..] else {
+        return Ok(None);
+    };
+    let (x, y) = (axis(a), axis(b));
+    if x.len() < 3 || y.len() < 3 {
+        return Ok(None);
+    }
+    let check = header.len() - 1;
+    let at = |v: &[f64], t: f64| v.binary_search_by(|p| p.total_cmp(&t)).expect("a grid value");
+    let rings: Vec<(f64, f64)> = rows
+        .iter()
+        .filter(|r| !r[check].is_nan())
+        .map(|r| (r[a], r[b]))
+        .collect();
+    let u = &cx.units;
+    let mut out = Vec::new();
+    for (name, title, unit) in [
+        ("peak_force", "Peak contact force", format!("peak force [{}]", u.force)),
+        (
+            "contact_end",
+            "End of the first contact",
+            format!("contact end [{}]", u.time),
+        ),
+        (
+            "transferred_fraction",
+            "Energy left in the target",
+            "1 − (v_rebound/v0)² [-]".to_string(),
+        ),
+    ] {
+        let Some(j) = header.iter().position(|h| h == name) else {
+            continue;
+        };
+        let mut values = vec![f64::NAN; x.len() * y.len()];
+        for r in rows {
+            values[at(&y, r[b]) * x.len() + at(&x, r[a])] = r[j];
+        }
+        let map = HeatMap {
+            title: format!("{title} over {} × {} points", x.len(), y.len()),
+            x_label: param_label(&header[a], u),
+            x: x.clone(),
+            y_label: param_label(&header[b], u),
+            y: y.clone(),
+            unit,
+            values,
+            rings: rings.clone(),
+            footer: format!(
+                "impactlab sweep · {} · convolution engine; ringed: also run on the direct engine; grey: no value; \
+                 white lines at 1/5 … 4/5 of the range",
+                cx.deck
+            ),
+        };
+        out.extend(heat_map(&map, &dir.join(format!("{}-map", name.replace('_', "-"))))?);
+    }
+    Ok(Some(out))
 }
