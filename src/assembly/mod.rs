@@ -35,7 +35,7 @@ pub fn assemble(model: &Model) -> System {
     let n = model.n();
     let mut k = Vec::new();
     let mut m = Vec::new();
-    for e in &model.elements {
+    for e in model.elements.iter() {
         e.scatter(&mut k, &mut m);
     }
     let triplets = |v: Vec<(usize, usize, f64)>| -> Vec<Triplet<usize, usize, f64>> {

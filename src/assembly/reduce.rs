@@ -90,7 +90,7 @@ pub fn drop_inert(model: &Model, sys: &System) -> Option<Model> {
     for d in &mut m.dependent {
         d.functional = re_fun(&d.functional);
     }
-    for e in &mut m.elements {
+    for e in std::sync::Arc::make_mut(&mut m.elements).iter_mut() {
         e.dofs.iter_mut().flatten().for_each(|d| *d = re_opt(*d));
     }
     if let Some(c) = &mut m.contact {

@@ -78,7 +78,7 @@ fn one_dof(mass: f64, spring: f64, v0: f64, hertz: Option<f64>) -> Model {
         deck_sha256: String::new(),
         dofs: vec![label],
         dependent: Vec::new(),
-        elements,
+        elements: elements.into(),
         contact,
         u0: vec![0.0],
         v0: vec![v0],

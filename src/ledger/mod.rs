@@ -235,7 +235,7 @@ impl Eq16Elements {
     fn new(model: &Model) -> Self {
         let mut elements = Vec::new();
         let mut dofs = Vec::new();
-        for e in &model.elements {
+        for e in model.elements.iter() {
             let Some(mass) = e.kernel.eq16_mass() else { continue };
             let corners = e.translations();
             let ends = std::array::from_fn(|k| {

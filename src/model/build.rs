@@ -207,7 +207,7 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
         deck_sha256: deck.sha256.clone(),
         dofs: num.dofs,
         dependent: dependent.points,
-        elements: elements.list,
+        elements: elements.list.into(),
         contact,
         u0,
         v0,

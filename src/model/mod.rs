@@ -212,7 +212,7 @@ pub struct Model {
     /// TF-defined points.
     pub dependent: Vec<DependentPoint>,
     /// The elements (CONM2 masses included).
-    pub elements: Vec<Element>,
+    pub elements: std::sync::Arc<Vec<Element>>,
     /// The Hertzian contact, if the deck has NOLIN3 loads.
     pub contact: Option<Contact>,
     /// Initial displacements (TIC).

@@ -80,7 +80,10 @@ impl Modify {
         if let Some(s) = self.impactor_mass_scale {
             c.impactor.mass *= s;
             let grid = c.impactor.grid;
-            for e in m.elements.iter_mut().filter(|e| e.grids == [grid]) {
+            for e in std::sync::Arc::make_mut(&mut m.elements)
+                .iter_mut()
+                .filter(|e| e.grids == [grid])
+            {
                 if let Some(p) = e.kind_mut::<PointMass>() {
                     p.mass *= s;
                     p.inertia.iter_mut().for_each(|i| *i *= s);

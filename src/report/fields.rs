@@ -193,7 +193,7 @@ impl<'m> Mesh<'m> {
             cells: Vec::new(),
             layout: Vec::new(),
         };
-        for e in &model.elements {
+        for e in model.elements.iter() {
             let Some(cell) = e.kernel.cell() else { continue };
             for (g, x) in e.grids.iter().zip(e.kernel.points()) {
                 let p = *m.index.entry(*g).or_insert_with(|| {

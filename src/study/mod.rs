@@ -88,6 +88,9 @@ pub fn secondary_peak(run: &RunResult) -> Option<Extreme> {
 /// the median of each stage.
 pub fn bench_plate(repeats: usize, steps: usize) -> Result<String, Error> {
     use std::time::Instant;
+    let load = std::fs::read_to_string("/proc/loadavg")
+        .ok()
+        .map(|l| l.split_whitespace().take(3).collect::<Vec<_>>().join(" "));
     let mut stages: Vec<[f64; 7]> = Vec::new();
     // Per repeat: the direct run's loop and its solves, the convolution run's loop.
     let mut ratios: Vec<[f64; 3]> = Vec::new();
@@ -136,6 +139,9 @@ pub fn bench_plate(repeats: usize, steps: usize) -> Result<String, Error> {
     let mut out = format!(
         "plate 49x49 ({solved} solved DOF), newmark, dt 1e-7 s, {steps} steps; median of {repeats} runs after a warm-up\n"
     );
+    if let Some(load) = &load {
+        out += &format!("load average at the start (1, 5, 15 min): {load}\n");
+    }
     for (j, name) in [
         "read deck + build model",
         "assembly (incl. inert-DOF detection)",

@@ -655,7 +655,7 @@ pub fn material_law(case: &Case, model: &Model, run: &RunResult) -> CheckResult 
     };
     let (mut worst, mut peak, mut elements) = (0.0f64, 0.0f64, 0usize);
     let mut at = String::new();
-    for e in &model.elements {
+    for e in model.elements.iter() {
         if let Some(r) = e.kind::<Rod>() {
             let (Some(js), Some(je)) = (col(e.eid, Measure::Stress, None), col(e.eid, Measure::Strain, None)) else {
                 continue;
