@@ -462,7 +462,7 @@ pub fn sweep(a: SweepArgs) -> Result<u8, Error> {
         .iter()
         .map(|v| Vary::parse(v, &a.log))
         .collect::<Result<Vec<_>, _>>()
-        .map_err(Error::Usage)?;
+        .map_err(|e| Error::Usage(e.to_string()))?;
     if let Some(l) = a
         .log
         .iter()
@@ -480,12 +480,6 @@ pub fn sweep(a: SweepArgs) -> Result<u8, Error> {
                 .ok_or_else(|| Error::Usage(format!("--shard {s}: expected I/N with 1 ≤ I ≤ N")))
         })
         .transpose()?;
-    if a.scheme.newmark_params().is_none() {
-        return Err(Error::Usage(format!(
-            "--scheme {}: sweeps run on the convolution engine, newmark or energy",
-            a.scheme
-        )));
-    }
     let checks = sweep::SelfCheck {
         spread: a.checks,
         every: a.check_every.map(|n| n as usize),

@@ -215,6 +215,7 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
         outputs,
         rod,
         inert_dofs: 0,
+        time_card: sel.tsteps.first().map(|t| format!("TSTEP {} at {}", t.sid, t.at.pos)),
     };
     let errors = cx.diags.iter().any(|d| d.is_error());
     if errors {

@@ -227,6 +227,9 @@ pub struct Model {
     pub rod: Option<RodInfo>,
     /// Solved DOFs dropped as inert (identically zero for the whole run).
     pub inert_dofs: usize,
+    /// Where the time stepping comes from (`TSTEP 7 at rod.bdf:55:1`), for messages;
+    /// `None` for a model not read from a deck.
+    pub time_card: Option<String>,
 }
 
 impl Model {

@@ -379,7 +379,8 @@ pub fn bench_size(sizes: &[usize], read_sizes: &[usize], steps: usize) -> Result
         let peak = peak_memory().map_or("-".into(), |b| format!("{:.3}", gib(b)));
         let s = &run.stats;
         let per_step = (s.total_time - s.factor_time).as_secs_f64() / steps as f64;
-        let estimate = crate::run::memory_estimate(&model, steps, opts.engine);
+        let solved = crate::run::solved_system(&model, opts.skip_inert)?.0;
+        let estimate = crate::run::memory_estimate(&solved, steps, opts.engine);
         let _ = writeln!(
             out,
             "{n:>5} {:>8} {:>8} {read:>9.3} {:>10.3} {:>10.3} {:>12.3} {peak:>10} {:>10.3}",

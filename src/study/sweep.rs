@@ -65,23 +65,54 @@ pub struct Vary {
     pub values: Vec<f64>,
 }
 
+/// Why a `--vary` cannot be read; each names the whole `--vary` text.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum VaryError {
+    /// Neither a range nor a list.
+    #[error("--vary {0}: expected NAME=START:STOP:COUNT or NAME=v1,v2,...")]
+    Form(String),
+    /// Not a parameter a sweep varies.
+    #[error("--vary {text}: unknown parameter {name} (velocity, mass, k, exponent)")]
+    Parameter {
+        /// The `--vary` text.
+        text: String,
+        /// The name given.
+        name: String,
+    },
+    /// A value that is not a positive finite number.
+    #[error("--vary {text}: '{value}' is not a positive number")]
+    Value {
+        /// The `--vary` text.
+        text: String,
+        /// The value as given.
+        value: String,
+    },
+    /// A range's COUNT out of bounds.
+    #[error("--vary {0}: COUNT must be 1 to 100000")]
+    Count(String),
+}
+
 impl Vary {
     /// Reads `NAME=START:STOP:COUNT` (evenly spaced, or geometrically when `log`) or
     /// `NAME=v1,v2,...`.
-    pub fn parse(text: &str, log: &[String]) -> Result<Vary, String> {
-        let (name, spec) = text
-            .split_once('=')
-            .ok_or_else(|| format!("--vary {text}: expected NAME=START:STOP:COUNT or NAME=v1,v2,..."))?;
+    pub fn parse(text: &str, log: &[String]) -> Result<Vary, VaryError> {
+        let (name, spec) = text.split_once('=').ok_or_else(|| VaryError::Form(text.into()))?;
         let param = Param::ALL
             .into_iter()
             .find(|p| p.name() == name)
-            .ok_or_else(|| format!("--vary {text}: unknown parameter {name} (velocity, mass, k, exponent)"))?;
-        let number = |s: &str| -> Result<f64, String> {
+            .ok_or_else(|| VaryError::Parameter {
+                text: text.into(),
+                name: name.into(),
+            })?;
+        let number = |s: &str| -> Result<f64, VaryError> {
             s.trim()
                 .parse::<f64>()
                 .ok()
                 .filter(|v| v.is_finite() && *v > 0.0)
-                .ok_or_else(|| format!("--vary {text}: '{s}' is not a positive number"))
+                .ok_or_else(|| VaryError::Value {
+                    text: text.into(),
+                    value: s.into(),
+                })
         };
         let values = match spec.split(':').collect::<Vec<_>>()[..] {
             [a, b, n] => {
@@ -91,7 +122,7 @@ impl Vary {
                     .parse()
                     .ok()
                     .filter(|n| (1..=100_000).contains(n))
-                    .ok_or_else(|| format!("--vary {text}: COUNT must be 1 to 100000"))?;
+                    .ok_or_else(|| VaryError::Count(text.into()))?;
                 let geometric = log.iter().any(|l| l == name);
                 (0..n)
                     .map(|i| {
@@ -104,8 +135,8 @@ impl Vary {
                     })
                     .collect()
             }
-            [_] => spec.split(',').map(number).collect::<Result<Vec<f64>, String>>()?,
-            _ => return Err(format!("--vary {text}: expected START:STOP:COUNT or a list")),
+            [_] => spec.split(',').map(number).collect::<Result<Vec<f64>, VaryError>>()?,
+            _ => return Err(VaryError::Form(text.into())),
         };
         Ok(Vary { param, values })
     }
@@ -388,6 +419,7 @@ pub fn sweep(base: &Model, run: &RunOptions, opts: &SweepOptions) -> Result<Swee
         ..run.clone()
     };
     let (opts_conv, opts_direct) = (on(Engine::Convolution), on(Engine::Direct));
+    crate::run::preflight_solved(model, &opts_conv)?;
     bar.set_length((mine.len() + checked.len()) as u64);
 
     enum Done {
@@ -574,16 +606,17 @@ mod tests {
         assert!((v.values[1] - 1e6).abs() < 1e-6, "{:?}", v.values);
         let v = Vary::parse("exponent=1.5,1.4", &[]).unwrap();
         assert_eq!(v.values, vec![1.5, 1.4]);
-        for bad in [
-            "speed=1:2:3",
-            "velocity",
-            "velocity=1:2",
-            "velocity=-1,2",
-            "mass=1:2:0",
-            "k=NaN",
-        ] {
-            assert!(Vary::parse(bad, &[]).is_err(), "{bad}");
-        }
+        let err = |t: &str| Vary::parse(t, &[]).unwrap_err();
+        assert!(matches!(err("speed=1:2:3"), VaryError::Parameter { name, .. } if name == "speed"));
+        assert_eq!(err("velocity"), VaryError::Form("velocity".into()));
+        assert_eq!(err("velocity=1:2"), VaryError::Form("velocity=1:2".into()));
+        assert!(matches!(err("velocity=-1,2"), VaryError::Value { value, .. } if value == "-1"));
+        assert_eq!(err("mass=1:2:0"), VaryError::Count("mass=1:2:0".into()));
+        assert!(matches!(err("k=NaN"), VaryError::Value { .. }));
+        assert_eq!(
+            err("mass=1:2:0").to_string(),
+            "--vary mass=1:2:0: COUNT must be 1 to 100000"
+        );
     }
 
     /// Goal: the default self-check is the first and the last point, plus the deck's
