@@ -412,3 +412,48 @@ fn hard_cases_on_a_plate_stay_stable() {
         .filter(|r| r.scheme == Scheme::Energy)
         .all(|r| r.max_energy_error.unwrap() < 1e-10));
 }
+
+/// Goal: the stability map's velocity axis on the convolution engine is the map the
+/// direct engine makes. For the trapezoidal schemes every cell of a short map (the rod,
+/// 100 µs) is also run directly here: the same outcome (completed, or stopped at the
+/// same step) and energy errors within the map's check bound, absolute; the map's own
+/// check (the deck's velocity in each Δt column) is within it too.
+#[test]
+fn stability_map_on_the_convolution_engine_is_the_direct_map() {
+    use impactlab::study::stability::{run_map, DT0, ENGINE_CHECK_MAX};
+    let rod = rod_model();
+    let t_end = 100e-6;
+    let (cells, check) = run_map(&rod, DT0, t_end, &|_| {}).unwrap();
+    assert!(check <= ENGINE_CHECK_MAX, "{check:e}");
+    let mut compared = 0;
+    for c in cells.iter().filter(|c| c.scheme.newmark_params().is_some()) {
+        let m = modified(
+            &rod,
+            Modify {
+                velocity_scale: Some(c.velocity_scale),
+                ..Default::default()
+            },
+        );
+        let direct = go(&m, c.scheme, c.dt_s, (t_end / c.dt_s).ceil() as usize);
+        let (err, stopped_at) = match &direct {
+            Ok(r) => (r.summary.energy.max_relative_error.unwrap(), None),
+            Err(RunError::EnergyGuard { trip, .. }) => (trip.error.abs(), Some(trip.step)),
+            Err(e) => panic!("{e}"),
+        };
+        let at = c
+            .failure
+            .as_deref()
+            .map(|f| f.split(" at step ").nth(1).unwrap().split(' ').next().unwrap());
+        assert_eq!(at.map(|s| s.parse::<usize>().unwrap()), stopped_at, "{c:?}");
+        let d = (c.max_energy_error.unwrap() - err).abs();
+        assert!(
+            d <= ENGINE_CHECK_MAX,
+            "{} Δt {:e} ×{}: {d:e}",
+            c.scheme,
+            c.dt_s,
+            c.velocity_scale
+        );
+        compared += 1;
+    }
+    assert_eq!(compared, 2 * 7 * 9);
+}

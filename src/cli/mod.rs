@@ -332,7 +332,12 @@ pub fn study(what: StudyKind) -> Result<u8, Error> {
         StudyKind::Stability { out } => {
             use impactlab::study::stability;
             let model = impactlab::paper::rod_model()?;
-            let cells = stability::run_map(&model, stability::DT0, 500e-6, &|s| say_err(&format!("  {s}")))?;
+            let (cells, check) = stability::run_map(&model, stability::DT0, 500e-6, &|s| say_err(&format!("  {s}")))?;
+            sayln(&format!(
+                "newmark and energy along the velocity axis on the convolution engine; each Δt's direct check \
+                 within {check:.2e} of the energy error (max {:.0e})",
+                stability::ENGINE_CHECK_MAX
+            ));
             // The page and figure are made from the CSV as written, as the test remakes them.
             let csv = stability::csv(&cells);
             let cells = stability::read_csv(&csv).expect("the CSV just written reads back");
