@@ -105,7 +105,8 @@ pub fn preflight_solved(model: &Model, opts: &RunOptions) -> Result<(), RunError
 }
 
 /// When [`preflight`] runs: before the assembly (the model as read: refuse what no
-/// reduction can save, a bad Δt or records alone over the limit) or on the model as
+/// reduction can save: a bad Δt, records alone over the limit, or an assembly of every
+/// DOF, which comes before the inert ones are dropped, over it) or on the model as
 /// solved (refuse a run over its memory limit).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Preflight {
@@ -127,7 +128,7 @@ fn preflight(model: &Model, opts: &RunOptions, stage: Preflight) -> Result<(), R
     if let Some(limit) = opts.max_memory {
         let need = memory_estimate(model, steps, opts.engine);
         let over = match stage {
-            Preflight::AsRead => record_bytes(model, steps, opts.engine) > limit,
+            Preflight::AsRead => record_bytes(model, steps, opts.engine) > limit || system_bytes(model) > limit,
             Preflight::AsSolved => need > limit,
         };
         if over {
