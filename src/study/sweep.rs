@@ -775,19 +775,7 @@ pub fn figures(
         ..Default::default()
     };
     let mut out = Vec::new();
-    for (name, title, y) in [
-        ("peak_force", "Peak contact force", format!("peak force [{}]", u.force)),
-        (
-            "contact_end",
-            "End of the first contact",
-            format!("contact end [{}]", u.time),
-        ),
-        (
-            "transferred_fraction",
-            "Energy left in the target",
-            "1 − (v_rebound/v0)² [-]".to_string(),
-        ),
-    ] {
+    for (name, title, y) in result_figures(u) {
         if let Some(j) = col(name) {
             let lines = lines_of(j, "", 0, false);
             out.extend(line_chart(&chart(title, y, lines), &dir.join(name.replace('_', "-")))?);
@@ -810,6 +798,23 @@ pub fn figures(
         )?);
     }
     Ok(out)
+}
+
+/// The results every sweep draws: column, title, and the quantity with its unit.
+fn result_figures(u: &crate::run::UnitSystem) -> [(&'static str, &'static str, String); 3] {
+    [
+        ("peak_force", "Peak contact force", format!("peak force [{}]", u.force)),
+        (
+            "contact_end",
+            "End of the first contact",
+            format!("contact end [{}]", u.time),
+        ),
+        (
+            "transferred_fraction",
+            "Energy left in the target",
+            "1 − (v_rebound/v0)² [-]".to_string(),
+        ),
+    ]
 }
 
 /// A parameter's axis label, with its unit in the deck's units.
@@ -858,19 +863,7 @@ fn grid_maps(
         .collect();
     let u = &cx.units;
     let mut out = Vec::new();
-    for (name, title, unit) in [
-        ("peak_force", "Peak contact force", format!("peak force [{}]", u.force)),
-        (
-            "contact_end",
-            "End of the first contact",
-            format!("contact end [{}]", u.time),
-        ),
-        (
-            "transferred_fraction",
-            "Energy left in the target",
-            "1 − (v_rebound/v0)² [-]".to_string(),
-        ),
-    ] {
+    for (name, title, unit) in result_figures(u) {
         let Some(j) = header.iter().position(|h| h == name) else {
             continue;
         };
