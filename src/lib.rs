@@ -31,6 +31,7 @@
 pub mod numerics;
 pub mod plot;
 pub mod deck;
+pub mod laminate;
 pub mod elements;
 pub mod model;
 pub mod assembly;

@@ -164,6 +164,91 @@ pub struct Mat2 {
     pub at: CardRef,
 }
 
+/// MAT8: an orthotropic material for shells (a ply), in its own axes 1 (fibre) and 2.
+#[derive(Debug, Clone)]
+pub struct Mat8 {
+    /// Material id (field 2).
+    pub mid: i64,
+    /// Modulus along the fibres E1 (field 3).
+    pub e1: f64,
+    /// Modulus across the fibres E2 (field 4).
+    pub e2: f64,
+    /// Poisson's ratio NU12 (field 5): strain in 2 over strain in 1 under stress in 1.
+    pub nu12: f64,
+    /// In-plane shear modulus G12 (field 6).
+    pub g12: f64,
+    /// Transverse shear moduli G1Z, G2Z (fields 7, 8); `None` when blank.
+    pub g1z: Option<f64>,
+    /// See `g1z`.
+    pub g2z: Option<f64>,
+    /// Mass density RHO (field 9).
+    pub rho: f64,
+    /// Allowables Xt, Xc, Yt, Yc, S (continuation fields 5-9); `None` when blank.
+    pub allowables: [Option<f64>; 5],
+    /// The Tsai-Wu interaction term F12 (second continuation, field 3).
+    pub f12: Option<f64>,
+    /// STRN (second continuation, field 4): 1.0 when the allowables are strains.
+    pub strn: f64,
+    /// The card.
+    pub at: CardRef,
+}
+
+/// One ply of a PCOMP, its blank fields resolved (MID and T repeat the ply above).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Ply {
+    /// MAT8 (or MAT1) id.
+    pub mid: i64,
+    /// Thickness.
+    pub t: f64,
+    /// Fibre angle in degrees, from the element's material x axis, counter-clockwise
+    /// about the element normal.
+    pub theta: f64,
+    /// Stress and strain output asked for (SOUT = YES).
+    pub sout: bool,
+}
+
+/// How a PCOMP lists its plies (LAM).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Lam {
+    /// Every ply listed, bottom to top.
+    All,
+    /// The plies listed are the bottom half; the top half mirrors them (LAM = SYM).
+    Sym,
+}
+
+/// PCOMP: a layered composite shell, plies from the bottom (Z0) up.
+#[derive(Debug, Clone)]
+pub struct Pcomp {
+    /// Property id (field 2).
+    pub pid: i64,
+    /// Distance from the reference plane to the bottom surface Z0 (field 3); `None`
+    /// when blank (−½ the total thickness).
+    pub z0: Option<f64>,
+    /// Non-structural mass per unit area NSM (field 4).
+    pub nsm: f64,
+    /// Allowable interlaminar shear stress SB (field 5).
+    pub sb: Option<f64>,
+    /// Failure theory FT (field 6): HILL, HOFF, TSAI or STRN.
+    pub ft: Option<String>,
+    /// The plies as listed (before LAM = SYM mirrors them).
+    pub plies: Vec<Ply>,
+    /// LAM (field 9).
+    pub lam: Lam,
+    /// The card.
+    pub at: CardRef,
+}
+
+impl Pcomp {
+    /// The laminate's plies bottom to top, mirrored when LAM = SYM.
+    pub fn stack(&self) -> Vec<Ply> {
+        let mut s = self.plies.clone();
+        if self.lam == Lam::Sym {
+            s.extend(self.plies.iter().rev().cloned());
+        }
+        s
+    }
+}
+
 /// CONM2: a concentrated mass at a grid.
 #[derive(Debug, Clone)]
 pub struct Conm2 {
@@ -296,6 +381,10 @@ pub struct Bulk {
     pub mat1s: Vec<Mat1>,
     /// MAT2 cards.
     pub mat2s: Vec<Mat2>,
+    /// MAT8 cards.
+    pub mat8s: Vec<Mat8>,
+    /// PCOMP cards.
+    pub pcomps: Vec<Pcomp>,
     /// CONM2 cards.
     pub conm2s: Vec<Conm2>,
     /// SPC1 cards.
@@ -568,9 +657,9 @@ impl<'a> Reader<'a> {
 }
 
 /// Cards the reader knows. `PARAM` is accepted and ignored with a warning.
-pub const KNOWN_CARDS: [&str; 19] = [
-    "GRID", "GRDSET", "EPOINT", "SPOINT", "CROD", "PROD", "CQUAD4", "PSHELL", "MAT1", "MAT2", "CONM2", "SPC1", "TF",
-    "TSTEP", "NOLIN3", "TIC", "PARAM", "INCLUDE", "ENDDATA",
+pub const KNOWN_CARDS: [&str; 21] = [
+    "GRID", "GRDSET", "EPOINT", "SPOINT", "CROD", "PROD", "CQUAD4", "PSHELL", "PCOMP", "MAT1", "MAT2", "MAT8", "CONM2",
+    "SPC1", "TF", "TSTEP", "NOLIN3", "TIC", "PARAM", "INCLUDE", "ENDDATA",
 ];
 
 /// Types all raw cards. Unknown card names are collected and returned. `ids_left` is
@@ -590,6 +679,8 @@ pub fn type_cards(raw: &[RawCard], ids_left: &mut usize, diags: &mut Diagnostics
             "PSHELL" => card_pshell(&mut r, &mut b),
             "MAT1" => card_mat1(&mut r, &mut b),
             "MAT2" => card_mat2(&mut r, &mut b),
+            "MAT8" => card_mat8(&mut r, &mut b),
+            "PCOMP" => card_pcomp(&mut r, &mut b),
             "CONM2" => card_conm2(&mut r, &mut b),
             "SPC1" => card_spc1(&mut r, &mut b),
             "TF" => card_tf(&mut r, &mut b, card),
@@ -816,6 +907,180 @@ fn card_mat2(r: &mut Reader, b: &mut Bulk) {
     };
     if r.ok {
         b.mat2s.push(m);
+    }
+}
+
+/// MAT8: MID E1 E2 NU12 G12 G1Z G2Z RHO / A1 A2 TREF Xt Xc Yt Yc S / GE F12 STRN.
+/// E1, E2 and G12 are required and positive, NU12 must leave the ply's compliance
+/// positive definite (NU12² < E1/E2); the allowables, when given, are positive (Xc
+/// and Yc as magnitudes, as NASTRAN takes them).
+fn card_mat8(r: &mut Reader, b: &mut Bulk) {
+    let mid = r.id(0, "MID");
+    let e1 = r.real(1, "E1");
+    let e2 = r.real(2, "E2");
+    let nu12 = r.real_or(3, "NU12", 0.0);
+    let g12 = r.real(4, "G12");
+    let g1z = r.real_opt(5, "G1Z");
+    let g2z = r.real_opt(6, "G2Z");
+    let rho = r.real_or(7, "RHO", 0.0);
+    for (k, name, v) in [(1, "E1", e1), (2, "E2", e2), (4, "G12", g12)] {
+        r.positive(k, name, v);
+    }
+    if let Some(v) = g1z {
+        r.positive(5, "G1Z", v);
+    }
+    if let Some(v) = g2z {
+        r.positive(6, "G2Z", v);
+    }
+    r.positive(7, "RHO", rho);
+    if r.ok && nu12 * nu12 >= e1 / e2 {
+        r.fail(
+            3,
+            "NU12",
+            format!(
+                "NU12² = {:e} must be below E1/E2 = {:e}: the ply's stiffness would not be positive definite",
+                nu12 * nu12,
+                e1 / e2
+            ),
+        );
+    }
+    for (k, name) in [(8, "A1"), (9, "A2"), (10, "TREF"), (16, "GE")] {
+        r.real_opt(k, name);
+    }
+    let names = ["Xt", "Xc", "Yt", "Yc", "S"];
+    let allowables: [Option<f64>; 5] = std::array::from_fn(|i| {
+        let v = r.real_opt(11 + i, names[i]);
+        if let Some(v) = v {
+            r.positive(11 + i, names[i], v);
+        }
+        v
+    });
+    let f12 = r.real_opt(17, "F12");
+    let strn = r.real_or(18, "STRN", 0.0);
+    if strn != 0.0 && strn != 1.0 {
+        r.fail(
+            18,
+            "STRN",
+            "must be blank, 0.0 (stress allowables) or 1.0 (strain allowables)",
+        );
+    }
+    r.extra_fields(19);
+    let m = Mat8 {
+        mid,
+        e1,
+        e2,
+        nu12,
+        g12,
+        g1z,
+        g2z,
+        rho,
+        allowables,
+        f12,
+        strn,
+        at: r.at(),
+    };
+    if r.ok {
+        b.mat8s.push(m);
+    }
+}
+
+/// PCOMP: PID Z0 NSM SB FT TREF GE LAM / then per ply MID T THETA SOUT, four plies a
+/// line. A ply exists when any of its four fields is given; a blank MID or T repeats
+/// the ply above (the first ply needs both), a blank THETA is 0.0, a blank SOUT is NO.
+/// LAM is blank or SYM (the plies listed are then the bottom half).
+fn card_pcomp(r: &mut Reader, b: &mut Bulk) {
+    let pid = r.id(0, "PID");
+    let z0 = r.real_opt(1, "Z0");
+    let nsm = r.real_or(2, "NSM", 0.0);
+    let sb = r.real_opt(3, "SB");
+    if let Some(v) = sb {
+        r.positive(3, "SB", v);
+    }
+    let ft = match r.text(4).to_ascii_uppercase().as_str() {
+        "" => None,
+        f @ ("HILL" | "HOFF" | "TSAI" | "STRN") => Some(f.to_string()),
+        _ => {
+            r.fail(4, "FT", "must be HILL, HOFF, TSAI or STRN (or blank)");
+            None
+        }
+    };
+    r.real_opt(5, "TREF");
+    r.real_opt(6, "GE");
+    let lam = match r.text(7).to_ascii_uppercase().as_str() {
+        "" => Lam::All,
+        "SYM" => Lam::Sym,
+        other => {
+            r.fail(
+                7,
+                "LAM",
+                format!("LAM = {other} is not supported: leave it blank (every ply listed) or SYM"),
+            );
+            Lam::All
+        }
+    };
+    let mut plies: Vec<Ply> = Vec::new();
+    let groups = r.card.fields.len().saturating_sub(8).div_ceil(4);
+    for i in 0..groups {
+        let k = 8 + 4 * i;
+        let n = i + 1;
+        if (k..k + 4).all(|j| r.text(j).is_empty()) {
+            continue;
+        }
+        let (mid_name, t_name, theta_name, sout_name) = (
+            format!("MID{n}"),
+            format!("T{n}"),
+            format!("THETA{n}"),
+            format!("SOUT{n}"),
+        );
+        let above = plies.last().cloned();
+        let mid = match (r.int_opt(k, &mid_name), &above) {
+            (Some(m), _) => m,
+            (None, Some(p)) => p.mid,
+            (None, None) => {
+                r.fail(k, &mid_name, "is blank: the first ply needs a material");
+                0
+            }
+        };
+        if !r.text(k).is_empty() && mid <= 0 && r.ok {
+            r.fail(k, &mid_name, "must be a positive integer");
+        }
+        let t = match (r.real_opt(k + 1, &t_name), &above) {
+            (Some(t), _) => {
+                r.positive(k + 1, &t_name, t);
+                t
+            }
+            (None, Some(p)) => p.t,
+            (None, None) => {
+                r.fail(k + 1, &t_name, "is blank: the first ply needs a thickness");
+                0.0
+            }
+        };
+        let theta = r.real_or(k + 2, &theta_name, 0.0);
+        let sout = match r.text(k + 3).to_ascii_uppercase().as_str() {
+            "" | "NO" => false,
+            "YES" => true,
+            _ => {
+                r.fail(k + 3, &sout_name, "must be YES or NO (or blank)");
+                false
+            }
+        };
+        plies.push(Ply { mid, t, theta, sout });
+    }
+    if plies.is_empty() && r.ok {
+        r.fail(8, "MID1", "PCOMP has no ply");
+    }
+    let p = Pcomp {
+        pid,
+        z0,
+        nsm,
+        sb,
+        ft,
+        plies,
+        lam,
+        at: r.at(),
+    };
+    if r.ok {
+        b.pcomps.push(p);
     }
 }
 

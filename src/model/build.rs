@@ -475,7 +475,13 @@ fn quads(cx: &mut Ctx, deck: &Deck, num: &Numbering, out: &mut Elements) {
     let (elements, on_element) = (&mut out.list, &mut out.on_element);
     let mat1: HashMap<i64, &crate::deck::cards::Mat1> = b.mat1s.iter().map(|m| (m.mid, m)).collect();
     let pshell: HashMap<i64, &crate::deck::cards::Pshell> = b.pshells.iter().map(|p| (p.pid, p)).collect();
+    let pcomp: HashMap<i64, &crate::deck::cards::Pcomp> = b.pcomps.iter().map(|p| (p.pid, p)).collect();
+    for p in b.pcomps.iter().filter(|p| pshell.contains_key(&p.pid)) {
+        cx.err(p.at.error(format!("property {} is both a PSHELL and a PCOMP", p.pid)));
+    }
     let mut sections: HashMap<i64, Option<ShellSection>> = HashMap::new();
+    // A laminate's stiffness in the basic axes depends on the element's material axis.
+    let mut laminates: HashMap<(i64, u64), Option<ShellSection>> = HashMap::new();
     for c in &b.cquad4s {
         let mut xyz = [[0.0; 3]; 4];
         let mut ok = true;
@@ -488,14 +494,23 @@ fn quads(cx: &mut Ctx, deck: &Deck, num: &Numbering, out: &mut Elements) {
                 }
             }
         }
-        let section = match sections.get(&c.pid) {
-            Some(s) => s.clone(),
-            None => {
+        let section = match (sections.get(&c.pid), pcomp.get(&c.pid)) {
+            (_, Some(p)) if ok && !pshell.contains_key(&c.pid) => {
+                // The material x axis: the G1→G2 side, counter-clockwise from basic x.
+                let axes = (xyz[1][1] - xyz[0][1]).atan2(xyz[1][0] - xyz[0][0]).to_degrees();
+                laminates
+                    .entry((c.pid, axes.to_bits()))
+                    .or_insert_with(|| laminate_section(cx, p, &mat1, &b.mat8s, axes))
+                    .clone()
+            }
+            (Some(s), _) => s.clone(),
+            (None, _) => {
                 let s = match pshell.get(&c.pid) {
                     Some(p) => shell_section(cx, p, &mat1, &b.mat2s),
+                    None if pcomp.contains_key(&c.pid) => None,
                     None => {
                         cx.err(c.at.error(format!(
-                            "CQUAD4 {} references PSHELL {}, which does not exist",
+                            "CQUAD4 {} references property {} (PSHELL or PCOMP), which does not exist",
                             c.eid, c.pid
                         )));
                         None
@@ -985,6 +1000,84 @@ fn shell_section(
         g_membrane: mem.map(|(g, _)| g),
         g_bending: bend.map(|(g, _)| g * p.bend_ratio),
         mass_per_area: rho * p.t + p.nsm,
+    })
+}
+
+/// The section of a PCOMP for an element whose material x axis is `axes` degrees from
+/// basic x: its plies (MAT8 or MAT1) through the lamination stage, the laminate's A/t
+/// and 12D/t³ as the plate's membrane and bending materials. A laminate that couples
+/// membrane and bending (B ≠ 0) is refused: the plate element does not couple them.
+fn laminate_section(
+    cx: &mut Ctx,
+    p: &crate::deck::cards::Pcomp,
+    mat1: &HashMap<i64, &crate::deck::cards::Mat1>,
+    mat8s: &[crate::deck::cards::Mat8],
+    axes: f64,
+) -> Option<ShellSection> {
+    use crate::laminate::{orthotropic_q, Laminate, Ply};
+    let mut plies = Vec::new();
+    for (k, ply) in p.stack().iter().enumerate() {
+        let made = if let Some(m) = mat8s.iter().find(|m| m.mid == ply.mid) {
+            Ply {
+                q: orthotropic_q(m.e1, m.e2, m.nu12, m.g12),
+                shear: m.g1z.zip(m.g2z),
+                t: ply.t,
+                theta: ply.theta,
+                rho: m.rho,
+            }
+        } else if let Some(m) = mat1.get(&ply.mid) {
+            let q = m.e / (1.0 - m.nu * m.nu);
+            Ply {
+                q: Matrix3::new(q, q * m.nu, 0.0, q * m.nu, q, 0.0, 0.0, 0.0, m.g),
+                shear: Some((m.g, m.g)),
+                t: ply.t,
+                theta: ply.theta,
+                rho: m.rho,
+            }
+        } else {
+            cx.err(p.at.error(format!(
+                "PCOMP {}: ply {} names material {}, which is no MAT8 or MAT1",
+                p.pid,
+                k + 1,
+                ply.mid
+            )));
+            return None;
+        };
+        plies.push(made);
+    }
+    let lam = match Laminate::new(&plies, p.z0, axes) {
+        Ok(l) => l,
+        Err(e) => {
+            cx.err(p.at.error(format!("PCOMP {}: {e}", p.pid)));
+            return None;
+        }
+    };
+    if !lam.is_uncoupled() {
+        cx.err(p.at.error(format!(
+            "PCOMP {}: the laminate couples membrane and bending (B ≠ 0: its plies are not symmetric about the \
+             reference plane, or Z0 is not −T/2); the plate element does not couple them",
+            p.pid
+        )));
+        return None;
+    }
+    if plies.iter().any(|p| p.shear.is_some()) && mat8s.iter().any(|m| m.g1z.is_some() || m.g2z.is_some()) {
+        cx.warn(p.at.error(format!(
+            "PCOMP {}: the plies' transverse shear moduli (MAT8 G1Z, G2Z) are not used: the plate element is thin \
+             (Kirchhoff, DKQ)",
+            p.pid
+        )));
+    }
+    if p.ft.is_some() {
+        cx.warn(p.at.error(format!(
+            "PCOMP {}: FT (failure theory) is read, but failure indices are not computed",
+            p.pid
+        )));
+    }
+    Some(ShellSection {
+        thickness: lam.thickness,
+        g_membrane: Some(lam.membrane_material()),
+        g_bending: Some(lam.bending_material()),
+        mass_per_area: lam.mass_per_area + p.nsm,
     })
 }
 

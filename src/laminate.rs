@@ -1,0 +1,325 @@
+//! Classical lamination theory: the stiffness of a layered shell (PCOMP) from its plies
+//! (MAT8 or MAT1), the stage between the deck and the model builder. The plate element
+//! never sees a ply: it gets the laminate's membrane, coupling and bending stiffnesses.
+//!
+//! Kinematics (Kirchhoff-Love, through the whole thickness): ε(z) = ε⁰ + z·κ, with ε⁰
+//! the reference plane's strains and κ its curvatures, engineering shear strains. Each
+//! ply is in plane stress with its reduced stiffness in its own axes (1 along the
+//! fibres), after Jones, *Mechanics of Composite Materials*, 2nd ed., Eq. 2.61:
+//!
+//!   Q11 = E1/(1 − ν12ν21), Q22 = E2/(1 − ν12ν21), Q12 = ν12·E2/(1 − ν12ν21),
+//!   Q66 = G12, ν21 = ν12·E2/E1,
+//!
+//! turned to the laminate's axes by its angle θ (counter-clockwise about the normal,
+//! from the laminate's x axis to the fibres) as Q̄ = Tᵀ·Q·T, T taking the laminate's
+//! strains to the ply's (m = cos θ, n = sin θ; Jones Eq. 2.85 in matrix form):
+//!
+//!   T = [m² n² mn; n² m² −mn; −2mn 2mn m²−n²].
+//!
+//! The laminate's stiffnesses per unit width (Jones Eq. 4.22-4.24), plies k from the
+//! bottom surface z₀ = Z0 up:
+//!
+//!   A = Σ Q̄ₖ (zₖ − zₖ₋₁),  B = ½ Σ Q̄ₖ (zₖ² − zₖ₋₁²),  D = ⅓ Σ Q̄ₖ (zₖ³ − zₖ₋₁³),
+//!
+//! and, where every ply gives G1Z and G2Z, the through-thickness integral of the
+//! transverse shear stiffness (yz, xz order as NASTRAN's [Q44 Q45; Q45 Q55]), with no
+//! shear correction applied: a plate that uses it chooses its own.
+
+use nalgebra::{Matrix2, Matrix3};
+
+/// One ply as the lamination sees it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Ply {
+    /// Plane-stress stiffness in the ply's axes (1 along the fibres, 2 across, 12).
+    pub q: Matrix3<f64>,
+    /// Transverse shear moduli (G1Z, G2Z), when given.
+    pub shear: Option<(f64, f64)>,
+    /// Thickness.
+    pub t: f64,
+    /// Angle from the laminate's x axis to the ply's 1 axis, degrees, counter-clockwise.
+    pub theta: f64,
+    /// Mass density.
+    pub rho: f64,
+}
+
+/// An orthotropic ply's plane-stress stiffness in its own axes (Jones Eq. 2.61).
+pub fn orthotropic_q(e1: f64, e2: f64, nu12: f64, g12: f64) -> Matrix3<f64> {
+    let nu21 = nu12 * e2 / e1;
+    let d = 1.0 - nu12 * nu21;
+    Matrix3::new(e1 / d, nu12 * e2 / d, 0.0, nu12 * e2 / d, e2 / d, 0.0, 0.0, 0.0, g12)
+}
+
+/// The matrix T taking strains in the laminate's axes to strains in axes turned by
+/// `theta` degrees (engineering shear strains).
+pub fn strain_rotation(theta: f64) -> Matrix3<f64> {
+    let (n, m) = theta.to_radians().sin_cos();
+    Matrix3::new(
+        m * m,
+        n * n,
+        m * n,
+        n * n,
+        m * m,
+        -m * n,
+        -2.0 * m * n,
+        2.0 * m * n,
+        m * m - n * n,
+    )
+}
+
+/// A ply's stiffness in the laminate's axes: Q̄ = Tᵀ Q T.
+pub fn rotated(q: &Matrix3<f64>, theta: f64) -> Matrix3<f64> {
+    let t = strain_rotation(theta);
+    t.transpose() * q * t
+}
+
+/// A laminate's stiffnesses per unit width in its axes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Laminate {
+    /// Total thickness.
+    pub thickness: f64,
+    /// Membrane stiffness A (force/length).
+    pub a: Matrix3<f64>,
+    /// Membrane-bending coupling B (force).
+    pub b: Matrix3<f64>,
+    /// Bending stiffness D (force·length).
+    pub d: Matrix3<f64>,
+    /// Transverse shear stiffness ∫ C̄ dz (force/length), yz then xz, when every ply
+    /// gives G1Z and G2Z.
+    pub shear: Option<Matrix2<f64>>,
+    /// Mass per unit area of the plies, Σ ρ t.
+    pub mass_per_area: f64,
+}
+
+/// Why plies make no laminate.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum LaminateError {
+    /// No ply.
+    #[error("the laminate has no ply")]
+    Empty,
+    /// A ply without thickness.
+    #[error("ply {0} has no thickness")]
+    Thickness(usize),
+}
+
+impl Laminate {
+    /// The laminate of `plies`, bottom to top, its bottom surface at `z0` from the
+    /// reference plane (`None`: the mid-plane is the reference, z0 = −t/2), its axes
+    /// turned by `axes` degrees from the plies' reference (every ply's angle is taken
+    /// from the laminate's x axis minus `axes`: the laminate as seen in axes turned by
+    /// `axes`).
+    pub fn new(plies: &[Ply], z0: Option<f64>, axes: f64) -> Result<Laminate, LaminateError> {
+        if plies.is_empty() {
+            return Err(LaminateError::Empty);
+        }
+        if let Some(k) = plies.iter().position(|p| p.t.is_nan() || p.t <= 0.0) {
+            return Err(LaminateError::Thickness(k + 1));
+        }
+        let thickness: f64 = plies.iter().map(|p| p.t).sum();
+        let mut z = z0.unwrap_or(-0.5 * thickness);
+        let (mut a, mut b, mut d) = (Matrix3::zeros(), Matrix3::zeros(), Matrix3::zeros());
+        let mut shear = Some(Matrix2::zeros());
+        let mut mass = 0.0;
+        for p in plies {
+            let q = rotated(&p.q, p.theta - axes);
+            let top = z + p.t;
+            a += q * (top - z);
+            b += q * ((top * top - z * z) / 2.0);
+            d += q * ((top.powi(3) - z.powi(3)) / 3.0);
+            shear = match (shear, p.shear) {
+                (Some(h), Some((g1z, g2z))) => {
+                    let (n, m) = (p.theta - axes).to_radians().sin_cos();
+                    let c44 = g2z * m * m + g1z * n * n;
+                    let c55 = g1z * m * m + g2z * n * n;
+                    let c45 = (g1z - g2z) * m * n;
+                    Some(h + Matrix2::new(c44, c45, c45, c55) * p.t)
+                }
+                _ => None,
+            };
+            mass += p.rho * p.t;
+            z = top;
+        }
+        Ok(Laminate {
+            thickness,
+            a,
+            b,
+            d,
+            shear,
+            mass_per_area: mass,
+        })
+    }
+
+    /// True when membrane and bending are uncoupled: every B term below 1e-12 of
+    /// A·t (a symmetric laminate about the reference plane, to round-off).
+    pub fn is_uncoupled(&self) -> bool {
+        let scale = self.a.abs().max() * self.thickness;
+        self.b.abs().max() <= 1e-12 * scale
+    }
+
+    /// The bending stiffness as 12·D/t³ (the equivalent homogeneous plate's bending
+    /// material, NASTRAN's MID2 with 12I/T³ = 1).
+    pub fn bending_material(&self) -> Matrix3<f64> {
+        self.d * (12.0 / self.thickness.powi(3))
+    }
+
+    /// The membrane stiffness as A/t (NASTRAN's MID1).
+    pub fn membrane_material(&self) -> Matrix3<f64> {
+        self.a / self.thickness
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+
+    /// Scotchply 1003 as the issue works it by hand (psi): E1 5.8e6-ish ply.
+    fn glass(theta: f64, t: f64) -> Ply {
+        Ply {
+            q: orthotropic_q(5.6e6, 1.2e6, 0.26, 0.57e6),
+            shear: Some((0.57e6, 0.4e6)),
+            t,
+            theta,
+            rho: 1.8e-4,
+        }
+    }
+
+    /// Goal: T is Jones' closed form of the rotated stiffness (Eq. 2.85), term by term,
+    /// at an angle where every term is nonzero; a turn by 90° swaps the 1- and 2-terms
+    /// and changes the signs of the 16 and 26 terms.
+    #[test]
+    fn rotation_is_joness_closed_form() {
+        let q = orthotropic_q(20e6, 1.5e6, 0.3, 0.8e6);
+        let (q11, q12, q22, q66) = (q[(0, 0)], q[(0, 1)], q[(1, 1)], q[(2, 2)]);
+        for theta in [0.0, 17.0, 30.0, 45.0, -60.0, 90.0] {
+            let (n, m) = f64::to_radians(theta).sin_cos();
+            let qb = rotated(&q, theta);
+            let jones = [
+                (
+                    (0, 0),
+                    q11 * m.powi(4) + 2.0 * (q12 + 2.0 * q66) * m * m * n * n + q22 * n.powi(4),
+                ),
+                (
+                    (0, 1),
+                    (q11 + q22 - 4.0 * q66) * m * m * n * n + q12 * (m.powi(4) + n.powi(4)),
+                ),
+                (
+                    (1, 1),
+                    q11 * n.powi(4) + 2.0 * (q12 + 2.0 * q66) * m * m * n * n + q22 * m.powi(4),
+                ),
+                (
+                    (0, 2),
+                    (q11 - q12 - 2.0 * q66) * m.powi(3) * n + (q12 - q22 + 2.0 * q66) * m * n.powi(3),
+                ),
+                (
+                    (1, 2),
+                    (q11 - q12 - 2.0 * q66) * m * n.powi(3) + (q12 - q22 + 2.0 * q66) * m.powi(3) * n,
+                ),
+                (
+                    (2, 2),
+                    (q11 + q22 - 2.0 * q12 - 2.0 * q66) * m * m * n * n + q66 * (m.powi(4) + n.powi(4)),
+                ),
+            ];
+            for ((i, j), v) in jones {
+                assert_relative_eq!(qb[(i, j)], v, epsilon = 1e-9 * q11);
+                assert_relative_eq!(qb[(j, i)], v, epsilon = 1e-9 * q11);
+            }
+        }
+        let (a, b) = (rotated(&q, 30.0), rotated(&q, 120.0));
+        assert_relative_eq!(a[(0, 0)], b[(1, 1)], max_relative = 1e-12);
+        assert_relative_eq!(a[(0, 2)], -b[(1, 2)], max_relative = 1e-12);
+    }
+
+    /// Goal: a cross-ply [0₅/90₅/0₅] (the paper's plate as the issue reads it) has
+    /// A = t·(Q11·10/15 + Q22·5/15) along x and no coupling, and D in closed form: the
+    /// outer 0° plies, from ±t/2 to ±t/6, carry 26/27 of the bending along x.
+    #[test]
+    fn cross_ply_in_closed_form() {
+        let t = 0.01;
+        let stack: Vec<Ply> = (0..15)
+            .map(|k| glass(if (5..10).contains(&k) { 90.0 } else { 0.0 }, t))
+            .collect();
+        let l = Laminate::new(&stack, None, 0.0).unwrap();
+        let q = orthotropic_q(5.6e6, 1.2e6, 0.26, 0.57e6);
+        let h = 0.15;
+        assert_relative_eq!(l.thickness, h, max_relative = 1e-12);
+        assert_relative_eq!(
+            l.a[(0, 0)],
+            h * (q[(0, 0)] * 2.0 / 3.0 + q[(1, 1)] / 3.0),
+            max_relative = 1e-12
+        );
+        assert_relative_eq!(
+            l.a[(1, 1)],
+            h * (q[(1, 1)] * 2.0 / 3.0 + q[(0, 0)] / 3.0),
+            max_relative = 1e-12
+        );
+        assert!(l.is_uncoupled());
+        let d11 = h.powi(3) / 12.0 * (q[(0, 0)] * 26.0 / 27.0 + q[(1, 1)] / 27.0);
+        assert_relative_eq!(l.d[(0, 0)], d11, max_relative = 1e-12);
+        assert!(l.d[(0, 2)].abs() <= 1e-12 * l.d[(0, 0)], "D16 vanishes to round-off");
+        assert_relative_eq!(l.mass_per_area, 1.8e-4 * h, max_relative = 1e-12);
+        let s = l.shear.unwrap();
+        assert_relative_eq!(s[(0, 0)], t * (10.0 * 0.4e6 + 5.0 * 0.57e6), max_relative = 1e-12);
+    }
+
+    /// Goal: an angle-ply [+θ/−θ]s has no A16 and no B, but D16 and D26 of the sign of
+    /// the outer ply's Q̄16: D16 = (Q̄16(θ))·(t³/12)·(1 − (1/2)³) from the outer pair;
+    /// turning the stack (or the axes) changes their sign.
+    #[test]
+    fn angle_ply_bending_twist_coupling_has_the_outer_plys_sign() {
+        let t = 0.01;
+        let theta = 45.0;
+        let stack: Vec<Ply> = [theta, -theta, -theta, theta].iter().map(|&a| glass(a, t)).collect();
+        let l = Laminate::new(&stack, None, 0.0).unwrap();
+        assert!(l.a[(0, 2)].abs() < 1e-9 * l.a[(0, 0)]);
+        assert!(l.is_uncoupled());
+        let qb = rotated(&glass(0.0, t).q, theta);
+        let h = 4.0 * t;
+        let d16 = qb[(0, 2)] * h.powi(3) / 12.0 * (1.0 - 0.125) - qb[(0, 2)] * h.powi(3) / 12.0 * 0.125;
+        assert_relative_eq!(l.d[(0, 2)], d16, max_relative = 1e-12);
+        assert!(l.d[(0, 2)] > 0.0 && l.d[(1, 2)] > 0.0, "{}", l.d);
+        let mirrored: Vec<Ply> = [-theta, theta, theta, -theta].iter().map(|&a| glass(a, t)).collect();
+        let m = Laminate::new(&mirrored, None, 0.0).unwrap();
+        assert_relative_eq!(m.d[(0, 2)], -l.d[(0, 2)], max_relative = 1e-12);
+        // The same stack seen in axes turned by 90°: 1- and 2-terms swap, 16 and 26 flip.
+        let turned = Laminate::new(&stack, None, 90.0).unwrap();
+        assert_relative_eq!(turned.d[(0, 0)], l.d[(1, 1)], max_relative = 1e-12);
+        assert_relative_eq!(turned.d[(0, 2)], -l.d[(1, 2)], max_relative = 1e-12);
+    }
+
+    /// Goal: an unsymmetric [0/90] couples membrane and bending, B = (t²/8)·(Q22 − Q11)
+    /// along x (Jones Eq. 4.24 with plies from −t/2 to 0 and 0 to t/2... each of
+    /// thickness t/2: B11 = ½[Q11((0)² − (t/2)²) + Q22((t/2)² − 0)]).
+    #[test]
+    fn unsymmetric_cross_ply_couples() {
+        let t = 0.01;
+        let l = Laminate::new(&[glass(0.0, t), glass(90.0, t)], None, 0.0).unwrap();
+        let q = glass(0.0, t).q;
+        assert!(!l.is_uncoupled());
+        assert_relative_eq!(l.b[(0, 0)], 0.5 * (q[(1, 1)] - q[(0, 0)]) * t * t, max_relative = 1e-12);
+        assert_relative_eq!(l.b[(1, 1)], -l.b[(0, 0)], max_relative = 1e-12);
+    }
+
+    /// Goal: one isotropic ply is the homogeneous plate: A/t and 12D/t³ are its
+    /// plane-stress matrix.
+    #[test]
+    fn one_isotropic_ply_is_the_homogeneous_plate() {
+        let (e, nu) = (10.0e6, 0.3);
+        let q = orthotropic_q(e, e, nu, e / (2.0 * (1.0 + nu)));
+        let l = Laminate::new(
+            &[Ply {
+                q,
+                shear: None,
+                t: 0.2,
+                theta: 33.0,
+                rho: 2.5e-4,
+            }],
+            None,
+            0.0,
+        )
+        .unwrap();
+        assert_relative_eq!(l.membrane_material(), q, max_relative = 1e-12, epsilon = 1e-6);
+        assert_relative_eq!(l.bending_material(), q, max_relative = 1e-12, epsilon = 1e-6);
+        assert!(l.shear.is_none());
+        assert_eq!(Laminate::new(&[], None, 0.0), Err(LaminateError::Empty));
+    }
+}
