@@ -549,6 +549,64 @@ pub fn written_files(case: &Case, model: &Model, run: &RunResult) -> CheckResult
     )
 }
 
+/// The ledger's fields by the name and unit `energy.csv` must give each, from the
+/// deck's units and each field of [`crate::ledger::EnergyRow`] read by name (not by
+/// the writer's column order).
+fn ledger_columns(units: &crate::deck::Units, run: &RunResult) -> Vec<(String, Vec<f64>)> {
+    use crate::ledger::EnergyRow;
+    let energy = format!("{}*{}", units.force, units.length);
+    // Name, unit, and the field itself.
+    type Field = (&'static str, String, fn(&EnergyRow) -> f64);
+    let fields: [Field; 11] = [
+        ("time", units.time.clone(), |r| r.time),
+        ("ke_impactor", energy.clone(), |r| r.ke_impactor),
+        ("se_impactor", energy.clone(), |r| r.se_impactor),
+        ("ke_target", energy.clone(), |r| r.ke_target),
+        ("ke_target_eq16", energy.clone(), |r| r.ke_target_eq16),
+        ("se_target", energy.clone(), |r| r.se_target),
+        ("total", energy.clone(), |r| r.total),
+        ("external_work", energy.clone(), |r| r.external_work),
+        ("error", "-".into(), |r| r.error),
+        ("energy_ratio", "-".into(), |r| r.energy_ratio),
+        ("momentum", format!("{}*{}", units.force, units.time), |r| r.momentum),
+    ];
+    fields
+        .into_iter()
+        .map(|(name, unit, f)| (format!("{name} [{unit}]"), run.energy.iter().map(f).collect()))
+        .collect()
+}
+
+/// A written CSV against the run's own columns, each found by its header (name and
+/// unit), never by position: a column named as no expected one, one written twice or
+/// missing, and one whose values are not the run's to the last bit (NaN where the run
+/// has NaN) are problems.
+fn columns_by_name(file: &str, header: &[String], rows: &[Vec<f64>], expected: &[(String, Vec<f64>)]) -> Vec<String> {
+    let mut bad = Vec::new();
+    for (k, h) in header.iter().enumerate() {
+        if header[..k].contains(h) {
+            bad.push(format!("{file}: column {h:?} is written twice"));
+        }
+        match expected.iter().find(|(name, _)| name == h) {
+            None => bad.push(format!(
+                "{file}: column {h:?} is no column of the run (by that name and unit)"
+            )),
+            Some((_, values)) => {
+                let same = |a: f64, b: f64| a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan());
+                let column: Vec<f64> = rows.iter().map(|r| r.get(k).copied().unwrap_or(f64::NAN)).collect();
+                if column.len() != values.len() || !column.iter().zip(values).all(|(a, b)| same(*a, *b)) {
+                    bad.push(format!("{file}: column {h:?} does not read back to the run's {h}"));
+                }
+            }
+        }
+    }
+    for (name, _) in expected {
+        if !header.contains(name) {
+            bad.push(format!("{file}: the run's {name:?} is not written"));
+        }
+    }
+    bad
+}
+
 fn file_problems(model: &Model, run: &RunResult) -> Vec<String> {
     let mut bad = Vec::new();
     let files = crate::output::run_files(model, run);
@@ -590,9 +648,14 @@ fn file_problems(model: &Model, run: &RunResult) -> Vec<String> {
                     (k * every) as f64 * dt
                 ));
             }
-            if rows != run.history {
-                bad.push("history.csv does not read back to the run's history".into());
-            }
+            let u = crate::run::UnitSystem::of(units);
+            let expected: Vec<(String, Vec<f64>)> = run
+                .history_columns
+                .iter()
+                .enumerate()
+                .map(|(j, c)| (c.header(&u), run.history.iter().map(|r| r[j]).collect()))
+                .collect();
+            bad.extend(columns_by_name("history.csv", &header, &rows, &expected));
             let fmax = rows.iter().map(|r| r[1]).fold(0.0, f64::max);
             let peak = run.summary.contact.peak_force;
             if fmax > peak || (every == 1 && fmax != peak) {
@@ -628,6 +691,12 @@ fn file_problems(model: &Model, run: &RunResult) -> Vec<String> {
                     k as f64 * dt
                 ));
             }
+            bad.extend(columns_by_name(
+                "energy.csv",
+                &header,
+                &rows,
+                &ledger_columns(units, run),
+            ));
         }
     }
     match serde_json::from_slice::<crate::run::Summary>(file("summary.json")) {
@@ -785,4 +854,46 @@ fn navier_frequencies(cx: &Cx, meshes: [usize; 2], modes: usize, max: f64) -> Re
         worst <= max,
         detail.join("; "),
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::columns_by_name;
+
+    /// Goal: written columns are judged by name and unit, not position: two labels
+    /// swapped, a unit misnamed, a column written twice or left out are each a problem;
+    /// the columns in another order are not.
+    #[test]
+    fn written_columns_are_matched_by_name_and_unit() {
+        let expected = vec![
+            ("time [s]".to_string(), vec![0.0, 1.0]),
+            ("ke_target [lbf*in]".to_string(), vec![3.0, 4.0]),
+            ("ke_target_eq16 [lbf*in]".to_string(), vec![5.0, f64::NAN]),
+        ];
+        let h = |names: &[&str]| names.iter().map(|s| s.to_string()).collect::<Vec<_>>();
+        let rows = vec![vec![0.0, 5.0, 3.0], vec![1.0, f64::NAN, 4.0]];
+        let reordered = h(&["time [s]", "ke_target_eq16 [lbf*in]", "ke_target [lbf*in]"]);
+        assert!(columns_by_name("energy.csv", &reordered, &rows, &expected).is_empty());
+        let swapped = h(&["time [s]", "ke_target [lbf*in]", "ke_target_eq16 [lbf*in]"]);
+        let p = columns_by_name("energy.csv", &swapped, &rows, &expected);
+        assert_eq!(p.len(), 2, "{p:?}");
+        assert!(p[0].contains("\"ke_target [lbf*in]\" does not read back"), "{p:?}");
+        let unit = h(&["time [ms]", "ke_target_eq16 [lbf*in]", "ke_target [lbf*in]"]);
+        let p = columns_by_name("energy.csv", &unit, &rows, &expected);
+        assert!(
+            p.iter().any(|m| m.contains("\"time [ms]\" is no column of the run")),
+            "{p:?}"
+        );
+        assert!(
+            p.iter().any(|m| m.contains("the run's \"time [s]\" is not written")),
+            "{p:?}"
+        );
+        let twice = h(&["time [s]", "time [s]", "ke_target [lbf*in]"]);
+        let p = columns_by_name("energy.csv", &twice, &rows, &expected);
+        assert!(p.iter().any(|m| m.contains("written twice")), "{p:?}");
+        assert!(
+            p.iter().any(|m| m.contains("ke_target_eq16 [lbf*in]\" is not written")),
+            "{p:?}"
+        );
+    }
 }
