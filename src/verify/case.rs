@@ -167,8 +167,12 @@ pub enum CheckSpec {
     /// The paper's Eq. 16 KE_t against ½vᵀMv after contact: the relative deficit
     /// (½vᵀMv − Eq16)/½vᵀMv lies in [min, max].
     Eq16Deficit {
-        /// Compared from this time on, tC/L.
-        after_tcl: f64,
+        /// Compared from this time on, tC/L (a rod); or
+        #[serde(default)]
+        after_tcl: Option<f64>,
+        /// compared from this time on, in the deck's time unit (any target).
+        #[serde(default)]
+        after: Option<f64>,
         /// Smallest deficit allowed.
         min: f64,
         /// Largest deficit allowed.

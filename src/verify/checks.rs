@@ -148,7 +148,12 @@ pub fn check(case: &Case, model: &Model, run: &RunResult, spec: &CheckSpec) -> R
             min_fraction,
             max_fraction,
         } => strain_energy_dip(&cx, *near_tcl, *half_width, [*min_fraction, *max_fraction]),
-        CheckSpec::Eq16Deficit { after_tcl, min, max } => eq16_deficit(&cx, *after_tcl, *min, *max),
+        CheckSpec::Eq16Deficit {
+            after_tcl,
+            after,
+            min,
+            max,
+        } => eq16_deficit(&cx, (*after_tcl, *after), *min, *max)?,
         CheckSpec::Summary {
             key,
             reference,
@@ -327,25 +332,37 @@ fn strain_energy_dip(cx: &Cx, near_tcl: f64, half_width: f64, [lo, hi]: [f64; 2]
     )
 }
 
-fn eq16_deficit(cx: &Cx, after_tcl: f64, min: f64, max: f64) -> CheckResult {
+/// `from`: (tC/L, time in the deck's unit); exactly one is given, tC/L for a rod only.
+fn eq16_deficit(cx: &Cx, from: (Option<f64>, Option<f64>), min: f64, max: f64) -> Result<CheckResult, CheckError> {
+    let failed = |message: String| CheckError::Failed {
+        case: cx.case.name.clone(),
+        check: "eq16_deficit",
+        message,
+    };
+    let (start, said) = match from {
+        (Some(tcl), None) if cx.model.rod.is_some() => (tcl, format!("tC/L = {tcl}")),
+        (None, Some(t)) => (cx.tcl(t), format!("t = {t:e} {}", cx.run.summary.units.time)),
+        (Some(_), None) => return Err(failed("after_tcl needs a rod target; give `after` (a time)".into())),
+        _ => return Err(failed("give one of after_tcl (a rod's tC/L) or after (a time)".into())),
+    };
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
     for r in cx
         .energy()
         .iter()
-        .filter(|r| cx.tcl(r.time) >= after_tcl && r.ke_target > 0.0)
+        .filter(|r| cx.tcl(r.time) >= start && r.ke_target > 0.0)
     {
         let d = (r.ke_target - r.ke_target_eq16) / r.ke_target;
         lo = lo.min(d);
         hi = hi.max(d);
     }
-    cx.result(
+    Ok(cx.result(
         "eq16_deficit".into(),
         hi,
         Some(0.5 * (min + max)),
         Bound::within(0.5 * (max - min), format!("in [{min:.1e}, {max:.1e}]")),
         lo >= min && hi <= max,
-        format!("(½vᵀMv − Eq.16)/½vᵀMv ranges {lo:.3e}..{hi:.3e} after tC/L = {after_tcl}"),
-    )
+        format!("(½vᵀMv − Eq.16)/½vᵀMv ranges {lo:.3e}..{hi:.3e} after {said}"),
+    ))
 }
 
 fn summary(cx: &Cx, key: &str, reference: f64, tol: &Tol, source: &str) -> Result<CheckResult, CheckError> {
