@@ -3,6 +3,7 @@
 //! convergence, here), in parallel over cases. The result is a [`CaseOutcome`] per
 //! case, which `verify` judges and `report` draws without running anything again.
 
+use crate::integrate::Scheme;
 use crate::mesh::plate_model;
 use crate::model::Model;
 use crate::numerics::slope;
@@ -90,6 +91,21 @@ fn convergence(case: &Case, model: &Model, run: &RunResult, spec: &CheckSpec) ->
                 format!("values {}", list(&values)),
             ))
         }
+        CheckSpec::ConvergesToReference { expected_order, tol } => {
+            let (e, reference) = errors_to_reference(case, model, run)?;
+            let p = (e[0] / e[1]).log2();
+            Ok(result(
+                "converges_to_reference".into(),
+                p,
+                Some(*expected_order),
+                Bound::within(*tol, format!("± {tol}")),
+                (p - expected_order).abs() <= *tol,
+                format!(
+                    "force error against {reference}: {:.3e} at Δt, {:.3e} at Δt/2",
+                    e[0], e[1]
+                ),
+            ))
+        }
         CheckSpec::MeshConvergence { meshes, quantity, max } => {
             let mut values = Vec::new();
             for &n in meshes {
@@ -113,6 +129,50 @@ fn convergence(case: &Case, model: &Model, run: &RunResult, spec: &CheckSpec) ->
         }
         _ => unreachable!("crate::verify::check judges every other kind"),
     }
+}
+
+/// The force errors of the case's scheme at its Δt and at Δt/2 against a converged run
+/// of another scheme (`energy` at Δt/8, or `newmark` when the case runs `energy`): the
+/// relative L2 norm of F − F_ref over the reference's first contact, every reference
+/// step, the runs' forces interpolated linearly between their steps. Runs cover the
+/// reference's contact and 5 % more, not the case's whole span. Returns the two errors
+/// and what the reference was.
+fn errors_to_reference(case: &Case, model: &Model, run: &RunResult) -> Result<([f64; 2], String), crate::Error> {
+    let dt0 = run.dt;
+    let independent = if run.scheme == Scheme::Energy {
+        Scheme::Newmark
+    } else {
+        Scheme::Energy
+    };
+    let with = |scheme: Scheme, dt: f64, t_end: f64| -> Result<RunResult, crate::Error> {
+        let mut o = case_options(case);
+        o.scheme = scheme;
+        o.dt = Some(dt);
+        o.steps = Some((t_end / dt).ceil() as usize);
+        o.snapshot_times = Vec::new();
+        Ok(run_model(model, &o)?)
+    };
+    let t_run = dt0 * run.steps as f64;
+    let reference = with(independent, dt0 / 8.0, t_run)?;
+    let end = reference
+        .summary
+        .contact
+        .intervals
+        .first()
+        .map_or(t_run, |i| i[1])
+        .min(t_run);
+    let half = with(run.scheme, dt0 / 2.0, (1.05 * end).min(t_run))?;
+    let error = |r: &RunResult| {
+        let (mut num, mut den) = (0.0, 0.0);
+        let s = &reference.series;
+        for (&t, &f) in s.time.iter().zip(&s.force).filter(|(t, _)| **t <= end) {
+            let d = crate::numerics::interp(&r.series.time, &r.series.force, t) - f;
+            num += d * d;
+            den += f * f;
+        }
+        (num / den).sqrt()
+    };
+    Ok(([error(run), error(&half)], format!("{independent} at Δt/8")))
 }
 
 /// The case's run and `runs − 1` more, halving Δt over the same time span: the step

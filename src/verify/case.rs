@@ -257,6 +257,17 @@ pub enum CheckSpec {
         /// Allowed difference from it.
         tol: f64,
     },
+    /// The scheme converges to the semi-discrete model's own solution, not to another
+    /// limit: the contact force at Δt and at Δt/2 against a converged run of an
+    /// independent scheme (`energy` at Δt/8; `newmark` when the case runs `energy`),
+    /// each as the relative L2 norm of F − F_ref over the reference's first contact;
+    /// the observed order log₂(e(Δt)/e(Δt/2)) within `tol` of `expected_order`.
+    ConvergesToReference {
+        /// The order expected.
+        expected_order: f64,
+        /// Allowed difference from it.
+        tol: f64,
+    },
     /// Plate mesh refinement: `quantity` (contact_duration, peak_force_time) on each
     /// mesh; the change between the last two meshes, relative, ≤ max and smaller
     /// than the change before.

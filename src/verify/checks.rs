@@ -192,7 +192,9 @@ pub fn check(case: &Case, model: &Model, run: &RunResult, spec: &CheckSpec) -> R
             max,
         } => external_history(&cx, file, solver, what, time, columns, *max)?,
         CheckSpec::Superposition { max } => superposition(&cx, *max)?,
-        CheckSpec::DtConvergence { .. } | CheckSpec::MeshConvergence { .. } => return Ok(None),
+        CheckSpec::DtConvergence { .. }
+        | CheckSpec::MeshConvergence { .. }
+        | CheckSpec::ConvergesToReference { .. } => return Ok(None),
     }))
 }
 
