@@ -67,7 +67,11 @@ pub fn report_case(outcome: &CaseOutcome, dir: &Path) -> Result<CaseReport, Erro
         checks,
         wall_s: wall,
     } = outcome;
-    let plate = model.elements.iter().any(|e| e.kind::<Quad4>().is_some());
+    // A plate in bending; a target of membranes alone (an in-plane strip) is not one.
+    let plate = model
+        .elements
+        .iter()
+        .any(|e| e.kind::<Quad4>().is_some_and(|q| q.section.g_bending.is_some()));
     std::fs::create_dir_all(dir).map_err(io(dir))?;
     let footer = format!(
         "case {} · deck {} · scheme {} · dt {:e} s · {} steps",
@@ -84,7 +88,7 @@ pub fn report_case(outcome: &CaseOutcome, dir: &Path) -> Result<CaseReport, Erro
     } else if plate {
         plate_figures(&fig)
     } else {
-        Ok(Vec::new())
+        contact_force_figure(&fig)
     }?;
     let markdown = markdown(case, model, run, checks, &figures, *wall);
     std::fs::write(dir.join("index.md"), &markdown).map_err(io(dir))?;
@@ -463,6 +467,29 @@ fn rod_energy(f: &Fig, lc: f64, end: f64) -> Result<Vec<PathBuf>, Error> {
         &dir.join("energy"),
     )?);
     Ok(out)
+}
+
+/// The contact force of a target with no figures of its own (neither a rod of CRODs
+/// nor a plate in bending), with the curves of the solvers it is checked against.
+fn contact_force_figure(f: &Fig) -> Result<Vec<PathBuf>, Error> {
+    let (model, run, ax, footer, dir) = (f.model, f.run, &f.ax, f.footer, f.dir);
+    let s = &run.series;
+    let end = run.summary.contact.intervals.first().map_or(f64::INFINITY, |i| i[1]);
+    let t_end = 1.15 * end.min(s.time.last().copied().unwrap_or(0.0));
+    let (tf, ff) = samples_until(&s.time, &s.force, t_end, 1);
+    Ok(plot::line_chart(
+        &Chart {
+            title: format!("Contact force, {}", model.name),
+            x_label: ax.label(),
+            y_label: format!("contact force [{}]", model.units.force),
+            footer: footer.into(),
+            lines: std::iter::once(Line::new("impactlab", ax.map(&tf), ff, 0))
+                .chain(f.external_line("contact_force", t_end, |t| t * ax.scale, 5))
+                .collect(),
+            ..Default::default()
+        },
+        &dir.join("force"),
+    )?)
 }
 
 fn plate_figures(f: &Fig) -> Result<Vec<PathBuf>, Error> {
