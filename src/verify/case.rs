@@ -257,6 +257,14 @@ pub enum CheckSpec {
         /// Allowed difference from it.
         tol: f64,
     },
+    /// The shell recovery on an exact field: every CQUAD4 of the model given the
+    /// nodal values of constant membrane strain and constant curvature (w quadratic),
+    /// its recovered fibre strains against the field's own at z = ∓T/2, to `max` of
+    /// their largest magnitude.
+    ShellRecoveryPatch {
+        /// Largest difference allowed, relative.
+        max: f64,
+    },
     /// The scheme converges to the semi-discrete model's own solution, not to another
     /// limit: the contact force at Δt and at Δt/2 against a converged run of an
     /// independent scheme (`energy` at Δt/8; `newmark` when the case runs `energy`),

@@ -148,6 +148,7 @@ pub fn check(case: &Case, model: &Model, run: &RunResult, spec: &CheckSpec) -> R
             min_fraction,
             max_fraction,
         } => strain_energy_dip(&cx, *near_tcl, *half_width, [*min_fraction, *max_fraction]),
+        CheckSpec::ShellRecoveryPatch { max } => shell_recovery_patch(&cx, *max),
         CheckSpec::Eq16Deficit {
             after_tcl,
             after,
@@ -331,6 +332,61 @@ fn strain_energy_dip(cx: &Cx, near_tcl: f64, half_width: f64, [lo, hi]: [f64; 2]
         Bound::within(0.5 * (hi - lo), format!("depth in [{lo}, {hi}] within ±{half_width}")),
         ok,
         format!("minimum SE_t = {frac:.4} of its plateau at tC/L = {at:.4}"),
+    )
+}
+
+/// The field of the shell patch, about a point (x0, y0): membrane strains (εx, εy, γxy)
+/// and w = ½·a·x² + ½·b·y² + c·x·y, so that κ = (−a, −b, −2c) and, Kirchhoff's fibre
+/// strain being ε(z) = ε_m + z·κ, ε(z) = (εx − a·z, εy − b·z, γxy − 2c·z).
+const PATCH_MEMBRANE: [f64; 3] = [2e-4, -1e-4, 3e-4];
+const PATCH_CURVATURE: [f64; 3] = [1.0e-2, -6.0e-3, 3.5e-3];
+
+/// See [`CheckSpec::ShellRecoveryPatch`]. Nodal values per grid (T1, T2, T3, R1, R2,
+/// R3) from the field with NASTRAN's rotations R1 = ∂w/∂y, R2 = −∂w/∂x; the expected
+/// strains come from the field and the section's thickness alone, not from the element.
+fn shell_recovery_patch(cx: &Cx, max: f64) -> CheckResult {
+    use crate::elements::quad4::Quad4;
+    let [ex, ey, gxy] = PATCH_MEMBRANE;
+    let [a, b, c] = PATCH_CURVATURE;
+    let (mut worst, mut count, mut at) = (0.0f64, 0, 0);
+    for e in cx.model.elements.iter() {
+        let Some(q) = e.kind::<Quad4>() else { continue };
+        let (x0, y0) = (q.xy[0][0], q.xy[0][1]);
+        let mut ue = Vec::with_capacity(24);
+        for p in &q.xy {
+            let (x, y) = (p[0] - x0, p[1] - y0);
+            let w = 0.5 * a * x * x + 0.5 * b * y * y + c * x * y;
+            let (wx, wy) = (a * x + c * y, b * y + c * x);
+            ue.extend([ex * x + 0.5 * gxy * y, ey * y + 0.5 * gxy * x, w, wy, -wx, 0.0]);
+        }
+        let got = e.kernel.recover(&ue, false);
+        let h = 0.5 * q.section.thickness;
+        let want: Vec<f64> = [-h, h]
+            .iter()
+            .flat_map(|&z| [ex - a * z, ey - b * z, gxy - 2.0 * c * z])
+            .collect();
+        let scale = want.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let d = got
+            .iter()
+            .zip(&want)
+            .map(|(g, w)| (g - w).abs() / scale)
+            .fold(if got.len() == want.len() { 0.0 } else { f64::INFINITY }, f64::max);
+        if d > worst || d.is_nan() {
+            (worst, at) = (d, e.eid);
+        }
+        count += 1;
+    }
+    cx.result(
+        "shell_recovery_patch".into(),
+        worst,
+        None,
+        Bound::of_peak(max),
+        count > 0 && worst <= max,
+        if count == 0 {
+            "no CQUAD4 in the model".into()
+        } else {
+            format!("{count} CQUAD4s, fibre strains at ∓T/2 of constant strain and curvature; largest at element {at}")
+        },
     )
 }
 
