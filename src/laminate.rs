@@ -99,6 +99,53 @@ pub enum LaminateError {
     /// A ply without thickness.
     #[error("ply {0} has no thickness")]
     Thickness(usize),
+    /// A ply whose material is neither a MAT8 nor a MAT1.
+    #[error("ply {ply} names material {mid}, which is no MAT8 or MAT1")]
+    Material {
+        /// The ply, from 1 at the bottom.
+        ply: usize,
+        /// The material id it names.
+        mid: i64,
+    },
+}
+
+/// The plies of a PCOMP, bottom to top (LAM = SYM mirrored), each from its MAT8 (E1,
+/// E2, NU12, G12; G1Z and G2Z when both are given) or its MAT1 (isotropic: the
+/// plane-stress matrix of E, NU, G, and G for both transverse shears).
+pub fn plies_of(
+    p: &crate::deck::cards::Pcomp,
+    mat1s: &[crate::deck::cards::Mat1],
+    mat8s: &[crate::deck::cards::Mat8],
+) -> Result<Vec<Ply>, LaminateError> {
+    p.stack()
+        .iter()
+        .enumerate()
+        .map(|(k, ply)| {
+            if let Some(m) = mat8s.iter().find(|m| m.mid == ply.mid) {
+                Ok(Ply {
+                    q: orthotropic_q(m.e1, m.e2, m.nu12, m.g12),
+                    shear: m.g1z.zip(m.g2z),
+                    t: ply.t,
+                    theta: ply.theta,
+                    rho: m.rho,
+                })
+            } else if let Some(m) = mat1s.iter().find(|m| m.mid == ply.mid) {
+                let q = m.e / (1.0 - m.nu * m.nu);
+                Ok(Ply {
+                    q: Matrix3::new(q, q * m.nu, 0.0, q * m.nu, q, 0.0, 0.0, 0.0, m.g),
+                    shear: Some((m.g, m.g)),
+                    t: ply.t,
+                    theta: ply.theta,
+                    rho: m.rho,
+                })
+            } else {
+                Err(LaminateError::Material {
+                    ply: k + 1,
+                    mid: ply.mid,
+                })
+            }
+        })
+        .collect()
 }
 
 impl Laminate {

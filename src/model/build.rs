@@ -500,7 +500,7 @@ fn quads(cx: &mut Ctx, deck: &Deck, num: &Numbering, out: &mut Elements) {
                 let axes = (xyz[1][1] - xyz[0][1]).atan2(xyz[1][0] - xyz[0][0]).to_degrees();
                 laminates
                     .entry((c.pid, axes.to_bits()))
-                    .or_insert_with(|| laminate_section(cx, p, &mat1, &b.mat8s, axes))
+                    .or_insert_with(|| laminate_section(cx, p, &b.mat1s, &b.mat8s, axes))
                     .clone()
             }
             (Some(s), _) => s.clone(),
@@ -1010,41 +1010,18 @@ fn shell_section(
 fn laminate_section(
     cx: &mut Ctx,
     p: &crate::deck::cards::Pcomp,
-    mat1: &HashMap<i64, &crate::deck::cards::Mat1>,
+    mat1s: &[crate::deck::cards::Mat1],
     mat8s: &[crate::deck::cards::Mat8],
     axes: f64,
 ) -> Option<ShellSection> {
-    use crate::laminate::{orthotropic_q, Laminate, Ply};
-    let mut plies = Vec::new();
-    for (k, ply) in p.stack().iter().enumerate() {
-        let made = if let Some(m) = mat8s.iter().find(|m| m.mid == ply.mid) {
-            Ply {
-                q: orthotropic_q(m.e1, m.e2, m.nu12, m.g12),
-                shear: m.g1z.zip(m.g2z),
-                t: ply.t,
-                theta: ply.theta,
-                rho: m.rho,
-            }
-        } else if let Some(m) = mat1.get(&ply.mid) {
-            let q = m.e / (1.0 - m.nu * m.nu);
-            Ply {
-                q: Matrix3::new(q, q * m.nu, 0.0, q * m.nu, q, 0.0, 0.0, 0.0, m.g),
-                shear: Some((m.g, m.g)),
-                t: ply.t,
-                theta: ply.theta,
-                rho: m.rho,
-            }
-        } else {
-            cx.err(p.at.error(format!(
-                "PCOMP {}: ply {} names material {}, which is no MAT8 or MAT1",
-                p.pid,
-                k + 1,
-                ply.mid
-            )));
+    use crate::laminate::{plies_of, Laminate};
+    let plies = match plies_of(p, mat1s, mat8s) {
+        Ok(plies) => plies,
+        Err(e) => {
+            cx.err(p.at.error(format!("PCOMP {}: {e}", p.pid)));
             return None;
-        };
-        plies.push(made);
-    }
+        }
+    };
     let lam = match Laminate::new(&plies, p.z0, axes) {
         Ok(l) => l,
         Err(e) => {
