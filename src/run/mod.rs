@@ -412,13 +412,7 @@ impl RunResult {
 
 /// The columns of `history.csv`, in the order the recorder writes its rows.
 pub fn history_columns(m: &Model) -> Vec<Column> {
-    let mut cols = vec![
-        Column::Time,
-        Column::ContactForce,
-        Column::Indentation,
-        Column::ImpactorDisp,
-        Column::ImpactorVelo,
-    ];
+    let mut cols = FIXED_COLUMNS.to_vec();
     cols.extend(m.outputs.disp.iter().map(|(d, _)| Column::Disp(*d)));
     cols.extend(m.outputs.velo.iter().map(|(d, _)| Column::Velo(*d)));
     if let Some(c) = &m.contact {
@@ -435,6 +429,15 @@ pub fn history_columns(m: &Model) -> Vec<Column> {
     }
     cols
 }
+
+/// The columns every history has, first, before what case control requests.
+pub const FIXED_COLUMNS: [Column; 5] = [
+    Column::Time,
+    Column::ContactForce,
+    Column::Indentation,
+    Column::ImpactorDisp,
+    Column::ImpactorVelo,
+];
 
 /// The elements whose results are recorded, with whether their stresses are: STRESS
 /// requests (stress and strain), then STRAIN requests not already there.

@@ -341,7 +341,10 @@ pub fn header(model: &Model, varies: &[Vary]) -> Vec<String> {
 
 /// The history columns whose peaks a sweep reports: the requested outputs.
 fn output_columns(model: &Model) -> Vec<Column> {
-    crate::run::history_columns(model).into_iter().skip(5).collect()
+    crate::run::history_columns(model)
+        .into_iter()
+        .skip(crate::run::FIXED_COLUMNS.len())
+        .collect()
 }
 
 /// The row of one point, its `direct_check` empty (NaN) until compared.
@@ -363,7 +366,7 @@ fn row(index: usize, values: &[f64], run: &RunResult) -> Vec<f64> {
         s.energy.transferred_fraction.unwrap_or(nan),
         s.energy.max_relative_error.unwrap_or(nan),
     ]);
-    for j in 5..run.history_columns.len() {
+    for j in crate::run::FIXED_COLUMNS.len()..run.history_columns.len() {
         r.push(
             run.history
                 .iter()
