@@ -1,29 +1,10 @@
 //! The NASTRAN deck reader, feature by feature. Each test feeds a small deck and
 //! checks the typed result or the exact diagnostic.
 
-use impactlab::deck::{parse_deck_str, Deck, DeckError, ReadOptions};
+mod common;
 
-const HEAD: &str = "SOL 9\nCEND\nTSTEP = 1\nBEGIN BULK\nTSTEP,1,10,1.0-6,1\n";
-
-fn deck(bulk: &str) -> Deck {
-    parse_deck_str("t.bdf", &format!("{HEAD}{bulk}\nENDDATA\n"), ReadOptions::default())
-        .unwrap_or_else(|e| panic!("{e}"))
-}
-
-fn errors(text: &str) -> Vec<String> {
-    match parse_deck_str("t.bdf", text, ReadOptions::default()) {
-        Ok(_) => panic!("deck should fail"),
-        Err(DeckError { diagnostics }) => diagnostics
-            .iter()
-            .filter(|d| d.is_error())
-            .map(|d| d.to_string())
-            .collect(),
-    }
-}
-
-fn bulk_errors(bulk: &str) -> Vec<String> {
-    errors(&format!("{HEAD}{bulk}\nENDDATA\n"))
-}
+use common::{bulk_deck as deck, bulk_errors, deck_errors as errors, BULK_HEAD as HEAD};
+use impactlab::deck::{parse_deck_str, ReadOptions};
 
 #[test]
 fn free_small_and_large_field_read_the_same_grid() {

@@ -5,29 +5,10 @@
 
 mod common;
 
-use common::{deck, root};
+use common::{bulk_deck as bulk, bulk_errors, deck, root};
 use impactlab::deck::cards::{Lam, Ply};
-use impactlab::deck::{parse_deck_str, DeckError, ReadOptions};
 use impactlab::elements::quad4::Quad4;
 use impactlab::run::{run_model, RunOptions, RunResult};
-
-const HEAD: &str = "SOL 9\nCEND\nTSTEP = 1\nBEGIN BULK\nTSTEP,1,10,1.0-6,1\n";
-
-fn bulk(text: &str) -> impactlab::deck::Deck {
-    parse_deck_str("t.bdf", &format!("{HEAD}{text}\nENDDATA\n"), ReadOptions::default())
-        .unwrap_or_else(|e| panic!("{e}"))
-}
-
-fn bulk_errors(text: &str) -> Vec<String> {
-    match parse_deck_str("t.bdf", &format!("{HEAD}{text}\nENDDATA\n"), ReadOptions::default()) {
-        Ok(_) => panic!("deck should fail"),
-        Err(DeckError { diagnostics }) => diagnostics
-            .iter()
-            .filter(|d| d.is_error())
-            .map(|d| d.to_string())
-            .collect(),
-    }
-}
 
 const MAT8: &str = "MAT8,8,5.735+6,1.2855+6,0.2231,5.7+5,,,1.8-4";
 
