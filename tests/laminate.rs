@@ -228,8 +228,10 @@ fn ply_angles_follow_each_elements_g1_g2_side() {
 /// Goal: our lamination agrees with an independent one, pyNastran's PCOMP
 /// (`get_individual_ABD_matrices`), on A, B and D to 1e-9 of each matrix's largest
 /// term: a symmetric angle-ply [±45/30]s (D16, D26 and their signs), an unsymmetric
-/// [0/90] (its B) and one isotropic MAT1 ply at 17°. pyNastran is installed by
-/// `.ci/run`; without it the test says it skipped, and under CI it fails.
+/// [0/90] (its B) and one isotropic MAT1 ply at 17°. pyNastran runs in the Python
+/// that `IMPACTLAB_PYNASTRAN_PYTHON` names (`.ci/run` makes one: pyNastran 1.4 needs
+/// numpy < 2), else `python3`; without it the test says it skipped, and under CI it
+/// fails.
 #[test]
 fn lamination_agrees_with_pynastrans_pcomp() {
     use impactlab::laminate::{plies_of, Laminate};
@@ -248,7 +250,8 @@ fn lamination_agrees_with_pynastrans_pcomp() {
         m.read_bdf(sys.argv[1], xref=True)\n\
         print(json.dumps({str(pid): [x.tolist() for x in p.get_individual_ABD_matrices()] \
                           for pid, p in m.properties.items()}))\n";
-    let out = std::process::Command::new("python3")
+    let python = std::env::var("IMPACTLAB_PYNASTRAN_PYTHON").unwrap_or_else(|_| "python3".into());
+    let out = std::process::Command::new(&python)
         .arg("-c")
         .arg(script)
         .arg(&bdf)
@@ -268,7 +271,7 @@ fn lamination_agrees_with_pynastrans_pcomp() {
                 std::env::var_os("CI").is_none(),
                 "pyNastran is required under CI: {why}"
             );
-            eprintln!("skipped: no pyNastran here ({why}); pip install pyNastran to run it");
+            eprintln!("skipped: no pyNastran in {python} ({why}); see .ci/run to install it");
             return;
         }
     };
