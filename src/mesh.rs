@@ -130,8 +130,33 @@ impl PlateMesh {
     }
 }
 
+/// How the plate's four edges are held.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Edges {
+    /// All six components fixed: the paper's plate.
+    Clamped,
+    /// Translations fixed, rotations free (w = 0, M_n = 0): the Navier plate. The
+    /// membrane of a symmetric laminate struck transversely stays at rest either way.
+    SimplySupported,
+}
+
+impl Edges {
+    /// The SPC1 components on the edges.
+    fn components(self) -> &'static str {
+        match self {
+            Edges::Clamped => "123456",
+            Edges::SimplySupported => "123",
+        }
+    }
+}
+
 /// The paper's plate deck on an N×N mesh.
 pub fn plate_deck(n: usize) -> Result<String, MeshError> {
+    plate_deck_with_edges(n, Edges::Clamped)
+}
+
+/// The paper's plate deck on an N×N mesh with its edges held as `edges` says.
+pub fn plate_deck_with_edges(n: usize, edges: Edges) -> Result<String, MeshError> {
     let m = PlateMesh::new(n)?;
     let (e, base) = (m.centre_element(), m.base);
     let contact = m.contact_grids();
@@ -154,6 +179,9 @@ pub fn plate_deck(n: usize) -> Result<String, MeshError> {
         (n as f64 + 2.0) / 2.0
     );
     let _ = writeln!(w, "$ Gages A and B: elements {ga} and {gb}. Units: in, lbf, s");
+    if edges == Edges::SimplySupported {
+        let _ = writeln!(w, "$ Edges simply supported (translations fixed), not clamped.");
+    }
     let _ = writeln!(w, "$ Units: in, lbf, s");
     let _ = writeln!(w, "ID IMPACT,PLATE\nSOL 27\nCEND");
     let _ = writeln!(w, "  TITLE = IMPACT OF PLATE {n}X{n} : CENTERED ELEMENT");
@@ -180,10 +208,11 @@ pub fn plate_deck(n: usize) -> Result<String, MeshError> {
     );
     let _ = writeln!(w, "+A101,5.8E-06,8.9E-06,5.0E-13");
     let _ = writeln!(w, "MAT2,201,5.7E+06,2.9E+05,-1.9E-04,1.4E+06,-3.8E-03,5.7E+05");
-    let _ = writeln!(w, "SPC1,1,123456,{},THRU,{}", m.grid(1, 1), m.grid(1, last));
-    let _ = writeln!(w, "SPC1,1,123456,{},THRU,{}", m.grid(last, 1), m.grid(last, last));
+    let c = edges.components();
+    let _ = writeln!(w, "SPC1,1,{c},{},THRU,{}", m.grid(1, 1), m.grid(1, last));
+    let _ = writeln!(w, "SPC1,1,{c},{},THRU,{}", m.grid(last, 1), m.grid(last, last));
     for r in 2..last {
-        let _ = writeln!(w, "SPC1,1,123456,{},{}", m.grid(r, 1), m.grid(r, last));
+        let _ = writeln!(w, "SPC1,1,{c},{},{}", m.grid(r, 1), m.grid(r, last));
     }
     let _ = writeln!(w, "SPC1,1,12456,999\nGRDSET,,,,,,,6\nTSTEP,1,2000,1.0-7,10");
     for g in contact {

@@ -1,6 +1,7 @@
 //! Physics with no solver code: the Hertz contact law's constants (the paper's Eq. 5
 //! and Eq. 18) and the analytic references ([`analytic`]: the rigid-wall closed form,
-//! the ball on a semi-infinite rod, d'Alembert's strain, the infinite plate).
+//! the ball on a semi-infinite rod, d'Alembert's strain, the infinite plate, the
+//! Navier plate's frequencies and strains).
 
 pub mod analytic;
 pub mod references;

@@ -238,6 +238,25 @@ pub enum CheckSpec {
         /// Largest relative difference allowed.
         max: f64,
     },
+    /// The plate's gage strains against the Navier series: the paper's plate on a
+    /// `mesh` × `mesh` mesh with its edges simply supported, run with the case's scheme
+    /// and Δt until `until_s`, against the exact Kirchhoff response of the same plate
+    /// (Navier, [`crate::physics::analytic::NavierPlate`]) to the run's own contact
+    /// force, shared by the centre element's four corners as the deck loads them. Each
+    /// gage's radial fibre strain (yy at z = +T/2: the gages lie on the y axis through
+    /// the impact) as the relative L2 norm of the difference over 0..until_s, each
+    /// within its own bound (the farther gage sees more of the mesh's dispersion); the
+    /// value is the larger ratio of difference to bound. Gates the plate's bending
+    /// stiffness, mass and strain recovery through the whole run path against a
+    /// reference no gold file carries.
+    NavierStrains {
+        /// Elements a side.
+        mesh: usize,
+        /// Compared until this time.
+        until_s: f64,
+        /// Largest relative L2 difference allowed at gage A and at gage B.
+        max: [f64; 2],
+    },
     /// The critical step central differences use (2/ω_max from the Gershgorin bound)
     /// against the exact one of a uniform lumped-mass rod, L_e/C: safe (not above it)
     /// and not over-conservative (at least `min_ratio` of it).

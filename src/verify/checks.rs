@@ -172,6 +172,7 @@ pub fn check(case: &Case, model: &Model, run: &RunResult, spec: &CheckSpec) -> R
         CheckSpec::RigidTarget { tol } => rigid_target(&cx, tol)?,
         CheckSpec::CriticalStep { min_ratio } => critical_step(&cx, *min_ratio)?,
         CheckSpec::NavierFrequencies { meshes, modes, max } => navier_frequencies(&cx, *meshes, *modes, *max)?,
+        CheckSpec::NavierStrains { mesh, until_s, max } => navier_strains(&cx, *mesh, *until_s, *max)?,
         CheckSpec::Gold { file, tol } => {
             let path = rel(case, file);
             let out = gold::compare(&path, &run.history_names(), &run.history, tol);
@@ -928,6 +929,89 @@ fn navier_frequencies(cx: &Cx, meshes: [usize; 2], modes: usize, max: f64) -> Re
         Bound::at_most(max),
         worst <= max,
         detail.join("; "),
+    ))
+}
+
+fn navier_strains(cx: &Cx, n: usize, until: f64, max: [f64; 2]) -> Result<CheckResult, CheckError> {
+    use crate::elements::quad4::Quad4;
+    use crate::mesh::{Edges, PlateMesh, PLATE_SIDE};
+    let check = "navier_strains";
+    let failed = |message: String| CheckError::Failed {
+        case: cx.case.name.clone(),
+        check,
+        message,
+    };
+    let mesh = PlateMesh::new(n).map_err(|e| failed(e.to_string()))?;
+    let deck = crate::mesh::plate_deck_with_edges(n, Edges::SimplySupported).map_err(|e| failed(e.to_string()))?;
+    let model =
+        crate::model_from_text(&format!("plate-{n}x{n}-simply-supported"), &deck).map_err(|e| failed(e.to_string()))?;
+    let mut o = super::case_options(cx.case);
+    let dt = o.dt.unwrap_or(model.time.dt);
+    o.dt = Some(dt);
+    o.steps = Some((until / dt).round() as usize);
+    o.snapshot_times = Vec::new();
+    let run = run_model(&model, &o).map_err(|e| failed(e.to_string()))?;
+    let section = model
+        .elements
+        .iter()
+        .find_map(|e| e.kind::<Quad4>())
+        .and_then(|q| q.section.d().map(|d| (d, q.section.mass_per_area, q.section.thickness)));
+    let (d, mass_per_area, t) = section.ok_or_else(|| CheckError::NoPlate {
+        case: cx.case.name.clone(),
+        check,
+    })?;
+    let plate = analytic::NavierPlate {
+        side: PLATE_SIDE,
+        mass_per_area,
+        d: [d[(0, 0)], d[(1, 1)], d[(0, 1)], d[(2, 2)]],
+    };
+    // Plate coordinates from a corner: the centre element's corners carry the load,
+    // the gage elements' centres are on the y axis through the plate's centre.
+    let (centre, h) = (PLATE_SIDE / 2.0, PLATE_SIDE / n as f64);
+    let loads =
+        [[-1.0, -1.0], [1.0, -1.0], [-1.0, 1.0], [1.0, 1.0]].map(|[a, b]| [centre + a * h / 2.0, centre + b * h / 2.0]);
+    let gages = mesh.gage_elements();
+    let c = n.div_ceil(2);
+    let gauges = gages.map(|e| [centre, centre + ((e / mesh.base) as f64 - c as f64) * h]);
+    let exact = plate.fibre_strains(&loads, &run.series.force, dt, &gauges, t / 2.0);
+    let names = run.history_names();
+    let mut worst = 0.0f64;
+    let mut detail = Vec::new();
+    for (g, e) in gages.iter().enumerate() {
+        let name = format!("strain_{e}_z2_yy");
+        let j = names
+            .iter()
+            .position(|x| *x == name)
+            .ok_or_else(|| CheckError::NoColumn {
+                case: cx.case.name.clone(),
+                column: name.clone(),
+            })?;
+        let (mut num, mut den) = (0.0, 0.0);
+        for row in run.history.iter().filter(|r| r[0] <= until * (1.0 + 1e-9)) {
+            let k = (row[0] / dt).round() as usize;
+            let reference = exact[k][g][1];
+            num += (row[j] - reference).powi(2);
+            den += reference * reference;
+        }
+        let rel = (num / den).sqrt();
+        worst = worst.max(rel / max[g]);
+        detail.push(format!(
+            "gage {} {name} (y = {:.4}): {rel:.4e} (≤ {:.1e})",
+            ["A", "B"][g],
+            gauges[g][1] - centre,
+            max[g]
+        ));
+    }
+    Ok(cx.result(
+        format!("navier_strains {n}x{n} simply supported"),
+        worst,
+        None,
+        Bound {
+            text: "≤ 1 (difference / its bound)".into(),
+            ..Bound::at_most(1.0)
+        },
+        worst <= 1.0,
+        format!("relative L2 difference until {until:e}: {}", detail.join("; ")),
     ))
 }
 
