@@ -32,6 +32,7 @@ pub mod numerics;
 pub mod plot;
 pub mod deck;
 pub mod laminate;
+pub mod damage;
 pub mod elements;
 pub mod model;
 pub mod assembly;

@@ -61,8 +61,22 @@ pub struct SweepArgs {
     /// NAME=START:STOP:COUNT or NAME=v1,v2,... with NAME one of velocity, mass, k,
     /// exponent (values in the deck's units; velocity is the speed, the deck's
     /// direction kept). Repeat for a grid (the first varies slowest).
-    #[arg(long, required = true)]
+    #[arg(long, required_unless_present = "find", conflicts_with = "find")]
     pub vary: Vec<String>,
+    /// Find the threshold of this parameter instead of sweeping: `velocity`, the lowest
+    /// impact speed at which `--until` holds (bisection to 1e-6 on the convolution
+    /// engine, checked on the direct engine); prints the impact energy ½mv².
+    #[arg(long, value_parser = ["velocity"], requires = "until")]
+    pub find: Option<String>,
+    /// What the threshold is: `peak_force=F` (the peak contact force reaches F, in the
+    /// deck's force unit) or `delamination` (it reaches the plate's Davies-Zhang
+    /// threshold F_crit; needs --giic).
+    #[arg(long, requires = "find")]
+    pub until: Option<String>,
+    /// The interface's mode II fracture toughness G_IIc in the deck's units
+    /// (force/length), for --until delamination.
+    #[arg(long, value_name = "G_IIc")]
+    pub giic: Option<f64>,
     /// Space these parameters' START:STOP:COUNT values geometrically.
     #[arg(long)]
     pub log: Vec<String>,
@@ -203,6 +217,11 @@ pub struct RunArgs {
     /// (the system and the per-step records; exit 2).
     #[arg(long, default_value_t = 4.0)]
     pub max_memory: f64,
+    /// The interface's mode II fracture toughness G_IIc in the deck's units
+    /// (force/length): summary.json then gives the plate's delamination threshold
+    /// F_crit (Davies-Zhang) against the peak force.
+    #[arg(long, value_name = "G_IIc")]
+    pub giic: Option<f64>,
     /// Unknown bulk data cards become warnings instead of errors.
     #[arg(long)]
     pub allow_unknown: bool,

@@ -104,6 +104,8 @@ pub struct Chart {
     pub lines: Vec<Line>,
     /// Vertical marker lines with labels.
     pub vlines: Vec<(f64, String)>,
+    /// Horizontal marker lines with labels (a threshold), dashed, across the chart.
+    pub hlines: Vec<(f64, String)>,
     /// Logarithmic x axis.
     pub log_x: bool,
     /// Logarithmic y axis.
@@ -230,7 +232,13 @@ where
         )
         .map_err(err)?;
     let xs = range(c.lines.iter().flat_map(|l| l.x.iter().cloned()), c.log_x);
-    let mut ys = range(c.lines.iter().flat_map(|l| l.y.iter().cloned()), c.log_y);
+    let mut ys = range(
+        c.lines
+            .iter()
+            .flat_map(|l| l.y.iter().cloned())
+            .chain(c.hlines.iter().map(|h| h.0)),
+        c.log_y,
+    );
     if c.headroom > 0.0 {
         ys.1 = if c.log_y {
             ys.1 * (ys.1 / ys.0).powf(c.headroom)
@@ -274,6 +282,14 @@ where
                         .label(label.as_str())
                         .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], style));
                 }
+            }
+            for (y, label) in &c.hlines {
+                // Black: no line of the palette is.
+                let style = ShapeStyle::from(&BLACK).stroke_width(2);
+                ch.draw_series(DashedLineSeries::new(vec![(xs.0, *y), (xs.1, *y)], 10, 6, style))
+                    .map_err(err)?
+                    .label(label.as_str())
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], style));
             }
             for l in &c.lines {
                 let color = PALETTE[l.color % PALETTE.len()];
@@ -373,7 +389,8 @@ fn legend_box(c: &Chart) -> (f64, f64) {
         .lines
         .iter()
         .map(|l| l.name.as_str())
-        .chain(c.vlines.iter().map(|v| v.1.as_str()));
+        .chain(c.vlines.iter().map(|v| v.1.as_str()))
+        .chain(c.hlines.iter().map(|v| v.1.as_str()));
     let chars = names.clone().map(|n| n.chars().count()).max().unwrap_or(0);
     let entries = names.count();
     (
@@ -405,6 +422,10 @@ fn place_legend(c: &Chart, xs: (f64, f64), ys: &mut (f64, f64)) -> Corner {
                 (w[0].0 + s * (w[1].0 - w[0].0), w[0].1 + s * (w[1].1 - w[0].1))
             }));
         }
+    }
+    for (y, _) in &c.hlines {
+        let y = norm(*y, *ys, c.log_y);
+        data.extend((0..=32).map(|k| (k as f64 / 32.0, y)));
     }
     let markers: Vec<f64> = c.vlines.iter().map(|v| norm(v.0, xs, c.log_x)).collect();
     let (w, h) = legend_box(c);

@@ -209,6 +209,7 @@ pub fn run(a: RunArgs) -> Result<u8, Error> {
         progress: Some(progress(format!("{} {}", model.name, opts.scheme)).unwrap_or_else(ProgressBar::hidden)),
         engine: a.engine,
         kernel_cache: kernel_cache(a.cache, a.no_cache),
+        interlaminar_toughness: interlaminar_toughness(a.giic, &model)?,
         ..opts
     };
     if a.fields.is_some() {
@@ -271,6 +272,102 @@ pub fn run(a: RunArgs) -> Result<u8, Error> {
         ));
     }
     Ok(0)
+}
+
+/// `impactlab sweep --find velocity --until …`: the threshold impact speed and energy,
+/// printed and written to OUT/threshold.json.
+fn threshold(a: SweepArgs) -> Result<u8, Error> {
+    use impactlab::study::threshold::{find_velocity, Until, BRACKET_WIDTH};
+    let until = Until::parse(a.until.as_deref().unwrap_or_default())?;
+    let (model, warnings) = impactlab::load_deck(&a.deck, Default::default())?;
+    for w in &warnings {
+        say_err(&w.to_string());
+    }
+    let run = RunOptions {
+        scheme: a.scheme,
+        dt: a.dt,
+        steps: a.steps,
+        kernel_cache: kernel_cache(a.cache, a.no_cache),
+        interlaminar_toughness: interlaminar_toughness(a.giic, &model)?,
+        ..Default::default()
+    };
+    let bar = progress(format!("{} threshold", model.name)).unwrap_or_else(ProgressBar::hidden);
+    let t = find_velocity(&model, &run, until, &bar)?;
+    bar.finish_and_clear();
+    let units = impactlab::run::UnitSystem::of(&model.units);
+    let joules = model.units.joules_per_energy_unit();
+    let dir = a
+        .out
+        .unwrap_or_else(|| PathBuf::from("out").join(format!("{}-threshold", model.name)));
+    let summary = serde_json::json!({
+        "deck": model.name,
+        "deck_sha256": model.deck_sha256,
+        "units": units,
+        "scheme": a.scheme,
+        "dt": a.dt.unwrap_or(model.time.dt),
+        "steps": a.steps.unwrap_or(model.time.steps),
+        "until": t.target,
+        "target_force": t.target_force,
+        "g_iic": run.interlaminar_toughness,
+        "impactor_mass": t.mass,
+        "velocity": t.velocity,
+        "velocity_bracket": t.bracket,
+        "bracket_width": BRACKET_WIDTH,
+        "energy": t.energy,
+        "energy_joules": joules.map(|j| j * t.energy),
+        "direct_peaks": t.direct_peaks,
+        "direct_check": t.direct_check,
+        "direct_check_max": impactlab::study::sweep::DIRECT_CHECK_MAX,
+        "evaluations": t.evaluations,
+        "kernel_pass_s": t.times_s[0],
+        "search_s": t.times_s[1],
+        "direct_checks_s": t.times_s[2],
+    });
+    let json = (serde_json::to_string_pretty(&summary).expect("plain JSON") + "\n").into_bytes();
+    output::write_dir_atomically(&dir, &[("threshold.json", json)]).map_err(io_error(&dir))?;
+    let u = &model.units;
+    sayln(&format!("{}: {}", model.name, t.target));
+    sayln(&format!(
+        "  threshold speed {:.7e} {}/{} (bracket {:.7e}..{:.7e}, {} runs on the convolution engine)",
+        t.velocity, u.length, u.time, t.bracket[0], t.bracket[1], t.evaluations
+    ));
+    sayln(&format!(
+        "  impact energy ½mv² = {:.6e} {}{}",
+        t.energy,
+        units.energy,
+        joules.map_or(String::new(), |j| format!(" = {:.6e} J", j * t.energy))
+    ));
+    sayln(&format!(
+        "  direct engine: peak {:.6e} below and {:.6e} at the threshold; engines agree to {:.1e} (max {:.0e})",
+        t.direct_peaks[0],
+        t.direct_peaks[1],
+        t.direct_check,
+        impactlab::study::sweep::DIRECT_CHECK_MAX
+    ));
+    sayln(&format!(
+        "  {:.2} s: kernel pass {:.2} s, search {:.2} s, direct checks {:.2} s",
+        t.times_s.iter().sum::<f64>(),
+        t.times_s[0],
+        t.times_s[1],
+        t.times_s[2]
+    ));
+    sayln(&format!("  outputs:  {}", dir.join("threshold.json").display()));
+    Ok(0)
+}
+
+/// `--giic`: a positive number, for a target that is a plate with bending stiffness.
+fn interlaminar_toughness(giic: Option<f64>, model: &impactlab::model::Model) -> Result<Option<f64>, Error> {
+    let Some(g) = giic else { return Ok(None) };
+    if !(g > 0.0 && g.is_finite()) {
+        return Err(Error::Usage(format!("--giic must be a positive number, not {g}")));
+    }
+    impactlab::physics::references::plate_bending_stiffness(model).map_err(|_| {
+        Error::Usage(format!(
+            "--giic: {} has no plate with bending stiffness (PSHELL MID2 or PCOMP) to delaminate",
+            model.name
+        ))
+    })?;
+    Ok(Some(g))
 }
 
 /// `impactlab scene`: its K, its deck, what its effects cost.
@@ -461,6 +558,9 @@ pub fn sweep(a: SweepArgs) -> Result<u8, Error> {
     use impactlab::study::sweep::{self, SweepOptions, Vary};
     if a.deck.extension().is_some_and(|e| e == "toml") {
         return Err(Error::Usage(format!("{}: sweep takes a deck (.bdf)", a.deck.display())));
+    }
+    if a.find.is_some() {
+        return threshold(a);
     }
     let varies = a
         .vary

@@ -45,6 +45,28 @@ impl Units {
         self.time == "s"
     }
 
+    /// Joules in one of the deck's energy units (force·length), when both are units
+    /// this knows (length m, cm, mm, in, ft; force N, kN, lbf, kip; the exact SI
+    /// definitions: 1 in = 0.0254 m, 1 lbf = 4.4482216152605 N).
+    pub fn joules_per_energy_unit(&self) -> Option<f64> {
+        let length = match self.length.as_str() {
+            "m" => 1.0,
+            "cm" => 1e-2,
+            "mm" => 1e-3,
+            "in" => 0.0254,
+            "ft" => 0.3048,
+            _ => return None,
+        };
+        let force = match self.force.as_str() {
+            "N" => 1.0,
+            "kN" => 1e3,
+            "lbf" => 4.448_221_615_260_5,
+            "kip" => 4_448.221_615_260_5,
+            _ => return None,
+        };
+        Some(length * force)
+    }
+
     /// A scale and a label for printing times of the order of a contact: microseconds
     /// when the deck's time unit is the second, the deck's own unit otherwise.
     pub fn short_time(&self) -> (f64, String) {

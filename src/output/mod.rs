@@ -228,6 +228,18 @@ pub fn human_summary(model: &Model, run: &RunResult) -> String {
         u.force,
         time(s.contact.peak_force_time)
     );
+    if let Some(d) = &s.delamination {
+        out += &format!(
+            "  delamination threshold F_crit {} {} (G_IIc {} {}/{}): peak / F_crit {:.4}{}\n",
+            num(Some(d.onset.critical_force)),
+            u.force,
+            num(Some(d.onset.g_iic)),
+            u.force,
+            u.length,
+            d.peak_over_critical,
+            if d.peak_over_critical >= 1.0 { ", reached" } else { "" }
+        );
+    }
     out += &format!(
         "  impactor: v0 {} {velocity}, at rest at {}, rebound {} {velocity}\n",
         num(Some(s.impactor.initial_velocity)),

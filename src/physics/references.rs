@@ -90,14 +90,24 @@ pub fn semi_infinite(model: &Model) -> Result<(Trace, Events, f64), ReferenceErr
 /// The model's impactor on the infinite plate (Zener/Olsson impedance 8√(ρh D*) of
 /// its first shell section), and that impedance.
 pub fn infinite_plate(model: &Model) -> Result<(HertzDashpot, f64), ReferenceError> {
-    let s = model
-        .elements
-        .iter()
-        .find_map(|e| e.kind::<Quad4>().map(|q| q.section.clone()))
-        .ok_or(ReferenceError::NoPlate)?;
+    let s = plate_section(model)?;
     let d = s.d().ok_or(ReferenceError::NoPlate)?;
     let z = analytic::plate_impedance(s.mass_per_area, d[(0, 0)], d[(1, 1)], d[(0, 1)], d[(2, 2)]);
     Ok((dashpot(model, z)?, z))
+}
+
+/// The first shell section of the model's plate.
+fn plate_section(model: &Model) -> Result<crate::elements::quad4::ShellSection, ReferenceError> {
+    model
+        .elements
+        .iter()
+        .find_map(|e| e.kind::<Quad4>().map(|q| q.section.clone()))
+        .ok_or(ReferenceError::NoPlate)
+}
+
+/// The bending stiffness matrix D of the model's plate (its first shell section).
+pub fn plate_bending_stiffness(model: &Model) -> Result<nalgebra::Matrix3<f64>, ReferenceError> {
+    plate_section(model)?.d().ok_or(ReferenceError::NoPlate)
 }
 
 /// The impactor and the whole target as two rigid bodies in Hertz contact: a dashpot

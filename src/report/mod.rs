@@ -538,6 +538,20 @@ fn plate_force(f: &Fig) -> Result<Vec<PathBuf>, Error> {
             } else {
                 Vec::new()
             },
+            hlines: run
+                .summary
+                .delamination
+                .iter()
+                .map(|d| {
+                    (
+                        d.onset.critical_force,
+                        format!(
+                            "delamination threshold F_crit (Davies-Zhang, G_IIc {} {}/{})",
+                            d.onset.g_iic, u.force, u.length
+                        ),
+                    )
+                })
+                .collect(),
             headroom: 0.3,
             difference: Some(format!("reference − impactlab [{}]", u.force)),
             ..Default::default()

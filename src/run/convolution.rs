@@ -393,7 +393,7 @@ impl Kernels {
             dofs: model.dofs.clone(),
             snapshots: Vec::new(),
         };
-        run.summary = summarize(model, &run, tripped);
+        run.summary = summarize(model, &run, tripped, opts);
         run.summary.run.engine = Engine::Convolution;
         match tripped {
             None => Ok(run),

@@ -51,6 +51,10 @@ pub struct RunOptions {
     /// Refuse a run whose [`memory_estimate`] exceeds this many bytes, before
     /// allocating anything large; `None`: no limit. Default [`DEFAULT_MAX_MEMORY`].
     pub max_memory: Option<u64>,
+    /// The interface's mode II fracture toughness G_IIc (force/length, the deck's
+    /// units): the summary then gives the plate's delamination threshold
+    /// ([`crate::damage`]) against the peak force. No card carries it.
+    pub interlaminar_toughness: Option<f64>,
 }
 
 /// The default memory limit of a run: 4 GiB, a sixth of the project machine's 24 GiB,
@@ -200,6 +204,7 @@ impl Default for RunOptions {
             engine: Engine::Direct,
             max_memory: Some(DEFAULT_MAX_MEMORY),
             kernel_cache: None,
+            interlaminar_toughness: None,
         }
     }
 }
@@ -590,7 +595,7 @@ pub fn run_system(model: &Model, sys: &System, opts: &RunOptions) -> Result<RunR
         dofs: model.dofs.clone(),
         snapshots: rec.snapshots,
     };
-    run.summary = summarize(model, &run, rec.tripped);
+    run.summary = summarize(model, &run, rec.tripped, opts);
     match rec.tripped {
         None => Ok(run),
         Some(trip) => Err(RunError::EnergyGuard {
@@ -622,7 +627,7 @@ pub fn contact_intervals(t: &[f64], alpha: &[f64]) -> (Vec<[f64; 2]>, bool) {
     (out, open)
 }
 
-fn summarize(model: &Model, run: &RunResult, tripped: Option<GuardTrip>) -> Summary {
+fn summarize(model: &Model, run: &RunResult, tripped: Option<GuardTrip>, opts: &RunOptions) -> Summary {
     let s = &run.series;
     let (intervals, open) = contact_intervals(&s.time, &s.alpha);
     let (kmax, fmax) = s
@@ -716,6 +721,14 @@ fn summarize(model: &Model, run: &RunResult, tripped: Option<GuardTrip>) -> Summ
             stopped_by: tripped.map(|t| t.to_string()),
         },
         rod,
+        delamination: opts.interlaminar_toughness.and_then(|g| {
+            let d = crate::physics::references::plate_bending_stiffness(model).ok()?;
+            let onset = crate::damage::delamination_onset(&d, g);
+            Some(summary::DelaminationSummary {
+                peak_over_critical: fmax / onset.critical_force,
+                onset,
+            })
+        }),
         effects: None,
         contact_stiffness_source: None,
     }

@@ -44,12 +44,27 @@ pub struct Summary {
     /// Times in units of the rod's transit time L/C, for a uniform rod target.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rod: Option<RodSummary>,
+    /// The plate's delamination threshold against the peak force, when the run was
+    /// given the interface's toughness G_IIc.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub delamination: Option<DelaminationSummary>,
     /// For a scene: which effects were simulated and which were not, and why.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub effects: Option<crate::scene::EffectReport>,
     /// For a scene: where the Hertz K came from (given, Eq. 5 or Eq. 18).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub contact_stiffness_source: Option<String>,
+}
+
+/// The delamination threshold ([`crate::damage`]) of the struck plate and how near the
+/// run's peak force came to it.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct DelaminationSummary {
+    /// G_IIc, D*, F_crit and the formula.
+    #[serde(flatten)]
+    pub onset: crate::damage::DelaminationOnset,
+    /// Peak contact force / F_crit: at least 1 when the threshold is reached.
+    pub peak_over_critical: f64,
 }
 
 /// The deck's unit system, as its `$ Units:` line declares it, or "unspecified".
@@ -229,6 +244,7 @@ impl Summary {
     fn template() -> Summary {
         Summary {
             rod: Some(RodSummary::default()),
+            delamination: Some(DelaminationSummary::default()),
             ..Default::default()
         }
     }

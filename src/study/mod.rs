@@ -285,6 +285,7 @@ pub(crate) fn in_parallel<T: Send>(jobs: usize, count: usize, task: impl Fn(usiz
 pub mod accuracy;
 pub mod stability;
 pub mod sweep;
+pub mod threshold;
 
 /// What each optional effect costs: wall time (median of 3 runs) of the scene as
 /// configured, with the membrane DOFs solved, and without the ledger.

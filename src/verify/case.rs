@@ -82,6 +82,9 @@ pub struct Case {
     /// the report's field figures.
     #[serde(default)]
     pub snapshots: Vec<f64>,
+    /// The interface's mode II toughness G_IIc (deck units), given to the run: the
+    /// summary and the force figure then carry the plate's delamination threshold.
+    pub g_iic: Option<f64>,
     /// The checks (`[[check]]` tables).
     #[serde(rename = "check", default)]
     pub checks: Vec<CheckSpec>,
@@ -445,6 +448,7 @@ pub fn case_options(case: &Case) -> RunOptions {
         dt: case.dt,
         steps: case.steps,
         snapshot_times: case.snapshots.clone(),
+        interlaminar_toughness: case.g_iic,
         ..Default::default()
     }
 }
