@@ -106,28 +106,25 @@ pub fn membrane_strain(xy: &Xy, u: &SMatrix<f64, 8, 1>) -> Vector3<f64> {
     b_membrane(xy, 0.0, 0.0).0 * u
 }
 
-/// 8-node serendipity functions (corners 1-4, mid-sides 5-8 on sides 12, 23, 34, 41)
-/// and their (ξ, η) derivatives.
-fn serendipity(xi: f64, eta: f64) -> ([f64; 8], [f64; 8], [f64; 8]) {
-    let mut n = [0.0; 8];
+/// The (ξ, η) derivatives of the 8-node serendipity functions (corners 1-4, mid-sides
+/// 5-8 on sides 12, 23, 34, 41): the DKQ's rotations interpolate with them, and its
+/// curvatures need only their derivatives.
+fn serendipity_derivatives(xi: f64, eta: f64) -> ([f64; 8], [f64; 8]) {
     let mut dxi = [0.0; 8];
     let mut deta = [0.0; 8];
     for (i, &(a, b)) in CORNER.iter().enumerate() {
-        n[i] = 0.25 * (1.0 + a * xi) * (1.0 + b * eta) * (a * xi + b * eta - 1.0);
         dxi[i] = 0.25 * a * (1.0 + b * eta) * (2.0 * a * xi + b * eta);
         deta[i] = 0.25 * b * (1.0 + a * xi) * (a * xi + 2.0 * b * eta);
     }
     for (k, b) in [(4, -1.0), (6, 1.0)] {
-        n[k] = 0.5 * (1.0 - xi * xi) * (1.0 + b * eta);
         dxi[k] = -xi * (1.0 + b * eta);
         deta[k] = 0.5 * (1.0 - xi * xi) * b;
     }
     for (k, a) in [(5, 1.0), (7, -1.0)] {
-        n[k] = 0.5 * (1.0 + a * xi) * (1.0 - eta * eta);
         dxi[k] = 0.5 * a * (1.0 - eta * eta);
         deta[k] = -eta * (1.0 + a * xi);
     }
-    (n, dxi, deta)
+    (dxi, deta)
 }
 
 /// Side coefficients a, b, c, d, e of Batoz & Tahar for the sides 12, 23, 34, 41.
@@ -172,7 +169,7 @@ fn h_vectors(n: &[f64; 8], sc: &[[f64; 5]; 4]) -> ([f64; 12], [f64; 12]) {
 /// Curvature-displacement matrix of the DKQ at (ξ, η).
 fn b_bending(xy: &Xy, xi: f64, eta: f64) -> (SMatrix<f64, 3, 12>, f64) {
     let sc = side_coefficients(xy);
-    let (_, dxi, deta) = serendipity(xi, eta);
+    let (dxi, deta) = serendipity_derivatives(xi, eta);
     let (hx_xi, hy_xi) = h_vectors(&dxi, &sc);
     let (hx_eta, hy_eta) = h_vectors(&deta, &sc);
     let (j, det) = jacobian(xy, xi, eta);
@@ -327,9 +324,6 @@ const FIBRES: [Fibre; 2] = [Fibre::Z1, Fibre::Z2];
 const PLANE: [Plane; 3] = [Plane::Xx, Plane::Yy, Plane::Xy];
 
 impl Kernel for Quad4 {
-    fn card(&self) -> &'static str {
-        "CQUAD4"
-    }
     fn stiffness(&self) -> Vec<LocalMatrix> {
         // Full matrices as the kernels compute them (assembly runs once).
         let mut out = Vec::new();

@@ -312,6 +312,25 @@ fn check_finite(model: &Model, step: usize, time: f64, x: &[f64]) -> Result<(), 
     }
 }
 
+#[cfg(test)]
+mod tests {
+    /// Goal: a NaN or an infinity in a state is an error naming the step, the time and
+    /// the DOF; a finite state passes. Model: the one-DOF oscillator.
+    #[test]
+    fn check_finite_names_a_nan_or_an_infinity() {
+        let o = super::test_models::oscillator();
+        assert!(super::check_finite(&o.model, 3, 0.5, &[1.0]).is_ok());
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            let e = super::check_finite(&o.model, 3, 0.5, &[bad]).unwrap_err();
+            let dof = o.model.dofs[0].to_string();
+            assert!(
+                matches!(&e, super::SolveError::NonFinite { step: 3, dof: d, .. } if *d == dof),
+                "{e}"
+            );
+        }
+    }
+}
+
 /// Load vector g (the NOLIN3 scales on their DOFs) and driver functional c.
 fn contact_vectors(model: &Model) -> (Vec<f64>, Vec<(usize, f64)>) {
     let mut g = vec![0.0; model.n()];
