@@ -24,6 +24,9 @@ pub struct PointMass {
 }
 
 impl Kernel for PointMass {
+    fn card(&self) -> &'static str {
+        "CONM2"
+    }
     fn stiffness(&self) -> Vec<LocalMatrix> {
         Vec::new()
     }

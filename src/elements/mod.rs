@@ -118,6 +118,8 @@ pub enum Cell {
 
 /// What an element kind computes, over its local DOFs (6 per grid, grid-major).
 pub trait Kernel: fmt::Debug + Send + Sync + Any {
+    /// The bulk data card the kind comes from (`CROD`, `CQUAD4`, `CONM2`).
+    fn card(&self) -> &'static str;
     /// Local stiffness matrices (none for a point mass).
     fn stiffness(&self) -> Vec<LocalMatrix>;
     /// Local mass matrices.
@@ -310,11 +312,12 @@ mod tests {
     /// Goal: what the ledger books and what the recorder writes agree with the
     /// element's own matrices and names, for every kind: strain_energy(u) is ½uᵀKu of
     /// the local stiffness matrices it hands to assembly (to 1e-12, every local DOF
-    /// displaced), and recover gives exactly as many values as recovered names, with
-    /// and without stresses.
+    /// displaced), recover gives exactly as many values as recovered names, with and
+    /// without stresses, and each names the deck card it comes from.
     #[test]
     fn every_kernel_books_half_utku_and_recovers_what_it_names() {
-        for (kind, k) in ["rod", "quad4", "mass"].iter().zip(kernels()) {
+        for (kind, k) in ["CROD", "CQUAD4", "CONM2"].iter().zip(kernels()) {
+            assert_eq!(k.card(), *kind);
             let n = 6 * k.points().len();
             let u: Vec<f64> = (0..n).map(|i| 1e-3 * ((i as f64) * 0.71 + 0.2).sin()).collect();
             let mut utku = 0.0;

@@ -324,6 +324,9 @@ const FIBRES: [Fibre; 2] = [Fibre::Z1, Fibre::Z2];
 const PLANE: [Plane; 3] = [Plane::Xx, Plane::Yy, Plane::Xy];
 
 impl Kernel for Quad4 {
+    fn card(&self) -> &'static str {
+        "CQUAD4"
+    }
     fn stiffness(&self) -> Vec<LocalMatrix> {
         // Full matrices as the kernels compute them (assembly runs once).
         let mut out = Vec::new();

@@ -103,6 +103,9 @@ fn end(ue: &[f64], k: usize) -> [f64; 6] {
 }
 
 impl Kernel for Rod {
+    fn card(&self) -> &'static str {
+        "CROD"
+    }
     fn stiffness(&self) -> Vec<LocalMatrix> {
         let k = stiffness(self.x[0], self.x[1], &self.section);
         vec![LocalMatrix {

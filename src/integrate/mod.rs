@@ -312,6 +312,19 @@ fn check_finite(model: &Model, step: usize, time: f64, x: &[f64]) -> Result<(), 
     }
 }
 
+/// Load vector g (the NOLIN3 scales on their DOFs) and driver functional c.
+fn contact_vectors(model: &Model) -> (Vec<f64>, Vec<(usize, f64)>) {
+    let mut g = vec![0.0; model.n()];
+    let mut c = Vec::new();
+    if let Some(ct) = &model.contact {
+        for l in &ct.loads {
+            g[l.dof] += l.scale;
+        }
+        c = ct.driver.clone();
+    }
+    (g, c)
+}
+
 #[cfg(test)]
 mod tests {
     /// Goal: a NaN or an infinity in a state is an error naming the step, the time and
@@ -329,17 +342,4 @@ mod tests {
             );
         }
     }
-}
-
-/// Load vector g (the NOLIN3 scales on their DOFs) and driver functional c.
-fn contact_vectors(model: &Model) -> (Vec<f64>, Vec<(usize, f64)>) {
-    let mut g = vec![0.0; model.n()];
-    let mut c = Vec::new();
-    if let Some(ct) = &model.contact {
-        for l in &ct.loads {
-            g[l.dof] += l.scale;
-        }
-        c = ct.driver.clone();
-    }
-    (g, c)
 }
