@@ -150,11 +150,11 @@ pub fn plies_of(
 
 impl Laminate {
     /// The laminate of `plies`, bottom to top, its bottom surface at `z0` from the
-    /// reference plane (`None`: the mid-plane is the reference, z0 = −t/2), its axes
-    /// turned by `axes` degrees from the plies' reference (every ply's angle is taken
-    /// from the laminate's x axis minus `axes`: the laminate as seen in axes turned by
-    /// `axes`).
-    pub fn new(plies: &[Ply], z0: Option<f64>, axes: f64) -> Result<Laminate, LaminateError> {
+    /// reference plane (`None`: the mid-plane is the reference, z0 = −t/2), expressed
+    /// in axes from which the plies' reference (the element's material x axis) is
+    /// turned by `material_angle` degrees counter-clockwise: a ply of angle θ has its
+    /// fibres at θ + `material_angle` there.
+    pub fn new(plies: &[Ply], z0: Option<f64>, material_angle: f64) -> Result<Laminate, LaminateError> {
         if plies.is_empty() {
             return Err(LaminateError::Empty);
         }
@@ -167,14 +167,14 @@ impl Laminate {
         let mut shear = Some(Matrix2::zeros());
         let mut mass = 0.0;
         for p in plies {
-            let q = rotated(&p.q, p.theta - axes);
+            let q = rotated(&p.q, p.theta + material_angle);
             let top = z + p.t;
             a += q * (top - z);
             b += q * ((top * top - z * z) / 2.0);
             d += q * ((top.powi(3) - z.powi(3)) / 3.0);
             shear = match (shear, p.shear) {
                 (Some(h), Some((g1z, g2z))) => {
-                    let (n, m) = (p.theta - axes).to_radians().sin_cos();
+                    let (n, m) = (p.theta + material_angle).to_radians().sin_cos();
                     let c44 = g2z * m * m + g1z * n * n;
                     let c55 = g1z * m * m + g2z * n * n;
                     let c45 = (g1z - g2z) * m * n;
@@ -327,10 +327,17 @@ mod tests {
         let mirrored: Vec<Ply> = [-theta, theta, theta, -theta].iter().map(|&a| glass(a, t)).collect();
         let m = Laminate::new(&mirrored, None, 0.0).unwrap();
         assert_relative_eq!(m.d[(0, 2)], -l.d[(0, 2)], max_relative = 1e-12);
-        // The same stack seen in axes turned by 90°: 1- and 2-terms swap, 16 and 26 flip.
+        // The same stack with its reference turned by 90°: 1- and 2-terms swap, 16 and
+        // 26 flip.
         let turned = Laminate::new(&stack, None, 90.0).unwrap();
         assert_relative_eq!(turned.d[(0, 0)], l.d[(1, 1)], max_relative = 1e-12);
         assert_relative_eq!(turned.d[(0, 2)], -l.d[(1, 2)], max_relative = 1e-12);
+        // Turned by 30°: each ply's fibres at θ + 30°, the one-ply laminate of a 0° ply is
+        // that ply turned by +30° (A16 > 0 for fibres stiffer than the matrix).
+        let one = Laminate::new(&[glass(0.0, t)], None, 30.0).unwrap();
+        let q30 = rotated(&glass(0.0, t).q, 30.0) * t;
+        assert_relative_eq!(one.a, q30, max_relative = 1e-12);
+        assert!(one.a[(0, 2)] > 0.0, "{}", one.a);
     }
 
     /// Goal: an unsymmetric [0/90] couples membrane and bending, B = (t²/8)·(Q22 − Q11)

@@ -225,6 +225,31 @@ fn ply_angles_follow_each_elements_g1_g2_side() {
     assert!(close(b[(0, 2)], -a[(1, 2)]) && close(b[(1, 2)], -a[(0, 2)]), "{a} {b}");
 }
 
+/// Goal: the sign of the material axis. An element whose G1→G2 side is turned 30°
+/// counter-clockwise from basic x, with one 0° ply: in basic axes its fibres lie at
+/// +30°, so its membrane material is the ply's Q turned by +30° (A16 > 0, the fibres
+/// being stiffer than the matrix), not by −30°. (The 90° elements above cannot tell
+/// the two apart: a ply at θ ± 90° is the same line.)
+#[test]
+fn ply_angles_turn_with_the_material_axis_counter_clockwise() {
+    let (c, s) = (30f64.to_radians().cos(), 30f64.to_radians().sin());
+    let text = format!(
+        "SOL 9\nCEND\nTSTEP = 1\nBEGIN BULK\nTSTEP,1,10,1.0-6,1\n\
+         GRID,1,,0.0,0.0,0.0\nGRID,2,,{c:?},{s:?},0.0\nGRID,3,,{:?},{:?},0.0\nGRID,4,,{:?},{c:?},0.0\n\
+         CQUAD4,1,5,1,2,3,4\nPCOMP,5,,,,,,,,+P0\n+P0,8,0.01,0.0\n{MAT8}\nENDDATA\n",
+        c - s,
+        s + c,
+        -s
+    );
+    let model = impactlab::model_from_text("t", &text).unwrap();
+    let g = model.elements[0].kind::<Quad4>().unwrap().section.g_membrane.unwrap();
+    let m8 = &bulk(MAT8).bulk.mat8s[0];
+    let q = impactlab::laminate::orthotropic_q(m8.e1, m8.e2, m8.nu12, m8.g12);
+    let turned = impactlab::laminate::rotated(&q, 30.0);
+    assert!((g - turned).abs().max() <= 1e-9 * q[(0, 0)], "{g} vs {turned}");
+    assert!(g[(0, 2)] > 0.0, "{g}");
+}
+
 /// Goal: our lamination agrees with an independent one, pyNastran's PCOMP
 /// (`get_individual_ABD_matrices`), on A, B and D to 1e-9 of each matrix's largest
 /// term: a symmetric angle-ply [±45/30]s (D16, D26 and their signs), an unsymmetric

@@ -496,7 +496,8 @@ fn quads(cx: &mut Ctx, deck: &Deck, num: &Numbering, out: &mut Elements) {
         }
         let section = match (sections.get(&c.pid), pcomp.get(&c.pid)) {
             (_, Some(p)) if ok && !pshell.contains_key(&c.pid) => {
-                // The material x axis: the G1→G2 side, counter-clockwise from basic x.
+                // The material x axis: the G1→G2 side, this many degrees counter-clockwise
+                // from basic x.
                 let axes = (xyz[1][1] - xyz[0][1]).atan2(xyz[1][0] - xyz[0][0]).to_degrees();
                 laminates
                     .entry((c.pid, axes.to_bits()))
@@ -1003,8 +1004,8 @@ fn shell_section(
     })
 }
 
-/// The section of a PCOMP for an element whose material x axis is `axes` degrees from
-/// basic x: its plies (MAT8 or MAT1) through the lamination stage, the laminate's A/t
+/// The section of a PCOMP for an element whose material x axis is `axes` degrees
+/// counter-clockwise from basic x (its plies' fibres at θ + `axes` in basic axes): its plies (MAT8 or MAT1) through the lamination stage, the laminate's A/t
 /// and 12D/t³ as the plate's membrane and bending materials. A laminate that couples
 /// membrane and bending (B ≠ 0) is refused: the plate element does not couple them.
 fn laminate_section(
