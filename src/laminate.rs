@@ -25,7 +25,7 @@
 //! transverse shear stiffness (yz, xz order as NASTRAN's [Q44 Q45; Q45 Q55]), with no
 //! shear correction applied: a plate that uses it chooses its own.
 
-use nalgebra::{Matrix2, Matrix3};
+use nalgebra::{Matrix2, Matrix3, Vector3};
 
 /// One ply as the lamination sees it.
 #[derive(Debug, Clone, PartialEq)]
@@ -88,6 +88,48 @@ pub struct Laminate {
     pub shear: Option<Matrix2<f64>>,
     /// Mass per unit area of the plies, Σ ρ t.
     pub mass_per_area: f64,
+}
+
+/// A ply as its results need it: its stiffness in its own axes, the rotation taking
+/// strains in the element's axes to its axes, and its bottom and top z from the
+/// laminate's mid-plane.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlyLayer {
+    /// Plane-stress stiffness in the ply's axes.
+    pub q: Matrix3<f64>,
+    /// T(θ + material angle): element-axes strains to ply-axes strains.
+    pub to_ply: Matrix3<f64>,
+    /// Bottom and top of the ply, from the mid-plane.
+    pub z: [f64; 2],
+}
+
+impl PlyLayer {
+    /// Strain (ε11, ε22, γ12) and stress (σ11, σ22, τ12) in the ply's axes at height
+    /// `z`, from the laminate's mid-plane strain `e0` and curvature `k` in the element's
+    /// axes (Kirchhoff-Love): ε = T·(ε⁰ + z·κ), σ = Q·ε.
+    pub fn at(&self, e0: &Vector3<f64>, k: &Vector3<f64>, z: f64) -> (Vector3<f64>, Vector3<f64>) {
+        let strain = self.to_ply * (e0 + k * z);
+        (strain, self.q * strain)
+    }
+}
+
+/// The plies of a laminate for its results, bottom to top, in axes from which the
+/// plies' reference is turned by `material_angle` degrees (as [`Laminate::new`]); z
+/// from the mid-plane, the bottom at −t/2.
+pub fn ply_layers(plies: &[Ply], material_angle: f64) -> Vec<PlyLayer> {
+    let mut z = -0.5 * plies.iter().map(|p| p.t).sum::<f64>();
+    plies
+        .iter()
+        .map(|p| {
+            let bottom = z;
+            z += p.t;
+            PlyLayer {
+                q: p.q,
+                to_ply: strain_rotation(p.theta + material_angle),
+                z: [bottom, z],
+            }
+        })
+        .collect()
 }
 
 /// Why plies make no laminate.
@@ -338,6 +380,32 @@ mod tests {
         let q30 = rotated(&glass(0.0, t).q, 30.0) * t;
         assert_relative_eq!(one.a, q30, max_relative = 1e-12);
         assert!(one.a[(0, 2)] > 0.0, "{}", one.a);
+    }
+
+    /// Goal: ply results are the laminate's strain turned into each ply's axes. At a
+    /// given height a 0° ply reads (εx, εy, γxy), a 90° ply (εy, εx, −γxy), a 45° ply
+    /// ε11 = (εx + εy + γxy)/2; σ = Q·ε; the plies of [0/90/0] sit at ∓t/2 and ∓t/6
+    /// from the mid-plane; with the material axis turned by 90° the 0° ply reads as
+    /// the 90° one did.
+    #[test]
+    fn ply_strains_are_the_laminate_strain_in_ply_axes() {
+        let t = 0.01;
+        let layers = ply_layers(&[glass(0.0, t), glass(90.0, t), glass(0.0, t)], 0.0);
+        assert_relative_eq!(layers[0].z[0], -1.5 * t, max_relative = 1e-15);
+        assert_relative_eq!(layers[1].z[0], -0.5 * t, max_relative = 1e-15);
+        assert_relative_eq!(layers[2].z[1], 1.5 * t, max_relative = 1e-15);
+        let (e0, k) = (Vector3::new(1e-3, -2e-4, 5e-4), Vector3::new(0.3, 0.1, -0.2));
+        let z = 0.7 * t;
+        let e = e0 + k * z;
+        let (s0, q0) = layers[0].at(&e0, &k, z);
+        assert_relative_eq!(s0, e, max_relative = 1e-12);
+        assert_relative_eq!(q0, layers[0].q * e, max_relative = 1e-12);
+        let (s90, _) = layers[1].at(&e0, &k, z);
+        assert_relative_eq!(s90, Vector3::new(e[1], e[0], -e[2]), epsilon = 1e-15);
+        let (s45, _) = ply_layers(&[glass(45.0, t)], 0.0)[0].at(&e0, &k, z);
+        assert_relative_eq!(s45[0], (e[0] + e[1] + e[2]) / 2.0, max_relative = 1e-12);
+        let (turned, _) = ply_layers(&[glass(0.0, t)], 90.0)[0].at(&e0, &k, z);
+        assert_relative_eq!(turned, s90, epsilon = 1e-15);
     }
 
     /// Goal: an unsymmetric [0/90] couples membrane and bending, B = (t²/8)·(Q22 − Q11)

@@ -113,7 +113,7 @@ fn run(path: &std::path::Path, steps: usize) -> RunResult {
 
 /// Goal: a PCOMP of one isotropic ply (MAT1, at an angle that must not matter) is the
 /// PSHELL + MAT1 plate of the same thickness: the whole history within 1e-12 of each
-/// column's peak. Model: the paper's plate, aluminium 0.15 in, 400 steps.
+/// column's peak (the laminate adds its ply's results after them). Model: the paper's plate, aluminium 0.15 in, 400 steps.
 #[test]
 fn one_isotropic_ply_is_the_pshell_plate() {
     let dir = tempfile::tempdir().unwrap();
@@ -130,7 +130,17 @@ fn one_isotropic_ply_is_the_pshell_plate() {
         ),
         400,
     );
-    assert_eq!(pshell.history_columns, pcomp.history_columns);
+    // The laminate writes its plies' results after every column the PSHELL plate has.
+    let n = pshell.history_columns.len();
+    assert_eq!(pshell.history_columns[..], pcomp.history_columns[..n]);
+    assert!(pcomp.history_columns[n..]
+        .iter()
+        .all(|c| matches!(c, impactlab::run::Column::Ply { ply: 1, .. })));
+    assert_eq!(
+        pcomp.history_columns.len() - n,
+        3 * 12,
+        "one ply, three elements written"
+    );
     let cols = &pshell.history_columns;
     let units: Vec<String> = cols.iter().map(|c| c.unit(&pshell.summary.units)).collect();
     let peak = |j: usize| pshell.history.iter().map(|r| r[j].abs()).fold(0.0, f64::max);
@@ -337,4 +347,54 @@ fn lamination_agrees_with_pynastrans_pcomp() {
             );
         }
     }
+}
+
+/// Goal: ply results are the element's strain field read in each ply's axes. On the
+/// paper's plate as the cross-ply [0₅/90₅/0₅] (its elements' material axes along basic
+/// x), at every written step of gage A (element 3325): the bottom of ply 1 (0°, at
+/// z = −T/2) reads the element's fibre strains at Z1 and the top of ply 15 those at
+/// Z2; at the 0°/90° interface z = −0.025 in the 90° ply 6 reads ε11 = the 0° ply 5's
+/// ε22 and vice versa, and γ12 with its sign flipped; each ply stress is its MAT8 Q
+/// times its strain. Every relation to 1e-12 of the peak strain.
+#[test]
+fn ply_results_read_the_element_strain_in_ply_axes() {
+    let model = impactlab::load_deck(&deck("plate-pcomp.bdf"), Default::default())
+        .unwrap()
+        .0;
+    let run = run_model(
+        &model,
+        &RunOptions {
+            steps: Some(600),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    use impactlab::elements::{Fibre, Plane};
+    use impactlab::run::Column;
+    let plies = Column::plies(3325, 15);
+    let ply = |p: usize, face: usize, measure: usize, axis: usize| -> Vec<f64> {
+        run.column_values(&plies[12 * (p - 1) + 6 * face + 3 * measure + axis])
+            .unwrap()
+    };
+    let fibre = |f: Fibre, c: Plane| run.column_values(&Column::shell_strain(3325, f, c)).unwrap();
+    let peak = fibre(Fibre::Z1, Plane::Yy).iter().fold(0.0f64, |a, x| a.max(x.abs()));
+    let same = |a: &[f64], b: &[f64], sign: f64, what: &str| {
+        let d = a.iter().zip(b).fold(0.0f64, |m, (x, y)| m.max((x - sign * y).abs()));
+        assert!(d <= 1e-12 * peak, "{what}: {d:e} of {peak:e}");
+    };
+    for (axis, plane) in [(0, Plane::Xx), (1, Plane::Yy), (2, Plane::Xy)] {
+        same(&ply(1, 0, 0, axis), &fibre(Fibre::Z1, plane), 1.0, "ply 1 bottom = Z1");
+        same(&ply(15, 1, 0, axis), &fibre(Fibre::Z2, plane), 1.0, "ply 15 top = Z2");
+    }
+    same(&ply(6, 0, 0, 0), &ply(5, 1, 0, 1), 1.0, "90° ε11 = 0° ε22");
+    same(&ply(6, 0, 0, 1), &ply(5, 1, 0, 0), 1.0, "90° ε22 = 0° ε11");
+    same(&ply(6, 0, 0, 2), &ply(5, 1, 0, 2), -1.0, "90° γ12 = −0° γ12");
+    let m8 = &bulk(MAT8).bulk.mat8s[0];
+    let q = impactlab::laminate::orthotropic_q(m8.e1, m8.e2, m8.nu12, m8.g12);
+    let s = ply(8, 1, 1, 0);
+    let law: Vec<f64> = (0..s.len())
+        .map(|k| q[(0, 0)] * ply(8, 1, 0, 0)[k] + q[(0, 1)] * ply(8, 1, 0, 1)[k])
+        .collect();
+    let speak = s.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+    assert!(s.iter().zip(&law).all(|(a, b)| (a - b).abs() <= 1e-12 * speak));
 }

@@ -173,6 +173,8 @@ struct Dependent {
 struct Elements {
     list: Vec<Element>,
     on_element: HashMap<i64, usize>,
+    /// The plies of each laminate (PCOMP) element, by its index in `list`.
+    plies: HashMap<usize, PlyStack>,
 }
 
 /// Builds the model of a deck, collecting every error: named stages, each reporting
@@ -198,7 +200,7 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
     let contact = build_contact(&mut cx, &sel.nolins, &refs, |cx, at, w, g, c| {
         num.lookup(cx, at, w, g, c)
     });
-    let outputs = output_plan(&mut cx, deck, &num, &dependent, &elements.list, contact.as_ref());
+    let outputs = output_plan(&mut cx, deck, &num, &dependent, &elements, contact.as_ref());
     let rod = rod_info(&elements.list);
     let model = Model {
         name: deck.name.clone(),
@@ -403,6 +405,7 @@ fn build_elements(cx: &mut Ctx, deck: &Deck, num: &Numbering) -> Elements {
     let mut out = Elements {
         list: Vec::new(),
         on_element: HashMap::new(),
+        plies: HashMap::new(),
     };
     rods(cx, deck, num, &mut out);
     quads(cx, deck, num, &mut out);
@@ -481,7 +484,7 @@ fn quads(cx: &mut Ctx, deck: &Deck, num: &Numbering, out: &mut Elements) {
     }
     let mut sections: HashMap<i64, Option<ShellSection>> = HashMap::new();
     // A laminate's stiffness in the basic axes depends on the element's material axis.
-    let mut laminates: HashMap<(i64, u64), Option<ShellSection>> = HashMap::new();
+    let mut laminates: HashMap<(i64, u64), Option<(ShellSection, PlyStack)>> = HashMap::new();
     for c in &b.cquad4s {
         let mut xyz = [[0.0; 3]; 4];
         let mut ok = true;
@@ -494,15 +497,20 @@ fn quads(cx: &mut Ctx, deck: &Deck, num: &Numbering, out: &mut Elements) {
                 }
             }
         }
+        let mut plies = None;
         let section = match (sections.get(&c.pid), pcomp.get(&c.pid)) {
             (_, Some(p)) if ok && !pshell.contains_key(&c.pid) => {
                 // The material x axis: the G1→G2 side, this many degrees counter-clockwise
                 // from basic x.
                 let axes = (xyz[1][1] - xyz[0][1]).atan2(xyz[1][0] - xyz[0][0]).to_degrees();
-                laminates
+                let lam = laminates
                     .entry((c.pid, axes.to_bits()))
                     .or_insert_with(|| laminate_section(cx, p, &b.mat1s, &b.mat8s, axes))
-                    .clone()
+                    .clone();
+                lam.map(|(section, layers)| {
+                    plies = Some(layers);
+                    section
+                })
             }
             (Some(s), _) => s.clone(),
             (None, _) => {
@@ -544,6 +552,9 @@ fn quads(cx: &mut Ctx, deck: &Deck, num: &Numbering, out: &mut Elements) {
             *on_element.entry(g).or_default() += 1;
         }
         let dofs = c.g.iter().map(|&g| grid_dofs(g)).collect();
+        if let Some(layers) = plies {
+            out.plies.insert(elements.len(), layers);
+        }
         elements.push(Element::new(
             c.eid,
             c.g.to_vec(),
@@ -617,9 +628,10 @@ fn output_plan(
     deck: &Deck,
     num: &Numbering,
     dependent: &Dependent,
-    elements: &[Element],
+    built: &Elements,
     contact: Option<&Contact>,
 ) -> OutputPlan {
+    let elements = &built.list;
     let case = &deck.case;
     let (grids, scalar, index) = (&num.grids, &num.scalar, &num.index);
     let (dep_index, dependent) = (&dependent.index, &dependent.points);
@@ -690,6 +702,14 @@ fn output_plan(
             outputs.strain = list;
         }
     }
+    // Ply results of every written laminate element, in the order its element's
+    // results are written.
+    let mut written: Vec<usize> = outputs.stress.clone();
+    written.extend(outputs.strain.iter().filter(|e| !outputs.stress.contains(e)));
+    outputs.plies = written
+        .into_iter()
+        .filter_map(|e| Some((e, built.plies.get(&e)?.clone())))
+        .collect();
     if case.outputs.contains_key("ACCEL") {
         cx.warn(Diagnostic::warning(
             case.outputs.get("ACCEL").map(|r| r.pos.clone()),
@@ -1014,8 +1034,8 @@ fn laminate_section(
     mat1s: &[crate::deck::cards::Mat1],
     mat8s: &[crate::deck::cards::Mat8],
     axes: f64,
-) -> Option<ShellSection> {
-    use crate::laminate::{plies_of, Laminate};
+) -> Option<(ShellSection, PlyStack)> {
+    use crate::laminate::{plies_of, ply_layers, Laminate};
     let plies = match plies_of(p, mat1s, mat8s) {
         Ok(plies) => plies,
         Err(e) => {
@@ -1051,12 +1071,15 @@ fn laminate_section(
             p.pid
         )));
     }
-    Some(ShellSection {
-        thickness: lam.thickness,
-        g_membrane: Some(lam.membrane_material()),
-        g_bending: Some(lam.bending_material()),
-        mass_per_area: lam.mass_per_area + p.nsm,
-    })
+    Some((
+        ShellSection {
+            thickness: lam.thickness,
+            g_membrane: Some(lam.membrane_material()),
+            g_bending: Some(lam.bending_material()),
+            mass_per_area: lam.mass_per_area + p.nsm,
+        },
+        std::sync::Arc::new(ply_layers(&plies, axes)),
+    ))
 }
 
 /// A target made of CRODs of one section along one line: wave speed and length.

@@ -181,7 +181,13 @@ pub struct OutputPlan {
     pub stress: Vec<usize>,
     /// Element indices requested by STRAIN.
     pub strain: Vec<usize>,
+    /// The laminate (PCOMP) elements among those, with their plies: their ply strains
+    /// and stresses are written too.
+    pub plies: Vec<(usize, PlyStack)>,
 }
+
+/// A laminate's plies as its results need them, shared by the elements of one PCOMP.
+pub type PlyStack = std::sync::Arc<Vec<crate::laminate::PlyLayer>>;
 
 /// A uniform rod target, for results in units of tC/L.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -30,6 +30,66 @@ pub enum Column {
         /// Which value.
         value: Recovered,
     },
+    /// A strain or stress of a laminate element's ply, in the ply's axes (its
+    /// element's STRESS/STRAIN request).
+    Ply {
+        /// Element id.
+        eid: i64,
+        /// The ply, from 1 at the bottom.
+        ply: u16,
+        /// Its bottom or top surface.
+        face: Face,
+        /// Stress or strain.
+        measure: Measure,
+        /// The component in the ply's axes.
+        axis: PlyAxis,
+    },
+}
+
+/// A ply's bottom or top surface.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Face {
+    /// The surface nearer z = −T/2.
+    Bottom,
+    /// The surface nearer z = +T/2.
+    Top,
+}
+
+/// A component in a ply's axes: 1 along the fibres, 2 across, 12 the engineering
+/// shear.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum PlyAxis {
+    /// Along the fibres.
+    P11,
+    /// Across the fibres.
+    P22,
+    /// In-plane shear.
+    P12,
+}
+
+impl Column {
+    /// The columns of a laminate element's plies, in the order they are computed: ply
+    /// by ply from the bottom, bottom then top surface, strains (11, 22, 12) then
+    /// stresses.
+    pub fn plies(eid: i64, count: usize) -> Vec<Column> {
+        let mut out = Vec::with_capacity(12 * count);
+        for ply in 1..=count as u16 {
+            for face in [Face::Bottom, Face::Top] {
+                for measure in [Measure::Strain, Measure::Stress] {
+                    for axis in [PlyAxis::P11, PlyAxis::P22, PlyAxis::P12] {
+                        out.push(Column::Ply {
+                            eid,
+                            ply,
+                            face,
+                            measure,
+                            axis,
+                        });
+                    }
+                }
+            }
+        }
+        out
+    }
 }
 
 impl Column {
@@ -75,6 +135,28 @@ impl Column {
             Column::Velo(d) => format!("velo_{}", tag(d)),
             Column::NlLoad(d) => format!("nlload_{}", tag(d)),
             Column::Element { eid, value } => value.name(*eid),
+            Column::Ply {
+                eid,
+                ply,
+                face,
+                measure,
+                axis,
+            } => format!(
+                "ply_{}_{eid}_p{ply}_{}_{}",
+                match measure {
+                    Measure::Stress => "stress",
+                    Measure::Strain => "strain",
+                },
+                match face {
+                    Face::Bottom => "bot",
+                    Face::Top => "top",
+                },
+                match axis {
+                    PlyAxis::P11 => "11",
+                    PlyAxis::P22 => "22",
+                    PlyAxis::P12 => "12",
+                }
+            ),
         }
     }
 
@@ -95,7 +177,11 @@ impl Column {
             Column::ImpactorVelo => format!("{l}/{t}"),
             Column::Disp(d) => dof(d),
             Column::Velo(d) => format!("{}/{t}", dof(d)),
-            Column::Element { value, .. } => match value.measure {
+            Column::Element {
+                value: Recovered { measure, .. },
+                ..
+            }
+            | Column::Ply { measure, .. } => match measure {
                 Measure::Stress => format!("{f}/{l}^2"),
                 Measure::Strain => "-".into(),
             },
@@ -135,5 +221,10 @@ mod tests {
             },
         };
         assert_eq!(stress.header(&u), "stress_3_z2_xx [kN/mm^2]");
+        let plies = Column::plies(2525, 2);
+        assert_eq!(plies.len(), 24);
+        assert_eq!(plies[0].header(&u), "ply_strain_2525_p1_bot_11 [-]");
+        assert_eq!(plies[5].header(&u), "ply_stress_2525_p1_bot_12 [kN/mm^2]");
+        assert_eq!(plies[23].header(&u), "ply_stress_2525_p2_top_12 [kN/mm^2]");
     }
 }

@@ -16,7 +16,7 @@ pub mod convolution;
 pub mod history;
 pub mod summary;
 
-pub use history::Column;
+pub use history::{Column, Face, PlyAxis};
 
 /// How to run a model; `None` means "as the deck says".
 #[derive(Debug, Clone)]
@@ -432,6 +432,9 @@ pub fn history_columns(m: &Model) -> Vec<Column> {
                 .map(|value| Column::Element { eid: e.eid, value }),
         );
     }
+    for (e, plies) in &m.outputs.plies {
+        cols.extend(Column::plies(m.elements[*e].eid, plies.len()));
+    }
     cols
 }
 
@@ -467,7 +470,44 @@ fn linear_outputs(m: &Model, u: &[f64], v: &[f64]) -> Vec<f64> {
     for (e, stress) in recovered_elements(m) {
         out.extend(m.elements[e].recover(u, stress));
     }
+    for (e, plies) in &m.outputs.plies {
+        ply_outputs(&m.elements[*e], plies, u, &mut out);
+    }
     out
+}
+
+/// The ply strains and stresses of a laminate element, in [`Column::plies`] order:
+/// its mid-plane strain and curvature from the fibre strains its kernel recovers at
+/// z = ∓T/2 (ε⁰ = (ε₁ + ε₂)/2, κ = (ε₂ − ε₁)/T), then each ply's
+/// [`crate::laminate::PlyLayer::at`] its bottom and top.
+fn ply_outputs(e: &crate::elements::Element, plies: &[crate::laminate::PlyLayer], u: &[f64], out: &mut Vec<f64>) {
+    use crate::elements::{Fibre, Measure, Plane, Recovered};
+    let names = e.kernel.recovered(false);
+    let values = e.recover(u, false);
+    let fibre = |f: Fibre| {
+        nalgebra::Vector3::from_fn(|i, _| {
+            let at = Some((f, [Plane::Xx, Plane::Yy, Plane::Xy][i]));
+            let k = names
+                .iter()
+                .position(|r| {
+                    *r == Recovered {
+                        measure: Measure::Strain,
+                        at,
+                    }
+                })
+                .expect("a laminate element recovers its fibre strains");
+            values[k]
+        })
+    };
+    let (e1, e2) = (fibre(Fibre::Z1), fibre(Fibre::Z2));
+    let thickness = plies.last().map_or(0.0, |p| p.z[1]) - plies.first().map_or(0.0, |p| p.z[0]);
+    let (e0, k) = ((e1 + e2) * 0.5, (e2 - e1) / thickness);
+    for p in plies {
+        for z in p.z {
+            let (strain, stress) = p.at(&e0, &k, z);
+            out.extend(strain.iter().chain(stress.iter()));
+        }
+    }
 }
 
 /// The contact quantities of a history row.

@@ -787,8 +787,9 @@ fn file_problems(model: &Model, run: &RunResult) -> Vec<String> {
 /// every element whose stresses are written: a rod's σ = E·ε (MAT1), a shell's
 /// σ(z) = G_m·ε_m + G_b·κz (MAT2 of MID1 and MID2), with the membrane strain
 /// ε_m = (ε(z1) + ε(z2))/2 and κh = (ε(z2) − ε(z1))/2 taken from the two written
-/// fibres. Value: the largest difference relative to the peak |stress|; round-off
-/// passes (≤ 1e-10), a wrong sign, scale or component fails.
+/// fibres; a laminate's ply stresses σ = Q·ε in each ply's axes (Q of its MAT8), from
+/// the ply strains written beside them. Value: the largest difference relative to the
+/// peak |stress|; round-off passes (≤ 1e-10), a wrong sign, scale or component fails.
 pub fn material_law(case: &Case, model: &Model, run: &RunResult) -> CheckResult {
     use crate::elements::{quad4::Quad4, rod::Rod, Fibre, Measure, Plane, Recovered};
     use nalgebra::Vector3;
@@ -843,6 +844,31 @@ pub fn material_law(case: &Case, model: &Model, run: &RunResult) -> CheckResult 
                     let d = (s - law).amax();
                     if d > worst {
                         (worst, at) = (d, format!("element {} at t = {:e}", e.eid, row[0]));
+                    }
+                }
+            }
+        }
+    }
+    // Ply stresses: the ply's own Q (its axes) times its written strain, at both faces.
+    for (e, plies) in &model.outputs.plies {
+        let eid = model.elements[*e].eid;
+        let cols = Column::plies(eid, plies.len());
+        let j: Vec<usize> = cols.iter().filter_map(|c| run.column(c)).collect();
+        if j.len() != cols.len() {
+            continue;
+        }
+        elements += 1;
+        for row in &run.history {
+            // Per ply and face: strain 11, 22, 12 then stress 11, 22, 12.
+            for (k, p) in plies.iter().enumerate() {
+                for face in 0..2 {
+                    let base = 12 * k + 6 * face;
+                    let v = |o: usize| Vector3::new(row[j[base + o]], row[j[base + o + 1]], row[j[base + o + 2]]);
+                    let (strain, stress) = (v(0), v(3));
+                    peak = peak.max(stress.amax());
+                    let d = (stress - p.q * strain).amax();
+                    if d > worst {
+                        (worst, at) = (d, format!("element {eid} ply {} at t = {:e}", k + 1, row[0]));
                     }
                 }
             }
