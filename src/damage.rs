@@ -47,7 +47,7 @@ pub struct DelaminationOnset {
 }
 
 /// D* = √(D11 D22 (A + 1)/2), A = (D12 + 2 D66)/√(D11 D22), of a bending matrix
-/// D (D11, D22, D12 and D66 = D[2][2]; D16 and D26 left out).
+/// D (D11, D22, D12 and D66 = D(2, 2); D16 and D26 left out).
 pub fn effective_bending_stiffness(d: &Matrix3<f64>) -> f64 {
     let (d11, d22, d12, d66) = (d[(0, 0)], d[(1, 1)], d[(0, 1)], d[(2, 2)]);
     let a = (d12 + 2.0 * d66) / (d11 * d22).sqrt();

@@ -234,8 +234,8 @@ impl NavierPlate {
     ///
     /// Mode-acceleration summation: the quasi-static response F(t)·S (S the static
     /// strain per unit force, a slowly converging series summed once over
-    /// [`STATIC_MODES`]²) plus the dynamic remainder Σ (q_mn − F f_mn/K_mn), which
-    /// converges fast ([`DYNAMIC_MODES`]²). Each mode's step is the exact solution of
+    /// `STATIC_MODES`²) plus the dynamic remainder Σ (q_mn − F f_mn/K_mn), which
+    /// converges fast (`DYNAMIC_MODES`²). Each mode's step is the exact solution of
     /// q̈ + ω²q = f(t)/M for f linear over the step, so the result is exact in time
     /// for a piecewise-linear force and converges in the mode counts only.
     pub fn fibre_strains(
