@@ -1,5 +1,8 @@
-//! Damage onset in a struck laminate, from the plate's stiffness and the interface's
-//! toughness: the quasi-static delamination threshold load.
+//! Damage onset in a struck laminate: the quasi-static delamination threshold load,
+//! from the plate's stiffness and the interface's toughness, and the plies' failure
+//! indices, from their stresses or strains and allowables.
+//!
+//! # Delamination onset
 //!
 //! A point-loaded plate whose contact force reaches
 //!
@@ -29,8 +32,37 @@
 //! Not modelled: Olsson's dynamic threshold for small-mass impacts (a higher load when
 //! the impactor is light next to the plate's mass in play, Olsson, Donadon & Falzon,
 //! Int. J. Solids Struct. 43 (2006) 3124-3141).
+//!
+//! # Ply failure indices
+//!
+//! The theories PCOMP's FT names, as the MSC Nastran *Linear Static Analysis User's
+//! Guide* (composite elements, failure theories) states them, for a ply in plane
+//! stress (σ1, σ2, τ12) in its axes, with the MAT8's allowables Xt, Xc, Yt, Yc (the
+//! compressive ones as magnitudes) and S:
+//!
+//! - HILL (Tsai-Hill; Jones, *Mechanics of Composite Materials*, 2nd ed., §2.9.3):
+//!   FI = σ1²/X² − σ1σ2/X² + σ2²/Y² + τ12²/S², X = Xt when σ1 ≥ 0, else Xc, and Y
+//!   likewise from σ2.
+//! - HOFF (Hoffman, J. Compos. Mater. 1 (1967) 200-206): FI = (1/Xt − 1/Xc)σ1 +
+//!   (1/Yt − 1/Yc)σ2 + σ1²/(Xt Xc) + σ2²/(Yt Yc) − σ1σ2/(Xt Xc) + τ12²/S².
+//! - TSAI (Tsai-Wu, J. Compos. Mater. 5 (1971) 58-80): FI = F1σ1 + F2σ2 + F11σ1² +
+//!   F22σ2² + F66τ12² + 2F12σ1σ2, F1 = 1/Xt − 1/Xc, F11 = 1/(Xt Xc), F2 and F22
+//!   likewise from Y, F66 = 1/S², F12 the MAT8's (no default: a TSAI ply without it is
+//!   an input error).
+//! - STRN (maximum strain): FI = max(ε1/Xt or −ε1/Xc, ε2/Yt or −ε2/Yc, |γ12|/S) with
+//!   strain allowables (MAT8 STRN = 1.0); stress allowables are turned into strain
+//!   allowables by the ply's moduli (Xt/E1, …, S/G12), the strain a uniaxial stress at
+//!   the allowable makes.
+//! - The maximum-stress index, the same on stresses, beside any theory whose ply has
+//!   stress allowables.
+//!
+//! Each reaches 1 on its failure envelope: a uniaxial stress at an allowable gives 1
+//! in every theory. The quadratic ones are not ratios: doubling the stress quadruples
+//! HILL's index, and HOFF's and TSAI's linear terms make theirs depend on the sign.
+//! A theory whose allowables are missing is an input error ([`StrengthError`]), never
+//! a silent zero.
 
-use nalgebra::Matrix3;
+use nalgebra::{Matrix3, Vector3};
 use serde::{Deserialize, Serialize};
 
 /// The delamination threshold of a laminate, as `summary.json` gives it.
@@ -68,9 +100,292 @@ pub fn delamination_onset(d: &Matrix3<f64>, g_iic: f64) -> DelaminationOnset {
     }
 }
 
+/// A failure theory: PCOMP's FT, or the maximum-stress index.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Theory {
+    /// Tsai-Hill (FT = HILL).
+    Hill,
+    /// Hoffman (FT = HOFF).
+    Hoffman,
+    /// Tsai-Wu (FT = TSAI).
+    TsaiWu,
+    /// Maximum strain (FT = STRN).
+    MaxStrain,
+    /// Maximum stress.
+    MaxStress,
+}
+
+impl Theory {
+    /// The theory FT names (HILL, HOFF, TSAI, STRN).
+    pub fn from_ft(ft: &str) -> Option<Theory> {
+        match ft {
+            "HILL" => Some(Theory::Hill),
+            "HOFF" => Some(Theory::Hoffman),
+            "TSAI" => Some(Theory::TsaiWu),
+            "STRN" => Some(Theory::MaxStrain),
+            _ => None,
+        }
+    }
+
+    /// Its name: FT's word, or `MAXSTRESS`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Theory::Hill => "HILL",
+            Theory::Hoffman => "HOFF",
+            Theory::TsaiWu => "TSAI",
+            Theory::MaxStrain => "STRN",
+            Theory::MaxStress => "MAXSTRESS",
+        }
+    }
+}
+
+/// A ply's strength as its MAT8 gives it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Strength {
+    /// Xt, Xc, Yt, Yc, S (Xc and Yc as magnitudes); `None` when blank.
+    pub allowables: [Option<f64>; 5],
+    /// The Tsai-Wu interaction term F12.
+    pub f12: Option<f64>,
+    /// True when the allowables are strains (MAT8 STRN = 1.0).
+    pub strain: bool,
+    /// The ply's moduli E1, E2, G12.
+    pub moduli: [f64; 3],
+}
+
+/// Why a ply's strength cannot give a theory's index.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum StrengthError {
+    /// An allowable the theory needs is blank.
+    #[error("FT = {theory} needs the allowable {field}, which is blank")]
+    Missing {
+        /// The theory.
+        theory: &'static str,
+        /// The MAT8 field.
+        field: &'static str,
+    },
+    /// The allowables are strains, the theory reads stresses.
+    #[error("FT = {0} reads stresses, but the allowables are strains (STRN = 1.0)")]
+    StrainAllowables(&'static str),
+    /// The ply's material carries no allowables (a MAT1 ply).
+    #[error("FT = {0} needs allowables, which only a MAT8 ply has")]
+    NoAllowables(&'static str),
+}
+
+/// One theory's index for one ply: the allowables resolved for what it reads.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Criterion {
+    /// The theory.
+    pub theory: Theory,
+    /// Xt, Xc, Yt, Yc, S: strains for [`Theory::MaxStrain`], else stresses.
+    allow: [f64; 5],
+    /// F12 (Tsai-Wu only).
+    f12: f64,
+}
+
+impl Criterion {
+    /// The criterion of `theory` for a ply of `strength`.
+    pub fn new(theory: Theory, strength: Option<&Strength>) -> Result<Criterion, StrengthError> {
+        let s = strength.ok_or(StrengthError::NoAllowables(theory.name()))?;
+        let names = ["Xt", "Xc", "Yt", "Yc", "S"];
+        let mut allow = [0.0; 5];
+        for (k, a) in s.allowables.iter().enumerate() {
+            allow[k] = a.ok_or(StrengthError::Missing {
+                theory: theory.name(),
+                field: names[k],
+            })?;
+        }
+        if theory == Theory::MaxStrain {
+            if !s.strain {
+                let [e1, e2, g12] = s.moduli;
+                allow = [
+                    allow[0] / e1,
+                    allow[1] / e1,
+                    allow[2] / e2,
+                    allow[3] / e2,
+                    allow[4] / g12,
+                ];
+            }
+        } else if s.strain {
+            return Err(StrengthError::StrainAllowables(theory.name()));
+        }
+        let f12 = match theory {
+            Theory::TsaiWu => s.f12.ok_or(StrengthError::Missing {
+                theory: theory.name(),
+                field: "F12",
+            })?,
+            _ => 0.0,
+        };
+        Ok(Criterion { theory, allow, f12 })
+    }
+
+    /// The failure index of a ply point with `strain` (ε1, ε2, γ12) and `stress` (σ1,
+    /// σ2, τ12) in the ply's axes.
+    pub fn index(&self, strain: &Vector3<f64>, stress: &Vector3<f64>) -> f64 {
+        let [xt, xc, yt, yc, s] = self.allow;
+        let (s1, s2, t) = (stress[0], stress[1], stress[2]);
+        let largest = |v: &Vector3<f64>| {
+            let along = |x: f64, tension: f64, compression: f64| {
+                if x >= 0.0 {
+                    x / tension
+                } else {
+                    -x / compression
+                }
+            };
+            along(v[0], xt, xc).max(along(v[1], yt, yc)).max(v[2].abs() / s)
+        };
+        match self.theory {
+            Theory::Hill => {
+                let x = if s1 >= 0.0 { xt } else { xc };
+                let y = if s2 >= 0.0 { yt } else { yc };
+                (s1 * s1 - s1 * s2) / (x * x) + (s2 / y).powi(2) + (t / s).powi(2)
+            }
+            Theory::Hoffman => {
+                (1.0 / xt - 1.0 / xc) * s1
+                    + (1.0 / yt - 1.0 / yc) * s2
+                    + (s1 * s1 - s1 * s2) / (xt * xc)
+                    + s2 * s2 / (yt * yc)
+                    + (t / s).powi(2)
+            }
+            Theory::TsaiWu => {
+                (1.0 / xt - 1.0 / xc) * s1
+                    + (1.0 / yt - 1.0 / yc) * s2
+                    + s1 * s1 / (xt * xc)
+                    + s2 * s2 / (yt * yc)
+                    + (t / s).powi(2)
+                    + 2.0 * self.f12 * s1 * s2
+            }
+            Theory::MaxStrain => largest(strain),
+            Theory::MaxStress => largest(stress),
+        }
+    }
+}
+
+/// The criteria of a ply under FT = `theory`: that theory's, then the maximum-stress
+/// index when the allowables are stresses.
+pub fn ply_criteria(theory: Theory, strength: Option<&Strength>) -> Result<Vec<Criterion>, StrengthError> {
+    let mut out = vec![Criterion::new(theory, strength)?];
+    if theory != Theory::MaxStress && strength.is_some_and(|s| !s.strain) {
+        out.push(Criterion::new(Theory::MaxStress, strength)?);
+    }
+    Ok(out)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A glass/epoxy ply's strength, psi (round values of that material's order), with
+    /// F12 = −½√(F11 F22).
+    fn strength() -> Strength {
+        let (xt, xc, yt, yc) = (1.54e5, 8.85e4, 4.5e3, 1.71e4);
+        Strength {
+            allowables: [Some(xt), Some(xc), Some(yt), Some(yc), Some(1.04e4)],
+            f12: Some(-0.5 / (xt * xc * yt * yc).sqrt()),
+            strain: false,
+            moduli: [5.6e6, 1.2e6, 0.6e6],
+        }
+    }
+
+    fn stress(s1: f64, s2: f64, t: f64) -> Vector3<f64> {
+        Vector3::new(s1, s2, t)
+    }
+
+    /// Goal: every theory's index is 1 under a uniaxial stress at each allowable, in
+    /// tension and in compression, and under pure shear at S (for STRN, the strain that
+    /// stress makes): the theories' envelopes pass through the allowables.
+    #[test]
+    fn a_uniaxial_stress_at_an_allowable_is_index_one_in_every_theory() {
+        let s = strength();
+        let [xt, xc, yt, yc, sh] = s.allowables.map(Option::unwrap);
+        let [e1, e2, g12] = s.moduli;
+        for theory in [
+            Theory::Hill,
+            Theory::Hoffman,
+            Theory::TsaiWu,
+            Theory::MaxStrain,
+            Theory::MaxStress,
+        ] {
+            let c = Criterion::new(theory, Some(&s)).unwrap();
+            for sig in [
+                stress(xt, 0.0, 0.0),
+                stress(-xc, 0.0, 0.0),
+                stress(0.0, yt, 0.0),
+                stress(0.0, -yc, 0.0),
+                stress(0.0, 0.0, sh),
+                stress(0.0, 0.0, -sh),
+            ] {
+                // The strain of a uniaxial stress, Poisson's strain left out (STRN reads
+                // each component against its own allowable).
+                let eps = stress(sig[0] / e1, sig[1] / e2, sig[2] / g12);
+                let fi = c.index(&eps, &sig);
+                assert!((fi - 1.0).abs() < 1e-12, "{theory:?} at {sig:?}: {fi}");
+            }
+        }
+    }
+
+    /// Goal: the theories differ where they should. HILL is quadratic (twice the stress,
+    /// four times the index) and picks its allowables by sign; HOFF and TSAI have linear
+    /// terms (a compressive σ2 at half Yc is far from failure, a tensile one at Yt/2
+    /// nearer); TSAI's F12 couples σ1 and σ2 and HOFF's coupling is −σ1σ2/(Xt Xc); the
+    /// maximum-stress index is the largest ratio.
+    #[test]
+    fn the_theories_differ_where_their_forms_do() {
+        let s = strength();
+        let [xt, xc, yt, yc, sh] = s.allowables.map(Option::unwrap);
+        let z = Vector3::zeros();
+        let at = |t: Theory, sig: Vector3<f64>| Criterion::new(t, Some(&s)).unwrap().index(&z, &sig);
+        let sig = stress(0.3 * xt, -0.2 * yc, 0.4 * sh);
+        let hill = (0.3f64.powi(2) * xt * xt + 0.3 * xt * 0.2 * yc) / (xt * xt) + 0.04 + 0.16;
+        assert!((at(Theory::Hill, sig) - hill).abs() < 1e-12);
+        assert!((at(Theory::Hill, sig * 2.0) - 4.0 * hill).abs() < 1e-12);
+        let hoff = (1.0 / xt - 1.0 / xc) * 0.3 * xt - (1.0 / yt - 1.0 / yc) * 0.2 * yc
+            + (0.09 * xt * xt + 0.3 * xt * 0.2 * yc) / (xt * xc)
+            + 0.04 * yc * yc / (yt * yc)
+            + 0.16;
+        assert!((at(Theory::Hoffman, sig) - hoff).abs() < 1e-12);
+        let f12 = s.f12.unwrap();
+        let tsai = hoff - 0.3 * xt * 0.2 * yc / (xt * xc) - 2.0 * f12 * 0.3 * xt * 0.2 * yc;
+        assert!((at(Theory::TsaiWu, sig) - tsai).abs() < 1e-12);
+        assert!((at(Theory::MaxStress, sig) - 0.4).abs() < 1e-15);
+        // Half the transverse allowable: compression is safer under the linear terms.
+        let (c, t) = (
+            at(Theory::TsaiWu, stress(0.0, -0.5 * yc, 0.0)),
+            at(Theory::TsaiWu, stress(0.0, 0.5 * yt, 0.0)),
+        );
+        assert!(c < 0.0 && t > 0.0, "{c} {t}");
+    }
+
+    /// Goal: missing allowables are named, never read as zero: a blank Yc for HILL, a
+    /// blank F12 for TSAI, strain allowables for a stress theory, a ply with no MAT8;
+    /// strain allowables serve STRN as given, with no maximum-stress index beside it.
+    #[test]
+    fn missing_allowables_are_errors_that_name_the_field() {
+        let mut s = strength();
+        s.allowables[3] = None;
+        let e = Criterion::new(Theory::Hill, Some(&s)).unwrap_err();
+        assert_eq!(e.to_string(), "FT = HILL needs the allowable Yc, which is blank");
+        let mut s = strength();
+        s.f12 = None;
+        assert!(Criterion::new(Theory::Hoffman, Some(&s)).is_ok());
+        let e = Criterion::new(Theory::TsaiWu, Some(&s)).unwrap_err();
+        assert!(e.to_string().contains("F12"), "{e}");
+        let mut s = strength();
+        s.strain = true;
+        s.allowables = [0.02, 0.015, 0.004, 0.012, 0.018].map(Some);
+        assert!(matches!(
+            Criterion::new(Theory::Hoffman, Some(&s)),
+            Err(StrengthError::StrainAllowables("HOFF"))
+        ));
+        let c = ply_criteria(Theory::MaxStrain, Some(&s)).unwrap();
+        assert_eq!(c.len(), 1);
+        let fi = c[0].index(&stress(-0.0075, 0.0, 0.0), &Vector3::zeros());
+        assert!((fi - 0.5).abs() < 1e-15, "{fi}");
+        assert_eq!(ply_criteria(Theory::Hill, Some(&strength())).unwrap().len(), 2);
+        assert!(matches!(
+            Criterion::new(Theory::Hill, None),
+            Err(StrengthError::NoAllowables("HILL"))
+        ));
+    }
 
     /// Goal: for an isotropic plate D* = D (A = 1), and F_crit follows the closed form:
     /// a 4 mm quasi-isotropic carbon/epoxy plate (E 50 GPa, ν 0.3, G_IIc 800 J/m²)

@@ -40,6 +40,8 @@ pub struct Ply {
     pub theta: f64,
     /// Mass density.
     pub rho: f64,
+    /// Its failure criteria (PCOMP's FT and the maximum-stress index; none without FT).
+    pub criteria: Vec<crate::damage::Criterion>,
 }
 
 /// An orthotropic ply's plane-stress stiffness in its own axes (Jones Eq. 2.61).
@@ -101,6 +103,8 @@ pub struct PlyLayer {
     pub to_ply: Matrix3<f64>,
     /// Bottom and top of the ply, from the mid-plane.
     pub z: [f64; 2],
+    /// Its failure criteria (none without FT).
+    pub criteria: Vec<crate::damage::Criterion>,
 }
 
 impl PlyLayer {
@@ -127,6 +131,7 @@ pub fn ply_layers(plies: &[Ply], material_angle: f64) -> Vec<PlyLayer> {
                 q: p.q,
                 to_ply: strain_rotation(p.theta + material_angle),
                 z: [bottom, z],
+                criteria: p.criteria.clone(),
             }
         })
         .collect()
@@ -149,27 +154,55 @@ pub enum LaminateError {
         /// The material id it names.
         mid: i64,
     },
+    /// A ply whose material does not give what FT asks.
+    #[error("ply {ply} (material {mid}): {source}")]
+    Strength {
+        /// The ply, from 1 at the bottom.
+        ply: usize,
+        /// The material id it names.
+        mid: i64,
+        /// What is missing.
+        source: crate::damage::StrengthError,
+    },
 }
 
 /// The plies of a PCOMP, bottom to top (LAM = SYM mirrored), each from its MAT8 (E1,
-/// E2, NU12, G12; G1Z and G2Z when both are given) or its MAT1 (isotropic: the
-/// plane-stress matrix of E, NU, G, and G for both transverse shears).
+/// E2, NU12, G12; G1Z and G2Z when both are given; the allowables for FT) or its MAT1
+/// (isotropic: the plane-stress matrix of E, NU, G, and G for both transverse shears;
+/// no allowables, so no FT).
 pub fn plies_of(
     p: &crate::deck::cards::Pcomp,
     mat1s: &[crate::deck::cards::Mat1],
     mat8s: &[crate::deck::cards::Mat8],
 ) -> Result<Vec<Ply>, LaminateError> {
+    use crate::damage::{ply_criteria, Strength, Theory};
+    let theory = p.ft.as_deref().and_then(Theory::from_ft);
     p.stack()
         .iter()
         .enumerate()
         .map(|(k, ply)| {
+            let criteria = |strength: Option<&Strength>| match theory {
+                None => Ok(Vec::new()),
+                Some(t) => ply_criteria(t, strength).map_err(|source| LaminateError::Strength {
+                    ply: k + 1,
+                    mid: ply.mid,
+                    source,
+                }),
+            };
             if let Some(m) = mat8s.iter().find(|m| m.mid == ply.mid) {
+                let strength = Strength {
+                    allowables: m.allowables,
+                    f12: m.f12,
+                    strain: m.strn == 1.0,
+                    moduli: [m.e1, m.e2, m.g12],
+                };
                 Ok(Ply {
                     q: orthotropic_q(m.e1, m.e2, m.nu12, m.g12),
                     shear: m.g1z.zip(m.g2z),
                     t: ply.t,
                     theta: ply.theta,
                     rho: m.rho,
+                    criteria: criteria(Some(&strength))?,
                 })
             } else if let Some(m) = mat1s.iter().find(|m| m.mid == ply.mid) {
                 let q = m.e / (1.0 - m.nu * m.nu);
@@ -179,6 +212,7 @@ pub fn plies_of(
                     t: ply.t,
                     theta: ply.theta,
                     rho: m.rho,
+                    criteria: criteria(None)?,
                 })
             } else {
                 Err(LaminateError::Material {
@@ -269,6 +303,7 @@ mod tests {
             t,
             theta,
             rho: 1.8e-4,
+            criteria: Vec::new(),
         }
     }
 
@@ -434,6 +469,7 @@ mod tests {
                 t: 0.2,
                 theta: 33.0,
                 rho: 2.5e-4,
+                criteria: Vec::new(),
             }],
             None,
             0.0,

@@ -8,6 +8,9 @@
 //! - [`numerics`]: shared numerics: interpolation, crossings, slopes, medians.
 //! - [`plot`]: the figure writer (PNG and SVG with a bundled font).
 //! - [`deck`]: input: NASTRAN decks to typed cards with source positions.
+//! - [`damage`]: damage onset: the delamination threshold load and the plies' failure
+//!   indices.
+//! - [`laminate`]: classical lamination theory: a PCOMP's plies to A, B, D.
 //! - [`elements`]: element kernels and the one element interface.
 //! - [`model`]: DOFs, constraints, elements, contact, initial conditions, output plan.
 //! - [`assembly`]: global K and M over the solved DOFs; inert DOFs dropped.
@@ -31,8 +34,8 @@
 pub mod numerics;
 pub mod plot;
 pub mod deck;
-pub mod laminate;
 pub mod damage;
+pub mod laminate;
 pub mod elements;
 pub mod model;
 pub mod assembly;

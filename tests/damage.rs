@@ -1,5 +1,5 @@
-//! Damage onset and the threshold impact: the delamination threshold in the run's
-//! summary, and `sweep --find velocity --until …`.
+//! Damage onset and the threshold impact: the delamination threshold and the plies'
+//! failure indices in the run's summary, and `sweep --find velocity --until …`.
 
 mod common;
 
@@ -31,9 +31,9 @@ fn threshold_of_the_decks_own_peak_force_is_the_decks_speed() {
     assert!((t.velocity / 62.1 - 1.0).abs() <= BRACKET_WIDTH, "{}", t.velocity);
     assert!(t.bracket[1] - t.bracket[0] <= BRACKET_WIDTH * t.bracket[1]);
     assert!(
-        t.direct_peaks[0] < peak && peak <= t.direct_peaks[1],
+        t.direct_values[0] < peak && peak <= t.direct_values[1],
         "{:?}",
-        t.direct_peaks
+        t.direct_values
     );
     assert!(t.direct_check <= impactlab::study::sweep::DIRECT_CHECK_MAX);
     assert_eq!(t.energy, 0.5 * 9.587e-5 * t.velocity * t.velocity);
@@ -102,8 +102,8 @@ fn delamination_threshold_in_the_summary_and_as_a_threshold_speed() {
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(o.status.success(), "{stdout}{}", String::from_utf8_lossy(&o.stderr));
     let t: serde_json::Value = serde_json::from_slice(&std::fs::read(out.join("threshold.json")).unwrap()).unwrap();
-    assert!((t["target_force"].as_f64().unwrap() / f_crit - 1.0).abs() < 1e-12);
-    let peaks = t["direct_peaks"].as_array().unwrap();
+    assert!((t["target_value"].as_f64().unwrap() / f_crit - 1.0).abs() < 1e-12);
+    let peaks = t["direct_values"].as_array().unwrap();
     assert!(
         peaks[0].as_f64().unwrap() < f_crit && f_crit <= peaks[1].as_f64().unwrap(),
         "{t}"
@@ -127,11 +127,205 @@ fn delamination_threshold_in_the_summary_and_as_a_threshold_speed() {
     );
     refused(
         &["sweep", p, "--find", "velocity", "--until", "failure_index=1"],
-        "expected peak_force=F or delamination",
+        "--until failure_index needs failure indices: a PCOMP with FT",
+    );
+    refused(
+        &["sweep", p, "--find", "velocity", "--until", "strain=1"],
+        "expected peak_force=F, delamination or failure_index=L",
     );
     refused(
         &["sweep", p, "--find", "velocity", "--until", "peak_force=-3"],
         "must be a positive number",
     );
     refused(&["run", p, "--giic", "0"], "--giic must be a positive number");
+}
+
+/// The paper's plate as its cross-ply PCOMP (reference-data/decks/plate-pcomp.bdf) with
+/// FT = `ft` and its MAT8's allowables and interaction term as given (continuation
+/// lines of the MAT8 card), written into `dir` beside its mesh.
+fn pcomp_with_ft(dir: &std::path::Path, ft: &str, mat8_continuation: &str) -> std::path::PathBuf {
+    let text = std::fs::read_to_string(deck("plate-pcomp.bdf")).unwrap();
+    let mat8 = "MAT8,8,5.735+6,1.2855+6,0.2231,5.7+5,,,1.8-4";
+    assert!(text.contains(mat8) && text.contains("PCOMP,1,,,,,,,,+P0"));
+    let text = text
+        .replace("PCOMP,1,,,,,,,,+P0", &format!("PCOMP,1,,,,{ft},,,,+P0"))
+        .replace(mat8, &format!("{mat8},+M1\n+M1,{mat8_continuation}"));
+    let out = dir.join(format!("plate-{}.bdf", ft.to_lowercase()));
+    std::fs::write(&out, text).unwrap();
+    std::fs::copy(deck("plate-mesh-49x49.bdf"), dir.join("plate-mesh-49x49.bdf")).unwrap();
+    out
+}
+
+/// Glass/epoxy allowables (psi): A1, A2, TREF blank, then Xt, Xc, Yt, Yc, S.
+const ALLOWABLES: &str = ",,,1.54+5,8.85+4,4.5+3,1.71+4,1.04+4";
+
+/// Goal: the summary's failure indices are the theory applied to the ply stresses the
+/// run writes. From `history.csv` alone, by its header names, this test computes
+/// Tsai-Hill (X by the sign of σ1, Y by that of σ2) and the maximum-stress ratio at
+/// every ply's bottom and top of the written elements at every row: the summary's
+/// largest index, its element, ply, face and time, and the first time any reaches 1
+/// are those, to round-off. Model: the paper's plate as its cross-ply, FT = HILL,
+/// 600 steps.
+#[test]
+fn failure_indices_are_the_theory_on_the_written_ply_stresses() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = pcomp_with_ft(dir.path(), "HILL", ALLOWABLES);
+    let out = dir.path().join("run");
+    let o = impactlab(&[
+        "run",
+        path.to_str().unwrap(),
+        "--steps",
+        "600",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let s: serde_json::Value = serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
+    let mut r = csv::Reader::from_path(out.join("history.csv")).unwrap();
+    let headers: Vec<String> = r.headers().unwrap().iter().map(String::from).collect();
+    let rows: Vec<Vec<f64>> = r
+        .records()
+        .map(|x| x.unwrap().iter().map(|v| v.parse().unwrap()).collect())
+        .collect();
+    let (xt, xc, yt, yc, sh) = (1.54e5, 8.85e4, 4.5e3, 1.71e4, 1.04e4);
+    // (index, time, element, ply, face) of the largest, and the first time ≥ 1.
+    let mut hill = (f64::MIN, 0.0, String::new(), String::new(), String::new());
+    let mut most = hill.clone();
+    let (mut first_hill, mut first_most) = (f64::INFINITY, f64::INFINITY);
+    let mut points = 0;
+    for (k, h) in headers.iter().enumerate() {
+        let Some(rest) = h
+            .strip_prefix("ply_stress_")
+            .and_then(|r| r.strip_suffix("_11 [lbf/in^2]"))
+        else {
+            continue;
+        };
+        points += 1;
+        let parts: Vec<&str> = rest.split('_').collect();
+        let (eid, ply, face) = (parts[0], parts[1].trim_start_matches('p'), parts[2]);
+        assert_eq!(headers[k + 1], format!("ply_stress_{rest}_22 [lbf/in^2]"));
+        assert_eq!(headers[k + 2], format!("ply_stress_{rest}_12 [lbf/in^2]"));
+        for row in &rows {
+            let (s1, s2, t) = (row[k], row[k + 1], row[k + 2]);
+            let x = if s1 >= 0.0 { xt } else { xc };
+            let y = if s2 >= 0.0 { yt } else { yc };
+            let h_index = (s1 * s1 - s1 * s2) / (x * x) + (s2 / y).powi(2) + (t / sh).powi(2);
+            let ratio = |v: f64, tension: f64, compression: f64| if v >= 0.0 { v / tension } else { -v / compression };
+            let m_index = ratio(s1, xt, xc).max(ratio(s2, yt, yc)).max(t.abs() / sh);
+            for (index, best, first) in [
+                (h_index, &mut hill, &mut first_hill),
+                (m_index, &mut most, &mut first_most),
+            ] {
+                if index > best.0 {
+                    *best = (index, row[0], eid.into(), ply.into(), face.into());
+                }
+                if index >= 1.0 {
+                    *first = first.min(row[0]);
+                }
+            }
+        }
+    }
+    // 3 written elements × 15 plies × bottom and top.
+    assert_eq!(points, 90);
+    let f = &s["failure"];
+    for (key, (index, time, eid, ply, face), first) in
+        [("theory", hill.clone(), first_hill), ("max_stress", most, first_most)]
+    {
+        let got = &f[key];
+        assert!(
+            (got["largest"].as_f64().unwrap() / index - 1.0).abs() < 1e-12,
+            "{key}: {got} vs {index}"
+        );
+        assert_eq!(got["time"].as_f64().unwrap(), time, "{key}");
+        assert_eq!(got["element"].to_string(), eid, "{key}");
+        assert_eq!(got["ply"].to_string(), ply, "{key}");
+        assert_eq!(
+            got["face"].as_str().unwrap(),
+            if face == "bot" { "bottom" } else { "top" },
+            "{key}"
+        );
+        assert_eq!(
+            got["first_reaches_one"].as_f64().unwrap_or(f64::INFINITY),
+            first,
+            "{key}"
+        );
+    }
+    assert_eq!(f["theory"]["name"], "HILL");
+    assert_eq!(f["max_stress"]["name"], "MAXSTRESS");
+    // The struck plate fails its first ply at the paper's impact: a point load's plate
+    // stresses under the impactor (see the README on what they are worth).
+    assert!(hill.0 > 1.0, "{hill:?}");
+}
+
+/// Goal: a failure theory whose allowables are missing is an input error (exit 2) that
+/// names the PCOMP, the ply, its material and the missing field: HILL without Yc,
+/// TSAI without F12, HOFF over strain allowables (STRN = 1.0); nothing is written.
+#[test]
+fn a_theory_without_its_allowables_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    for (ft, cont, why) in [
+        (
+            "HILL",
+            ",,,1.54+5,8.85+4,4.5+3,,1.04+4",
+            "FT = HILL needs the allowable Yc, which is blank",
+        ),
+        ("TSAI", ALLOWABLES, "FT = TSAI needs the allowable F12, which is blank"),
+        (
+            "HOFF",
+            ",,,0.02,0.015,0.004,0.012,0.018,+M2\n+M2,,,1.0",
+            "FT = HOFF reads stresses, but the allowables are strains (STRN = 1.0)",
+        ),
+    ] {
+        let path = pcomp_with_ft(dir.path(), ft, cont);
+        let out = dir.path().join(format!("out-{ft}"));
+        let o = impactlab(&[
+            "run",
+            path.to_str().unwrap(),
+            "--steps",
+            "5",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{ft}: {stderr}");
+        let want = format!("PCOMP 1: ply 1 (material 8): {why}");
+        assert!(stderr.contains(&want), "{ft}: want {want:?} in {stderr}");
+        assert!(
+            stderr.contains(&format!("plate-{}.bdf:", ft.to_lowercase())),
+            "{stderr}"
+        );
+        assert!(!out.exists(), "{ft}");
+    }
+}
+
+/// Goal: `--until failure_index=1` finds the impact speed of first-ply failure: the
+/// direct engine puts the largest HILL index below 1 at the bracket's low end and at or
+/// above it at its high end, and the paper's speed (index far above 1) is above it.
+/// Model: the plate as its cross-ply, FT = HILL, 1000 steps.
+#[test]
+fn first_ply_failure_threshold_is_bracketed_by_the_direct_engine() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = pcomp_with_ft(dir.path(), "HILL", ALLOWABLES);
+    let out = dir.path().join("threshold");
+    let o = impactlab(&[
+        "sweep",
+        path.to_str().unwrap(),
+        "--steps",
+        "1000",
+        "--find",
+        "velocity",
+        "--until",
+        "failure_index=1",
+        "--no-cache",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let t: serde_json::Value = serde_json::from_slice(&std::fs::read(out.join("threshold.json")).unwrap()).unwrap();
+    let v = t["direct_values"].as_array().unwrap();
+    let (lo, hi) = (v[0].as_f64().unwrap(), v[1].as_f64().unwrap());
+    assert!(lo < 1.0 && 1.0 <= hi, "{t}");
+    assert_eq!(t["target_value"].as_f64(), Some(1.0));
+    let speed = t["velocity"].as_f64().unwrap();
+    assert!(speed > 0.0 && speed < 1470.0, "{t}");
 }

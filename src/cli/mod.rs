@@ -307,7 +307,7 @@ fn threshold(a: SweepArgs) -> Result<u8, Error> {
         "dt": a.dt.unwrap_or(model.time.dt),
         "steps": a.steps.unwrap_or(model.time.steps),
         "until": t.target,
-        "target_force": t.target_force,
+        "target_value": t.target_value,
         "g_iic": run.interlaminar_toughness,
         "impactor_mass": t.mass,
         "velocity": t.velocity,
@@ -315,7 +315,7 @@ fn threshold(a: SweepArgs) -> Result<u8, Error> {
         "bracket_width": BRACKET_WIDTH,
         "energy": t.energy,
         "energy_joules": joules.map(|j| j * t.energy),
-        "direct_peaks": t.direct_peaks,
+        "direct_values": t.direct_values,
         "direct_check": t.direct_check,
         "direct_check_max": impactlab::study::sweep::DIRECT_CHECK_MAX,
         "evaluations": t.evaluations,
@@ -338,9 +338,9 @@ fn threshold(a: SweepArgs) -> Result<u8, Error> {
         joules.map_or(String::new(), |j| format!(" = {:.6e} J", j * t.energy))
     ));
     sayln(&format!(
-        "  direct engine: peak {:.6e} below and {:.6e} at the threshold; engines agree to {:.1e} (max {:.0e})",
-        t.direct_peaks[0],
-        t.direct_peaks[1],
+        "  direct engine: {:.6e} below and {:.6e} at the threshold; engines agree to {:.1e} (max {:.0e})",
+        t.direct_values[0],
+        t.direct_values[1],
         t.direct_check,
         impactlab::study::sweep::DIRECT_CHECK_MAX
     ));

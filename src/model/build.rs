@@ -1065,12 +1065,6 @@ fn laminate_section(
             p.pid
         )));
     }
-    if p.ft.is_some() {
-        cx.warn(p.at.error(format!(
-            "PCOMP {}: FT (failure theory) is read, but failure indices are not computed",
-            p.pid
-        )));
-    }
     Some((
         ShellSection {
             thickness: lam.thickness,

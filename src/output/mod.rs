@@ -240,6 +240,20 @@ pub fn human_summary(model: &Model, run: &RunResult) -> String {
             if d.peak_over_critical >= 1.0 { ", reached" } else { "" }
         );
     }
+    if let Some(f) = &s.failure {
+        for i in std::iter::once(&f.theory).chain(&f.max_stress) {
+            out += &format!(
+                "  failure index {} {:.4} at {} (element {}, ply {} {}), first reaches 1 at {}\n",
+                i.name,
+                i.largest,
+                time(Some(i.time)),
+                i.element,
+                i.ply,
+                i.face,
+                i.first_reaches_one.map_or("never".into(), |t| time(Some(t)))
+            );
+        }
+    }
     out += &format!(
         "  impactor: v0 {} {velocity}, at rest at {}, rebound {} {velocity}\n",
         num(Some(s.impactor.initial_velocity)),

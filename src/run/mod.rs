@@ -510,6 +510,79 @@ fn ply_outputs(e: &crate::elements::Element, plies: &[crate::laminate::PlyLayer]
     }
 }
 
+/// The plies' failure indices over a run's history: for each written laminate element
+/// whose plies have criteria, every ply's bottom and top at every row, read from the
+/// history's ply strain and stress columns. `None` when no written ply has a criterion.
+fn failure_summary(model: &Model, columns: &[Column], rows: &[Vec<f64>]) -> Option<summary::FailureSummary> {
+    use crate::damage::Theory;
+    use crate::elements::Measure;
+    use summary::PlyIndex;
+    let at: std::collections::HashMap<Column, usize> = columns.iter().enumerate().map(|(k, c)| (*c, k)).collect();
+    // Per criterion slot (0: the FT theory, 1: maximum stress): its running result.
+    let mut found: [Option<PlyIndex>; 2] = [None, None];
+    let mut names: [Vec<&str>; 2] = [Vec::new(), Vec::new()];
+    for (e, plies) in &model.outputs.plies {
+        let eid = model.elements[*e].eid;
+        for (k, p) in plies.iter().enumerate() {
+            for face in [Face::Bottom, Face::Top] {
+                let col = |measure, axis| {
+                    at[&Column::Ply {
+                        eid,
+                        ply: k as u16 + 1,
+                        face,
+                        measure,
+                        axis,
+                    }]
+                };
+                let axes = [PlyAxis::P11, PlyAxis::P22, PlyAxis::P12];
+                let strain = axes.map(|a| col(Measure::Strain, a));
+                let stress = axes.map(|a| col(Measure::Stress, a));
+                for c in &p.criteria {
+                    let slot = usize::from(c.theory == Theory::MaxStress);
+                    if !names[slot].contains(&c.theory.name()) {
+                        names[slot].push(c.theory.name());
+                    }
+                    for row in rows {
+                        let v = |cols: [usize; 3]| nalgebra::Vector3::from_fn(|i, _| row[cols[i]]);
+                        let index = c.index(&v(strain), &v(stress));
+                        let time = row[0];
+                        let r = found[slot].get_or_insert_with(|| PlyIndex {
+                            largest: f64::NEG_INFINITY,
+                            ..Default::default()
+                        });
+                        if index > r.largest {
+                            *r = PlyIndex {
+                                largest: index,
+                                time,
+                                element: eid,
+                                ply: k as u16 + 1,
+                                face: match face {
+                                    Face::Bottom => "bottom",
+                                    Face::Top => "top",
+                                }
+                                .into(),
+                                ..std::mem::take(r)
+                            };
+                        }
+                        if index >= 1.0 && r.first_reaches_one.is_none_or(|t| time < t) {
+                            r.first_reaches_one = Some(time);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    let [theory, max_stress] = found;
+    let name = |mut r: PlyIndex, n: &[&str]| {
+        r.name = n.join("+");
+        r
+    };
+    Some(summary::FailureSummary {
+        theory: name(theory?, &names[0]),
+        max_stress: max_stress.map(|r| name(r, &names[1])),
+    })
+}
+
 /// The contact quantities of a history row.
 struct RowHead {
     time: f64,
@@ -769,6 +842,7 @@ fn summarize(model: &Model, run: &RunResult, tripped: Option<GuardTrip>, opts: &
                 onset,
             })
         }),
+        failure: failure_summary(model, &run.history_columns, &run.history),
         effects: None,
         contact_stiffness_source: None,
     }

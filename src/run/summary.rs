@@ -48,6 +48,10 @@ pub struct Summary {
     /// given the interface's toughness G_IIc.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub delamination: Option<DelaminationSummary>,
+    /// The plies' failure indices, when a written laminate element's PCOMP names a
+    /// failure theory (FT).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub failure: Option<FailureSummary>,
     /// For a scene: which effects were simulated and which were not, and why.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub effects: Option<crate::scene::EffectReport>,
@@ -65,6 +69,36 @@ pub struct DelaminationSummary {
     pub onset: crate::damage::DelaminationOnset,
     /// Peak contact force / F_crit: at least 1 when the threshold is reached.
     pub peak_over_critical: f64,
+}
+
+/// The plies' failure indices ([`crate::damage`]) over the written laminate elements
+/// (the STRESS/STRAIN set), every ply's bottom and top, every history row.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct FailureSummary {
+    /// The index of the theory each ply's PCOMP names (FT).
+    pub theory: PlyIndex,
+    /// The maximum-stress index, where the allowables are stresses.
+    pub max_stress: Option<PlyIndex>,
+}
+
+/// Where a failure index was largest, and when it first reached 1.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct PlyIndex {
+    /// The theory (FT's word, or MAXSTRESS); several joined by `+` when the
+    /// laminates name different ones.
+    pub name: String,
+    /// The largest index.
+    pub largest: f64,
+    /// When it was largest.
+    pub time: f64,
+    /// In which element.
+    pub element: i64,
+    /// In which ply, from 1 at the bottom.
+    pub ply: u16,
+    /// On the ply's `bottom` or `top` surface.
+    pub face: String,
+    /// The first time any ply's index reached 1; null when none did.
+    pub first_reaches_one: Option<f64>,
 }
 
 /// The deck's unit system, as its `$ Units:` line declares it, or "unspecified".
@@ -245,6 +279,10 @@ impl Summary {
         Summary {
             rod: Some(RodSummary::default()),
             delamination: Some(DelaminationSummary::default()),
+            failure: Some(FailureSummary {
+                max_stress: Some(PlyIndex::default()),
+                ..Default::default()
+            }),
             ..Default::default()
         }
     }

@@ -1,12 +1,17 @@
 //! The threshold impact velocity: the lowest impact speed at which the run's peak
-//! contact force reaches a given force, or the plate's delamination threshold
-//! ([`crate::damage`]), found by bisection on the convolution engine and checked on the
-//! direct engine.
+//! contact force reaches a given force or the plate's delamination threshold, or the
+//! plies' largest failure index reaches a level ([`crate::damage`]), found by
+//! bisection on the convolution engine and checked on the direct engine.
 //!
 //! The peak force of a Hertz impact on a linear target grows with the impact speed
 //! (the target's response is linear in the contact force and the contact law is
 //! monotone), so a bracket [v_lo, v_hi] with the peak below the target force at v_lo
-//! and at or above it at v_hi contains exactly one crossing. From the deck's speed the
+//! and at or above it at v_hi contains exactly one crossing. A failure index is read
+//! from ply stresses that grow with the force; the search assumes its largest value
+//! over the run grows with the speed too (true of HILL, a positive quadratic form of
+//! stresses that scale together, and of the maximum ratios; HOFF's and TSAI's linear
+//! terms could in principle break it) and the direct check confirms the bracket it
+//! finds. From the deck's speed the
 //! bracket is found by halving or doubling, then bisected until its width is below
 //! 1e-6 of v_hi: each evaluation is one run on the convolution engine (the kernels are
 //! computed once), so the whole search costs about one direct run. Both ends of the
@@ -34,22 +39,41 @@ pub enum Until {
     /// The peak contact force reaches the plate's delamination threshold F_crit
     /// (needs the run's G_IIc).
     Delamination,
+    /// The largest failure index of the theory the plies' PCOMP names (FT), over the
+    /// written laminate elements, reaches this level.
+    FailureIndex(f64),
 }
 
 impl Until {
-    /// Reads `peak_force=F` or `delamination`.
+    /// Reads `peak_force=F`, `delamination` or `failure_index=L`.
     pub fn parse(text: &str) -> Result<Until, Error> {
+        let positive = |what: &str, x: &str| match x.trim().parse::<f64>() {
+            Ok(x) if x > 0.0 && x.is_finite() => Ok(x),
+            _ => Err(Error::Usage(format!(
+                "--until {text}: the {what} must be a positive number"
+            ))),
+        };
         match text.split_once('=') {
             None if text == "delamination" => Ok(Until::Delamination),
-            Some(("peak_force", f)) => match f.trim().parse::<f64>() {
-                Ok(f) if f > 0.0 && f.is_finite() => Ok(Until::PeakForce(f)),
-                _ => Err(Error::Usage(format!(
-                    "--until {text}: the force must be a positive number"
-                ))),
-            },
+            Some(("peak_force", f)) => positive("force", f).map(Until::PeakForce),
+            Some(("failure_index", f)) => positive("index", f).map(Until::FailureIndex),
             _ => Err(Error::Usage(format!(
-                "--until {text}: expected peak_force=F or delamination (failure indices need ply results, not yet computed)"
+                "--until {text}: expected peak_force=F, delamination or failure_index=L"
             ))),
+        }
+    }
+
+    /// The quantity of a run the search compares with the target.
+    fn measure(&self, run: &RunResult) -> Result<f64, Error> {
+        match self {
+            Until::PeakForce(_) | Until::Delamination => Ok(run.summary.contact.peak_force),
+            Until::FailureIndex(_) => run.summary.failure.as_ref().map(|f| f.theory.largest).ok_or_else(|| {
+                Error::Usage(
+                    "--until failure_index needs failure indices: a PCOMP with FT and allowables, and its \
+                     elements in the deck's STRESS or STRAIN set"
+                        .into(),
+                )
+            }),
         }
     }
 }
@@ -57,9 +81,10 @@ impl Until {
 /// The threshold found.
 #[derive(Debug, Clone)]
 pub struct Threshold {
-    /// The force the peak had to reach.
-    pub target_force: f64,
-    /// What that force is (the given force, or F_crit with its formula).
+    /// The value the measure had to reach: a force, or a failure index.
+    pub target_value: f64,
+    /// What the measure is and what its target is (the given force, F_crit with its
+    /// formula, or the index level).
     pub target: String,
     /// The final bracket [v_lo, v_hi] of the impact speed: below at v_lo, reached at v_hi.
     pub bracket: [f64; 2],
@@ -69,8 +94,9 @@ pub struct Threshold {
     pub energy: f64,
     /// The impactor's mass.
     pub mass: f64,
-    /// Peak forces at v_lo and v_hi on the direct engine.
-    pub direct_peaks: [f64; 2],
+    /// The measure (peak force, or largest failure index) at v_lo and v_hi on the
+    /// direct engine.
+    pub direct_values: [f64; 2],
     /// The engines' largest difference at the two ends, relative to each quantity's peak.
     pub direct_check: f64,
     /// Runs on the convolution engine.
@@ -79,14 +105,15 @@ pub struct Threshold {
     pub times_s: [f64; 3],
 }
 
-/// Finds the impact speed at which the peak contact force reaches `until`'s force.
+/// Finds the impact speed at which the run's measure reaches `until`'s target.
 pub fn find_velocity(base: &Model, run: &RunOptions, until: Until, bar: &ProgressBar) -> Result<Threshold, Error> {
     let ct = base
         .contact
         .as_ref()
         .ok_or_else(|| Error::Usage("a threshold search needs a model with a contact".into()))?;
-    let (target_force, target) = match until {
+    let (target_value, target) = match until {
         Until::PeakForce(f) => (f, format!("peak force {f:.6e}")),
+        Until::FailureIndex(level) => (level, format!("largest failure index (PCOMP FT) {level}")),
         Until::Delamination => {
             let g = run.interlaminar_toughness.ok_or_else(|| {
                 Error::Usage("--until delamination needs the interface's toughness: --giic G_IIc".into())
@@ -139,12 +166,9 @@ pub fn find_velocity(base: &Model, run: &RunOptions, until: Until, bar: &Progres
     let mut peak = |v: f64| -> Result<f64, Error> {
         evaluations += 1;
         bar.inc(1);
-        Ok(guarded(kernels.run(&point(v)?, &conv_opts, &ProgressBar::hidden()))?
-            .summary
-            .contact
-            .peak_force)
+        until.measure(&guarded(kernels.run(&point(v)?, &conv_opts, &ProgressBar::hidden()))?)
     };
-    let reached = |f: f64| f >= target_force;
+    let reached = |f: f64| f >= target_value;
     let (mut lo, mut hi) = (v_deck, v_deck);
     if reached(peak(v_deck)?) {
         lo /= 2.0;
@@ -155,7 +179,7 @@ pub fn find_velocity(base: &Model, run: &RunOptions, until: Until, bar: &Progres
             k += 1;
             if k == MAX_BRACKET_STEPS {
                 return Err(Error::Usage(format!(
-                    "the peak force reaches {target_force:e} even at {lo:e}: no threshold above zero speed"
+                    "the measure reaches {target_value:e} even at {lo:e}: no threshold above zero speed"
                 )));
             }
         }
@@ -168,7 +192,7 @@ pub fn find_velocity(base: &Model, run: &RunOptions, until: Until, bar: &Progres
             k += 1;
             if k == MAX_BRACKET_STEPS {
                 return Err(Error::Usage(format!(
-                    "the peak force stays below {target_force:e} up to {hi:e}"
+                    "the measure stays below {target_value:e} up to {hi:e}"
                 )));
             }
         }
@@ -183,31 +207,31 @@ pub fn find_velocity(base: &Model, run: &RunOptions, until: Until, bar: &Progres
     }
     let search_s = t1.elapsed().as_secs_f64();
     let t2 = std::time::Instant::now();
-    let mut direct_peaks = [0.0; 2];
+    let mut direct_values = [0.0; 2];
     let mut direct_check = 0.0f64;
     for (k, v) in [lo, hi].into_iter().enumerate() {
         let m = point(v)?;
         let direct = guarded(run_model(&m, &direct_opts))?;
         let conv = guarded(kernels.run(&m, &conv_opts, &ProgressBar::hidden()))?;
         direct_check = direct_check.max(engine_difference(&direct, &conv).map_or(f64::INFINITY, |w| w.0));
-        direct_peaks[k] = direct.summary.contact.peak_force;
+        direct_values[k] = until.measure(&direct)?;
     }
-    if direct_check > DIRECT_CHECK_MAX || reached(direct_peaks[0]) || !reached(direct_peaks[1]) {
+    if direct_check > DIRECT_CHECK_MAX || reached(direct_values[0]) || !reached(direct_values[1]) {
         return Err(Error::Stopped(format!(
             "the direct engine does not confirm the threshold bracket [{lo:e}, {hi:e}]: engines differ by \
-             {direct_check:e} (at most {DIRECT_CHECK_MAX:e}), direct peaks {:e} and {:e} against {target_force:e}",
-            direct_peaks[0], direct_peaks[1]
+             {direct_check:e} (at most {DIRECT_CHECK_MAX:e}), direct values {:e} and {:e} against {target_value:e}",
+            direct_values[0], direct_values[1]
         )));
     }
     let velocity = 0.5 * (lo + hi);
     Ok(Threshold {
-        target_force,
+        target_value,
         target,
         bracket: [lo, hi],
         velocity,
         energy: 0.5 * ct.impactor.mass * velocity * velocity,
         mass: ct.impactor.mass,
-        direct_peaks,
+        direct_values,
         direct_check,
         evaluations,
         times_s: [pass_s, search_s, t2.elapsed().as_secs_f64()],
