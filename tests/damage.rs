@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{deck, rod_model, root};
+use common::{deck, hill, pcomp_with_ft, rod_model, root, ALLOWABLES};
 use impactlab::run::{run_model, RunOptions};
 use impactlab::study::threshold::{find_velocity, Until, BRACKET_WIDTH};
 use indicatif::ProgressBar;
@@ -140,25 +140,6 @@ fn delamination_threshold_in_the_summary_and_as_a_threshold_speed() {
     refused(&["run", p, "--giic", "0"], "--giic must be a positive number");
 }
 
-/// The paper's plate as its cross-ply PCOMP (reference-data/decks/plate-pcomp.bdf) with
-/// FT = `ft` and its MAT8's allowables and interaction term as given (continuation
-/// lines of the MAT8 card), written into `dir` beside its mesh.
-fn pcomp_with_ft(dir: &std::path::Path, ft: &str, mat8_continuation: &str) -> std::path::PathBuf {
-    let text = std::fs::read_to_string(deck("plate-pcomp.bdf")).unwrap();
-    let mat8 = "MAT8,8,5.735+6,1.2855+6,0.2231,5.7+5,,,1.8-4";
-    assert!(text.contains(mat8) && text.contains("PCOMP,1,,,,,,,,+P0"));
-    let text = text
-        .replace("PCOMP,1,,,,,,,,+P0", &format!("PCOMP,1,,,,{ft},,,,+P0"))
-        .replace(mat8, &format!("{mat8},+M1\n+M1,{mat8_continuation}"));
-    let out = dir.join(format!("plate-{}.bdf", ft.to_lowercase()));
-    std::fs::write(&out, text).unwrap();
-    std::fs::copy(deck("plate-mesh-49x49.bdf"), dir.join("plate-mesh-49x49.bdf")).unwrap();
-    out
-}
-
-/// Glass/epoxy allowables (psi): A1, A2, TREF blank, then Xt, Xc, Yt, Yc, S.
-const ALLOWABLES: &str = ",,,1.54+5,8.85+4,4.5+3,1.71+4,1.04+4";
-
 /// Goal: the summary's failure indices are the theory applied to the ply stresses the
 /// run writes. From `history.csv` alone, by its header names, this test computes
 /// Tsai-Hill (X by the sign of σ1, Y by that of σ2) and the maximum-stress ratio at
@@ -189,8 +170,8 @@ fn failure_indices_are_the_theory_on_the_written_ply_stresses() {
         .collect();
     let (xt, xc, yt, yc, sh) = (1.54e5, 8.85e4, 4.5e3, 1.71e4, 1.04e4);
     // (index, time, element, ply, face) of the largest, and the first time ≥ 1.
-    let mut hill = (f64::MIN, 0.0, String::new(), String::new(), String::new());
-    let mut most = hill.clone();
+    let mut best_hill = (f64::MIN, 0.0, String::new(), String::new(), String::new());
+    let mut most = best_hill.clone();
     let (mut first_hill, mut first_most) = (f64::INFINITY, f64::INFINITY);
     let mut points = 0;
     for (k, h) in headers.iter().enumerate() {
@@ -207,13 +188,11 @@ fn failure_indices_are_the_theory_on_the_written_ply_stresses() {
         assert_eq!(headers[k + 2], format!("ply_stress_{rest}_12 [lbf/in^2]"));
         for row in &rows {
             let (s1, s2, t) = (row[k], row[k + 1], row[k + 2]);
-            let x = if s1 >= 0.0 { xt } else { xc };
-            let y = if s2 >= 0.0 { yt } else { yc };
-            let h_index = (s1 * s1 - s1 * s2) / (x * x) + (s2 / y).powi(2) + (t / sh).powi(2);
+            let h_index = hill(s1, s2, t);
             let ratio = |v: f64, tension: f64, compression: f64| if v >= 0.0 { v / tension } else { -v / compression };
             let m_index = ratio(s1, xt, xc).max(ratio(s2, yt, yc)).max(t.abs() / sh);
             for (index, best, first) in [
-                (h_index, &mut hill, &mut first_hill),
+                (h_index, &mut best_hill, &mut first_hill),
                 (m_index, &mut most, &mut first_most),
             ] {
                 if index > best.0 {
@@ -228,9 +207,10 @@ fn failure_indices_are_the_theory_on_the_written_ply_stresses() {
     // 3 written elements × 15 plies × bottom and top.
     assert_eq!(points, 90);
     let f = &s["failure"];
-    for (key, (index, time, eid, ply, face), first) in
-        [("theory", hill.clone(), first_hill), ("max_stress", most, first_most)]
-    {
+    for (key, (index, time, eid, ply, face), first) in [
+        ("theory", best_hill.clone(), first_hill),
+        ("max_stress", most, first_most),
+    ] {
         let got = &f[key];
         assert!(
             (got["largest"].as_f64().unwrap() / index - 1.0).abs() < 1e-12,
@@ -254,7 +234,7 @@ fn failure_indices_are_the_theory_on_the_written_ply_stresses() {
     assert_eq!(f["max_stress"]["name"], "MAXSTRESS");
     // The struck plate fails its first ply at the paper's impact: a point load's plate
     // stresses under the impactor (see the README on what they are worth).
-    assert!(hill.0 > 1.0, "{hill:?}");
+    assert!(best_hill.0 > 1.0, "{best_hill:?}");
 }
 
 /// Goal: a failure theory whose allowables are missing is an input error (exit 2) that

@@ -191,6 +191,7 @@ fn plate_fields_trace_back_to_the_deck() {
         .all(|s| s.is_finite() && *s != 0.0));
     let names: Vec<&String> = v.point.keys().chain(v.cell.keys()).collect();
     assert!(names.iter().all(|n| !n.contains('[')), "no units in names: {names:?}");
+    assert!(!v.cell.contains_key("failure_index"), "no FT, no failure index");
     let text = std::fs::read_to_string(&files[0]).unwrap();
     for (name, unit) in [
         ("time_unit", "s"),
@@ -251,4 +252,57 @@ fn a_pulse_sampled_too_coarsely_is_not_drawn() {
     case.every_step = true;
     let outcome = impactlab::study::cases::evaluate(&case).unwrap();
     assert!(impactlab::report::report_case(&outcome, dir.path()).is_ok());
+}
+
+/// Goal: a laminate whose PCOMP names FT gets a `failure_index` cell array: each
+/// element's largest index of that theory over its plies' bottoms and tops at the
+/// snapshot, the ball's vertex NaN. The struck element's value is Tsai-Hill computed
+/// here from the history's ply stresses at the snapshot's time. Model: the paper's
+/// plate as its cross-ply, FT = HILL, 60 steps, a snapshot at 50 Δt.
+#[test]
+fn laminate_fields_give_each_elements_largest_failure_index() {
+    use impactlab::elements::Measure;
+    use impactlab::report::fields::write_fields;
+    use impactlab::run::{Column, Face, PlyAxis};
+    let dir = tempfile::tempdir().unwrap();
+    let path = common::pcomp_with_ft(dir.path(), "HILL", common::ALLOWABLES);
+    let (m, _) = impactlab::load_deck(&path, Default::default()).unwrap();
+    let time = 50.0 * m.time.dt;
+    let opts = impactlab::run::RunOptions {
+        steps: Some(60),
+        snapshot_times: vec![time],
+        ..Default::default()
+    };
+    let r = impactlab::run::run_model(&m, &opts).unwrap();
+    let files = write_fields(&m, &r, &dir.path().join("fields")).unwrap();
+    let v = read_vtu(&files[0]);
+    let cells = &v.cell["element_id"];
+    let index = &v.cell["failure_index"];
+    let at = |eid: f64| cells.iter().position(|e| *e == eid).unwrap();
+    assert!(index[at(200.0)].is_nan(), "the ball has no plies");
+    let times = r.column_values(&Column::Time).unwrap();
+    let row = times.iter().position(|t| (t - time).abs() < 1e-3 * m.time.dt).unwrap();
+    let mut largest = f64::MIN;
+    for ply in 1..=15 {
+        for face in [Face::Bottom, Face::Top] {
+            let s = [PlyAxis::P11, PlyAxis::P22, PlyAxis::P12].map(|axis| {
+                r.column_values(&Column::Ply {
+                    eid: 2525,
+                    ply,
+                    face,
+                    measure: Measure::Stress,
+                    axis,
+                })
+                .unwrap()[row]
+            });
+            largest = largest.max(common::hill(s[0], s[1], s[2]));
+        }
+    }
+    let got = index[at(2525.0)];
+    assert!(
+        largest > 0.0 && (got / largest - 1.0).abs() < 1e-12,
+        "{got} against {largest}"
+    );
+    // Every plate element has plies with a criterion.
+    assert_eq!(index.iter().filter(|x| x.is_finite()).count(), 49 * 49);
 }

@@ -710,6 +710,13 @@ fn output_plan(
         .into_iter()
         .filter_map(|e| Some((e, built.plies.get(&e)?.clone())))
         .collect();
+    outputs.failure_fields = built
+        .plies
+        .iter()
+        .filter(|(_, p)| p.iter().any(|l| !l.criteria.is_empty()))
+        .map(|(e, p)| (*e, p.clone()))
+        .collect();
+    outputs.failure_fields.sort_by_key(|(e, _)| *e);
     if case.outputs.contains_key("ACCEL") {
         cx.warn(Diagnostic::warning(
             case.outputs.get("ACCEL").map(|r| r.pos.clone()),

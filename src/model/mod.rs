@@ -184,6 +184,9 @@ pub struct OutputPlan {
     /// The laminate (PCOMP) elements among those, with their plies: their ply strains
     /// and stresses are written too.
     pub plies: Vec<(usize, PlyStack)>,
+    /// Every laminate element whose plies have failure criteria (PCOMP FT), with its
+    /// plies: the field output gives each its largest index.
+    pub failure_fields: Vec<(usize, PlyStack)>,
 }
 
 /// A laminate's plies as its results need them, shared by the elements of one PCOMP.

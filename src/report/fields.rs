@@ -5,7 +5,9 @@
 //! `displacement` and `velocity` (translations). Cell data: `element_id` and the
 //! strains the element recovers (`axial_strain` for rods; `strain_z1`, `strain_z2`
 //! with components xx, yy, xy for shells), NaN where an element recovers no such
-//! value. Every element is drawn: CONM2 masses, the impactor among them, as vertices
+//! value; when a laminate's PCOMP names a failure theory, `failure_index`: each
+//! element's largest index of that theory over its plies' bottoms and tops (NaN for
+//! elements without one). Every element is drawn: CONM2 masses, the impactor among them, as vertices
 //! at their grid. Array names carry no units; the field data does: `TimeValue`,
 //! `time_unit`, `displacement_unit`, `velocity_unit`, with the model's name and the
 //! deck's SHA-256.
@@ -268,6 +270,29 @@ impl<'m> Mesh<'m> {
             values: Values::I64(self.cells.iter().map(|e| e.eid).collect()),
             field: false,
         }];
+        if !model.outputs.failure_fields.is_empty() {
+            let stacks: HashMap<i64, &crate::model::PlyStack> = model
+                .outputs
+                .failure_fields
+                .iter()
+                .map(|(e, p)| (model.elements[*e].eid, p))
+                .collect();
+            let v = self
+                .cells
+                .iter()
+                .map(|e| {
+                    stacks
+                        .get(&e.eid)
+                        .map_or(f64::NAN, |p| crate::run::largest_failure_index(e, p, &s.u))
+                })
+                .collect();
+            cell.push(Array {
+                name: "failure_index",
+                components: &[],
+                values: Values::F64(v),
+                field: false,
+            });
+        }
         for a in &self.layout {
             let v = a
                 .columns

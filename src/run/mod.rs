@@ -476,6 +476,27 @@ fn linear_outputs(m: &Model, u: &[f64], v: &[f64]) -> Vec<f64> {
     out
 }
 
+/// The largest failure index of the theory its PCOMP names (FT) over a laminate
+/// element's plies, bottom and top, at displacements `u` (NaN when its plies have no
+/// criterion).
+pub fn largest_failure_index(e: &crate::elements::Element, plies: &[crate::laminate::PlyLayer], u: &[f64]) -> f64 {
+    let mut values = Vec::new();
+    ply_outputs(e, plies, u, &mut values);
+    let v = |k: usize| nalgebra::Vector3::new(values[k], values[k + 1], values[k + 2]);
+    plies
+        .iter()
+        .enumerate()
+        .flat_map(|(p, layer)| {
+            let v = &v;
+            layer
+                .criteria
+                .iter()
+                .filter(|c| c.theory != crate::damage::Theory::MaxStress)
+                .flat_map(move |c| (0..2).map(move |face| c.index(&v(12 * p + 6 * face), &v(12 * p + 6 * face + 3))))
+        })
+        .fold(f64::NAN, f64::max)
+}
+
 /// The ply strains and stresses of a laminate element, in [`Column::plies`] order:
 /// its mid-plane strain and curvature from the fibre strains its kernel recovers at
 /// z = ∓T/2 (ε⁰ = (ε₁ + ε₂)/2, κ = (ε₂ − ε₁)/T), then each ply's

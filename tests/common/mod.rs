@@ -63,3 +63,31 @@ pub fn deck_errors(text: &str) -> Vec<String> {
 pub fn bulk_errors(bulk: &str) -> Vec<String> {
     deck_errors(&format!("{BULK_HEAD}{bulk}\nENDDATA\n"))
 }
+
+/// The paper's plate as its cross-ply PCOMP (reference-data/decks/plate-pcomp.bdf) with
+/// FT = `ft` and its MAT8's allowables and interaction term as given (continuation
+/// lines of the MAT8 card), written into `dir` beside its mesh.
+pub fn pcomp_with_ft(dir: &std::path::Path, ft: &str, mat8_continuation: &str) -> std::path::PathBuf {
+    let text = std::fs::read_to_string(deck("plate-pcomp.bdf")).unwrap();
+    let mat8 = "MAT8,8,5.735+6,1.2855+6,0.2231,5.7+5,,,1.8-4";
+    assert!(text.contains(mat8) && text.contains("PCOMP,1,,,,,,,,+P0"));
+    let text = text
+        .replace("PCOMP,1,,,,,,,,+P0", &format!("PCOMP,1,,,,{ft},,,,+P0"))
+        .replace(mat8, &format!("{mat8},+M1\n+M1,{mat8_continuation}"));
+    let out = dir.join(format!("plate-{}.bdf", ft.to_lowercase()));
+    std::fs::write(&out, text).unwrap();
+    std::fs::copy(deck("plate-mesh-49x49.bdf"), dir.join("plate-mesh-49x49.bdf")).unwrap();
+    out
+}
+
+/// Glass/epoxy allowables (psi): A1, A2, TREF blank, then Xt, Xc, Yt, Yc, S.
+pub const ALLOWABLES: &str = ",,,1.54+5,8.85+4,4.5+3,1.71+4,1.04+4";
+
+/// Tsai-Hill's index of a ply stress under [`ALLOWABLES`] (X by the sign of σ1, Y by
+/// that of σ2), written out here apart from the library's.
+pub fn hill(s1: f64, s2: f64, t: f64) -> f64 {
+    let (xt, xc, yt, yc, sh) = (1.54e5, 8.85e4, 4.5e3, 1.71e4, 1.04e4);
+    let x = if s1 >= 0.0 { xt } else { xc };
+    let y = if s2 >= 0.0 { yt } else { yc };
+    (s1 * s1 - s1 * s2) / (x * x) + (s2 / y).powi(2) + (t / sh).powi(2)
+}
