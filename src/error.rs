@@ -46,6 +46,9 @@ pub enum Error {
     /// Field files could not be written.
     #[error("{0}")]
     Fields(#[from] crate::report::fields::FieldsError),
+    /// The mutation campaign's page could not be made.
+    #[error("{0}")]
+    Mutants(#[from] crate::study::mutants::MutantsError),
     /// A command-line option is invalid.
     #[error("invalid option: {0}")]
     Usage(String),
@@ -78,6 +81,7 @@ impl Error {
             | Error::Plot(_)
             | Error::Audit(_)
             | Error::Fields(_)
+            | Error::Mutants(_)
             | Error::Usage(_)
             | Error::Io { .. }
             | Error::Run(crate::run::RunError::Input(_)) => 2,

@@ -142,6 +142,18 @@ pub enum StudyKind {
         #[arg(long)]
         redraw: bool,
     },
+    /// The mutation campaign's page (reports/mutants): made from campaign.toml and each
+    /// run's CSV; with --from, a cargo-mutants output directory is first recorded as a run.
+    Mutants {
+        /// A cargo-mutants output directory (mutants.out) to record.
+        #[arg(long, requires = "run")]
+        from: Option<PathBuf>,
+        /// The run's name in campaign.toml (its CSV's stem).
+        #[arg(long)]
+        run: Option<String>,
+        #[arg(long, default_value = "reports/mutants")]
+        out: PathBuf,
+    },
     /// Stability map: the rod over Δt × impact velocity, per scheme.
     Stability {
         #[arg(long, default_value = "reports/stability")]

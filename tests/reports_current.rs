@@ -60,6 +60,20 @@ fn mesh_study_page_and_figures_are_current() {
     assert_svgs_current(&figs, &dir);
 }
 
+/// Goal: `reports/mutants/README.md` is what `impactlab study mutants` makes from the
+/// committed `campaign.toml` and runs' CSVs (which refuses a survivor without a verdict
+/// that holds), and every run the campaign names has its CSV.
+#[test]
+fn mutants_page_is_current() {
+    let dir = root().join("reports/mutants");
+    let page = impactlab::study::mutants::page(&dir).unwrap();
+    assert_eq!(
+        page,
+        std::fs::read_to_string(dir.join("README.md")).unwrap(),
+        "reports/mutants/README.md is stale: `impactlab study mutants`"
+    );
+}
+
 /// Goal: `reports/accuracy/` holds exactly what `impactlab study accuracy` makes from
 /// its committed `work-precision.csv`: the README (method, conclusions, tables) and
 /// every figure, nothing else.

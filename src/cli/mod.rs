@@ -426,6 +426,11 @@ pub fn study(what: StudyKind) -> Result<u8, Error> {
             say(&String::from_utf8_lossy(&mesh::csv(&rows)));
             sayln(&format!("outputs: {}", out.display()));
         }
+        StudyKind::Mutants { from, run, out } => {
+            let from = from.as_deref().zip(run.as_deref());
+            impactlab::study::mutants::write(&out, from)?;
+            sayln(&format!("page: {}", out.join("README.md").display()));
+        }
         StudyKind::Stability { out } => {
             use impactlab::study::stability;
             let model = impactlab::paper::rod_model()?;

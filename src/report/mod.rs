@@ -934,8 +934,8 @@ pub fn html_pages(dir: &Path, index_md: &str) -> Vec<(PathBuf, String)> {
 pub fn index(dir: &Path) -> String {
     let mut m = String::from(
         "# Reports\n\nRegenerate with `cargo run --release -- report` (all cases in `verification/` that run a \
-         deck); the studies with `impactlab study accuracy`, `impactlab study mesh` and `impactlab study \
-         stability`.\n\n\
+         deck); the studies with `impactlab study accuracy`, `impactlab study mesh`, `impactlab study \
+         stability` and `impactlab study mutants`.\n\n\
          | case | checks passed | failed | report |\n|---|---|---|---|\n",
     );
     let mut cases: Vec<(String, String)> = std::fs::read_dir(dir)

@@ -283,6 +283,7 @@ pub(crate) fn in_parallel<T: Send>(jobs: usize, count: usize, task: impl Fn(usiz
 }
 
 pub mod accuracy;
+pub mod mutants;
 pub mod stability;
 pub mod sweep;
 pub mod threshold;
