@@ -4,13 +4,6 @@ mod common;
 use common::*;
 use std::process::Command;
 
-fn impactlab(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_impactlab"))
-        .args(args)
-        .output()
-        .expect("binary runs")
-}
-
 /// Goal: times are printed in the deck's own time unit and every printed value
 /// carries its unit. Model: the rod deck relabelled `$ Units: mm, kN, ms` (the same
 /// numbers: impactlab never converts, so the contact lasts 7.442e-5 ms).

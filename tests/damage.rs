@@ -3,19 +3,10 @@
 
 mod common;
 
-use common::{deck, hill, pcomp_with_ft, rod_model, root, ALLOWABLES};
+use common::{deck, hill, impactlab, pcomp_with_ft, rod_model, ALLOWABLES};
 use impactlab::run::{run_model, RunOptions};
 use impactlab::study::threshold::{find_velocity, Until, BRACKET_WIDTH};
 use indicatif::ProgressBar;
-use std::process::Command;
-
-fn impactlab(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_impactlab"))
-        .args(args)
-        .current_dir(root())
-        .output()
-        .expect("impactlab runs")
-}
 
 /// Goal: the search inverts the run. Asked for the very peak force the deck's own
 /// impact gives (direct engine), the threshold speed is the deck's speed to the

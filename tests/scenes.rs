@@ -4,17 +4,8 @@
 
 mod common;
 
-use common::root;
+use common::{impactlab, root};
 use impactlab::run::run_model;
-use std::process::Command;
-
-fn impactlab(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_impactlab"))
-        .args(args)
-        .current_dir(root())
-        .output()
-        .unwrap()
-}
 
 fn scene_text(name: &str) -> String {
     std::fs::read_to_string(root().join("verification/scenes").join(name)).unwrap()

@@ -5,18 +5,9 @@
 
 mod common;
 
-use common::root;
+use common::{impactlab, root};
 use impactlab::verify::{self, Case};
 use std::path::Path;
-use std::process::Command;
-
-fn impactlab(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_impactlab"))
-        .args(args)
-        .current_dir(root())
-        .output()
-        .expect("impactlab runs")
-}
 
 fn cases() -> Vec<Case> {
     verify::case_files(&[root().join("verification")])

@@ -10,6 +10,15 @@ pub fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
+/// Runs the `impactlab` binary from the project's root.
+pub fn impactlab(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_impactlab"))
+        .args(args)
+        .current_dir(root())
+        .output()
+        .expect("impactlab runs")
+}
+
 pub fn deck(name: &str) -> PathBuf {
     root().join("reference-data/decks").join(name)
 }
