@@ -133,7 +133,7 @@ pub enum StudyKind {
     /// The plate on several meshes (generated): contact duration, peak force, gage strains.
     Mesh {
         /// Mesh sizes (elements per side, odd).
-        #[arg(long, value_delimiter = ',', default_values_t = [25, 49, 61])]
+        #[arg(long, value_delimiter = ',', default_values_t = impactlab::study::mesh::MESHES)]
         n: Vec<usize>,
         /// Output directory: mesh-study.csv, mesh-histories.csv, README.md and figures.
         #[arg(long, default_value = "reports/mesh")]

@@ -44,8 +44,8 @@ fn mesh_study_page_and_figures_are_current() {
     let samples: Vec<mesh::Sample> = mesh::read_csv(&hist_csv).unwrap();
     assert_eq!(
         rows.iter().map(|r| r.n).collect::<Vec<_>>(),
-        mesh::PAPER_MESHES,
-        "the paper's meshes"
+        mesh::MESHES,
+        "the study's meshes"
     );
     assert_eq!(mesh::csv(&rows), rows_csv, "mesh-study.csv reads back to itself");
     assert_eq!(mesh::csv(&samples), hist_csv, "mesh-histories.csv reads back to itself");
