@@ -284,6 +284,11 @@ impl Laminate {
         self.d * (12.0 / self.thickness.powi(3))
     }
 
+    /// The membrane-bending coupling as B/t² (NASTRAN's MID4).
+    pub fn coupling_material(&self) -> Matrix3<f64> {
+        self.b / self.thickness.powi(2)
+    }
+
     /// The membrane stiffness as A/t (NASTRAN's MID1).
     pub fn membrane_material(&self) -> Matrix3<f64> {
         self.a / self.thickness

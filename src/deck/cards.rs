@@ -128,6 +128,9 @@ pub struct Pshell {
     pub bend_ratio: f64,
     /// Transverse shear material MID3 (field 7); `None` when blank.
     pub mid3: Option<i64>,
+    /// Membrane-bending coupling material MID4 (the continuation's field 4, after Z1 and Z2);
+    /// `None` when blank.
+    pub mid4: Option<i64>,
     /// Non-structural mass per unit area, NSM (field 9).
     pub nsm: f64,
     /// The card.
@@ -824,15 +827,13 @@ fn card_pshell(r: &mut Reader, b: &mut Bulk) {
         mid2: r.int_opt(3, "MID2"),
         bend_ratio: r.real_or(4, "12I/T**3", 1.0),
         mid3: r.int_opt(5, "MID3"),
+        mid4: r.int_opt(10, "MID4"),
         nsm: r.real_or(7, "NSM", 0.0),
         at: r.at(),
     };
     r.real_opt(6, "TS/T");
     r.positive(2, "T", p.t);
     r.positive(4, "12I/T**3", p.bend_ratio);
-    if r.int_opt(10, "MID4").is_some() {
-        r.fail(10, "MID4", "membrane-bending coupling material is not supported");
-    }
     if r.ok {
         b.pshells.push(p);
     }

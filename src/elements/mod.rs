@@ -289,6 +289,7 @@ mod tests {
             thickness: 0.15,
             g_membrane: Some(g),
             g_bending: Some(g * 1.3),
+            g_coupling: None,
             mass_per_area: 2.7e-5,
         };
         vec![
@@ -299,7 +300,18 @@ mod tests {
             Box::new(quad4::Quad4::new(
                 [[0.0, 0.0], [2.0, 0.3], [2.4, 1.7], [0.3, 1.2]],
                 0.0,
-                shell,
+                shell.clone(),
+            )),
+            // An unsymmetric laminate's: membrane and bending coupled.
+            Box::new(quad4::Quad4::new(
+                [[0.0, 0.0], [2.0, 0.3], [2.4, 1.7], [0.3, 1.2]],
+                0.0,
+                quad4::ShellSection {
+                    g_coupling: Some(Matrix3::new(
+                        3.0e5, 1.0e4, 2.0e4, 1.0e4, -3.0e5, 5.0e3, 2.0e4, 5.0e3, 1.0e4,
+                    )),
+                    ..shell
+                },
             )),
             Box::new(mass::PointMass {
                 x: [0.0; 3],
@@ -316,7 +328,7 @@ mod tests {
     /// without stresses, and each names the deck card it comes from.
     #[test]
     fn every_kernel_books_half_utku_and_recovers_what_it_names() {
-        for (kind, k) in ["CROD", "CQUAD4", "CONM2"].iter().zip(kernels()) {
+        for (kind, k) in ["CROD", "CQUAD4", "CQUAD4", "CONM2"].iter().zip(kernels()) {
             assert_eq!(k.card(), *kind);
             let n = 6 * k.points().len();
             let u: Vec<f64> = (0..n).map(|i| 1e-3 * ((i as f64) * 0.71 + 0.2).sin()).collect();

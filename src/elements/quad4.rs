@@ -194,6 +194,20 @@ pub fn bending_stiffness(xy: &Xy, d: &Matrix3<f64>) -> SMatrix<f64, 12, 12> {
     k
 }
 
+/// Membrane-bending coupling Bmᵀ B Bb integrated 2×2 (`b` = the laminate's coupling
+/// stiffness, N = A ε⁰ + B κ, M = B ε⁰ + D κ): rows the membrane DOFs (u1 v1 … u4 v4),
+/// columns the bending DOFs (w, θx, θy at each corner). The element's stiffness is then
+/// [Km Kmb; Kmbᵀ Kb], its energy ½ ε⁰ᵀAε⁰ + ε⁰ᵀBκ + ½ κᵀDκ over the area.
+pub fn coupling_stiffness(xy: &Xy, b: &Matrix3<f64>) -> SMatrix<f64, 8, 12> {
+    let mut k = SMatrix::<f64, 8, 12>::zeros();
+    for &(xi, eta) in &GAUSS {
+        let (bm, det) = b_membrane(xy, xi, eta);
+        let (bb, _) = b_bending(xy, xi, eta);
+        k += bm.transpose() * b * bb * det;
+    }
+    k
+}
+
 /// Curvatures (βx,x, βy,y, βx,y + βy,x) at the element centre.
 pub fn curvature(xy: &Xy, w: &SMatrix<f64, 12, 1>) -> Vector3<f64> {
     b_bending(xy, 0.0, 0.0).0 * w
@@ -221,6 +235,9 @@ pub struct ShellSection {
     pub g_membrane: Option<Matrix3<f64>>,
     /// Bending material matrix G(MID2)·(12I/T³), if any: D = this · T³/12.
     pub g_bending: Option<Matrix3<f64>>,
+    /// Membrane-bending coupling material matrix G(MID4), if any: B = this · T²
+    /// (an unsymmetric laminate's, or PSHELL's MID4).
+    pub g_coupling: Option<Matrix3<f64>>,
     /// (ρ T + NSM), mass per unit area.
     pub mass_per_area: f64,
 }
@@ -234,6 +251,11 @@ impl ShellSection {
     /// Bending stiffness D = G(MID2)·(12I/T³)·T³/12.
     pub fn d(&self) -> Option<Matrix3<f64>> {
         self.g_bending.map(|g| g * self.thickness.powi(3) / 12.0)
+    }
+
+    /// Membrane-bending coupling stiffness B = G(MID4)·T².
+    pub fn b(&self) -> Option<Matrix3<f64>> {
+        self.g_coupling.map(|g| g * self.thickness.powi(2))
     }
 }
 
@@ -251,6 +273,7 @@ pub struct Quad4 {
     pub section: ShellSection,
     k_membrane: Option<[f64; 36]>,
     k_bending: Option<[f64; 78]>,
+    k_coupling: Option<SMatrix<f64, 8, 12>>,
 }
 
 impl Quad4 {
@@ -259,6 +282,7 @@ impl Quad4 {
         Quad4 {
             k_membrane: section.a().map(|a| pack(&membrane_stiffness(&xy, &a))),
             k_bending: section.d().map(|d| pack(&bending_stiffness(&xy, &d))),
+            k_coupling: section.b().map(|b| coupling_stiffness(&xy, &b)),
             xy,
             z,
             section,
@@ -330,6 +354,17 @@ impl Kernel for Quad4 {
     fn stiffness(&self) -> Vec<LocalMatrix> {
         // Full matrices as the kernels compute them (assembly runs once).
         let mut out = Vec::new();
+        if let (Some(a), Some(d), Some(kmb)) = (self.section.a(), self.section.d(), &self.k_coupling) {
+            // Coupled: one matrix over the membrane and bending DOFs.
+            let (km, kb) = (membrane_stiffness(&self.xy, &a), bending_stiffness(&self.xy, &d));
+            let mut k = SMatrix::<f64, 20, 20>::zeros();
+            k.fixed_view_mut::<8, 8>(0, 0).copy_from(&km);
+            k.fixed_view_mut::<12, 12>(8, 8).copy_from(&kb);
+            k.fixed_view_mut::<8, 12>(0, 8).copy_from(kmb);
+            k.fixed_view_mut::<12, 8>(8, 0).copy_from(&kmb.transpose());
+            out.push(local([membrane_dofs(), bending_dofs()].concat(), &k));
+            return out;
+        }
         if let Some(a) = self.section.a() {
             out.push(local(membrane_dofs(), &membrane_stiffness(&self.xy, &a)));
         }
@@ -348,7 +383,10 @@ impl Kernel for Quad4 {
         let (um, ub) = parts(ue);
         let m = self.k_membrane.as_ref().map_or(0.0, |k| quad_form(k, um.as_slice()));
         let b = self.k_bending.as_ref().map_or(0.0, |k| quad_form(k, ub.as_slice()));
-        0.5 * (m + b)
+        match &self.k_coupling {
+            Some(k) => 0.5 * (m + b) + (um.transpose() * k * ub)[0],
+            None => 0.5 * (m + b),
+        }
     }
     fn recovered(&self, stress: bool) -> Vec<Recovered> {
         let measures: &[Measure] = if stress {
@@ -503,6 +541,53 @@ mod tests {
         let ev = k.symmetric_eigenvalues();
         let tiny = ev.iter().filter(|&&e| e.abs() < 1e-9 * ev.amax()).count();
         assert_eq!(tiny, 3, "eigenvalues {ev}");
+    }
+
+    /// Goal: membrane-bending coupling patch test. Reference: classical lamination
+    /// theory, the energy density ½ε⁰ᵀAε⁰ + ε⁰ᵀBκ + ½κᵀDκ of a constant membrane strain
+    /// ε⁰ and curvature κ, times the area: the coupled element's strain energy is that
+    /// for the fields of the two patch tests above together (the coupling term alone
+    /// is area·ε⁰ᵀBκ), with an unsymmetric [0/90]'s B. Tolerance: round-off.
+    #[test]
+    fn coupled_element_books_the_laminates_energy_for_constant_strain_and_curvature() {
+        let (a_mat, d_mat) = iso(1.0e7, 0.3, 0.1);
+        let b_mat = Matrix3::new(-2.1e3, 0.0, 0.0, 0.0, 2.1e3, 0.0, 0.0, 0.0, 0.0);
+        let section = ShellSection {
+            thickness: 0.1,
+            g_membrane: Some(a_mat / 0.1),
+            g_bending: Some(d_mat * 12.0 / 0.1f64.powi(3)),
+            g_coupling: Some(b_mat / 0.01),
+            mass_per_area: 1.0,
+        };
+        let el = Quad4::new(DISTORTED, 0.0, section);
+        let (a, b, c, d) = (1e-3, -2e-4, 5e-4, 3e-4);
+        let (p, q, r) = (2e-3, -1e-3, 7e-4);
+        let mut ue = vec![0.0; 24];
+        for (g, &[x, y]) in DISTORTED.iter().enumerate() {
+            ue[6 * g] = a * x + b * y;
+            ue[6 * g + 1] = c * x + d * y;
+            ue[6 * g + 2] = 0.5 * (p * x * x + 2.0 * r * x * y + q * y * y);
+            ue[6 * g + 3] = r * x + q * y;
+            ue[6 * g + 4] = -(p * x + r * y);
+        }
+        let (e0, kappa) = (Vector3::new(a, d, b + c), Vector3::new(-p, -q, -2.0 * r));
+        let density = 0.5 * (e0.transpose() * a_mat * e0)[0]
+            + (e0.transpose() * b_mat * kappa)[0]
+            + 0.5 * (kappa.transpose() * d_mat * kappa)[0];
+        let area = area(&DISTORTED);
+        assert_relative_eq!(el.strain_energy(&ue), density * area, max_relative = 1e-12);
+        let (um, ub) = parts(&ue);
+        let coupling = (um.transpose() * coupling_stiffness(&DISTORTED, &b_mat) * ub)[0];
+        assert_relative_eq!(
+            coupling,
+            (e0.transpose() * b_mat * kappa)[0] * area,
+            max_relative = 1e-12
+        );
+        // The assembled matrix is the one coupled block, symmetric to round-off.
+        let k = el.stiffness();
+        assert_eq!(k.len(), 1);
+        let kv = &k[0].values;
+        assert!((kv - kv.transpose()).norm() <= 1e-14 * kv.norm());
     }
 
     #[test]

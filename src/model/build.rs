@@ -979,9 +979,22 @@ fn material_matrix(
     mat1: &HashMap<i64, &crate::deck::cards::Mat1>,
     mat2s: &[crate::deck::cards::Mat2],
 ) -> Option<(Matrix3<f64>, f64)> {
+    material(cx, mid, used_by, mat1, mat2s, true)
+}
+
+/// A MAT2's or MAT1's plane-stress matrix and density; a MAT2 must be positive
+/// definite when `definite` (a coupling material, MID4, need not be).
+fn material(
+    cx: &mut Ctx,
+    mid: i64,
+    used_by: &CardRef,
+    mat1: &HashMap<i64, &crate::deck::cards::Mat1>,
+    mat2s: &[crate::deck::cards::Mat2],
+    definite: bool,
+) -> Option<(Matrix3<f64>, f64)> {
     if let Some(m) = mat2s.iter().find(|m| m.mid == mid) {
         let g = Matrix3::from_fn(|i, j| m.g[i][j]);
-        if g.cholesky().is_none() {
+        if definite && g.cholesky().is_none() {
             cx.err(m.at.error(format!(
                 "MAT2 {mid} is not positive definite: no strain energy for some strain state (check G11..G33)"
             )));
@@ -1021,20 +1034,53 @@ fn shell_section(
         cx.err(p.at.error("PSHELL has neither MID1 nor MID2: the shell has no stiffness"));
         return None;
     }
+    let coupling = match p.mid4 {
+        Some(_) if mem.is_none() || bend.is_none() => {
+            cx.err(p.at.error("PSHELL MID4 (membrane-bending coupling) needs both MID1 and MID2"));
+            return None;
+        }
+        Some(mid) => Some(material(cx, mid, &p.at, mat1, mat2s, false)?.0),
+        None => None,
+    };
     // NASTRAN takes the shell's density from MID1 (else MID2).
     let rho = mem.or(bend).map(|(_, r)| r).unwrap_or(0.0);
-    Some(ShellSection {
+    let section = ShellSection {
         thickness: p.t,
         g_membrane: mem.map(|(g, _)| g),
         g_bending: bend.map(|(g, _)| g * p.bend_ratio),
+        g_coupling: coupling,
         mass_per_area: rho * p.t + p.nsm,
-    })
+    };
+    if !section_is_definite(&section) {
+        cx.err(p.at.error(
+            "PSHELL: the membrane, bending and coupling stiffnesses [A B; B D] are not positive definite \
+             (MID4 too large against MID1 and MID2)",
+        ));
+        return None;
+    }
+    Some(section)
+}
+
+/// True when a coupled section's [A B; B D] is positive definite (an uncoupled one's
+/// parts are checked where they are read).
+fn section_is_definite(s: &ShellSection) -> bool {
+    let (Some(a), Some(b), Some(d)) = (s.a(), s.b(), s.d()) else {
+        return true;
+    };
+    let mut k = nalgebra::Matrix6::zeros();
+    k.fixed_view_mut::<3, 3>(0, 0).copy_from(&a);
+    k.fixed_view_mut::<3, 3>(0, 3).copy_from(&b);
+    k.fixed_view_mut::<3, 3>(3, 0).copy_from(&b.transpose());
+    k.fixed_view_mut::<3, 3>(3, 3).copy_from(&d);
+    k.cholesky().is_some()
 }
 
 /// The section of a PCOMP for an element whose material x axis is `axes` degrees
-/// counter-clockwise from basic x (its plies' fibres at θ + `axes` in basic axes): its plies (MAT8 or MAT1) through the lamination stage, the laminate's A/t
-/// and 12D/t³ as the plate's membrane and bending materials. A laminate that couples
-/// membrane and bending (B ≠ 0) is refused: the plate element does not couple them.
+/// counter-clockwise from basic x (its plies' fibres at θ + `axes` in basic axes): its
+/// plies (MAT8 or MAT1) through the lamination stage, the laminate's A/t, 12D/t³ and,
+/// for an unsymmetric laminate, B/t² as the plate's membrane, bending and coupling
+/// materials (NASTRAN's MID1, MID2 and MID4 equivalents). The reference plane is the
+/// mid-plane: a Z0 other than −T/2 (an offset plate) is refused.
 fn laminate_section(
     cx: &mut Ctx,
     p: &crate::deck::cards::Pcomp,
@@ -1057,11 +1103,15 @@ fn laminate_section(
             return None;
         }
     };
-    if !lam.is_uncoupled() {
+    if p.z0
+        .is_some_and(|z0| (z0 + 0.5 * lam.thickness).abs() > 1e-9 * lam.thickness)
+    {
         cx.err(p.at.error(format!(
-            "PCOMP {}: the laminate couples membrane and bending (B ≠ 0: its plies are not symmetric about the \
-             reference plane, or Z0 is not −T/2); the plate element does not couple them",
-            p.pid
+            "PCOMP {}: Z0 = {:e} puts the reference plane off the mid-plane (Z0 = −T/2 = {:e}): an offset \
+             plate is not supported",
+            p.pid,
+            p.z0.unwrap_or_default(),
+            -0.5 * lam.thickness
         )));
         return None;
     }
@@ -1077,6 +1127,7 @@ fn laminate_section(
             thickness: lam.thickness,
             g_membrane: Some(lam.membrane_material()),
             g_bending: Some(lam.bending_material()),
+            g_coupling: (!lam.is_uncoupled()).then(|| lam.coupling_material()),
             mass_per_area: lam.mass_per_area + p.nsm,
         },
         std::sync::Arc::new(ply_layers(&plies, axes)),
