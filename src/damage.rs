@@ -35,14 +35,16 @@
 //!
 //! # Ply failure indices
 //!
-//! The theories PCOMP's FT names, as the MSC Nastran *Linear Static Analysis User's
-//! Guide* (composite elements, failure theories) states them, for a ply in plane
-//! stress (σ1, σ2, τ12) in its axes, with the MAT8's allowables Xt, Xc, Yt, Yc (the
-//! compressive ones as magnitudes) and S:
+//! The theories PCOMP's FT names (HILL, HOFF, TSAI, STRN, the words of the NASTRAN
+//! PCOMP card), for a ply in plane stress (σ1, σ2, τ12) in its axes, with the MAT8's
+//! allowables Xt, Xc, Yt, Yc (the compressive ones as magnitudes, as MAT8 takes them)
+//! and S. Solvers differ in details; where a form leaves a choice, the one made here is
+//! stated:
 //!
-//! - HILL (Tsai-Hill; Jones, *Mechanics of Composite Materials*, 2nd ed., §2.9.3):
-//!   FI = σ1²/X² − σ1σ2/X² + σ2²/Y² + τ12²/S², X = Xt when σ1 ≥ 0, else Xc, and Y
-//!   likewise from σ2.
+//! - HILL (Tsai-Hill; Jones, *Mechanics of Composite Materials*, 2nd ed., §2.9.3, with
+//!   sign-dependent allowables): FI = σ1²/X² − σ1σ2/X² + σ2²/Y² + τ12²/S², X = Xt when
+//!   σ1 ≥ 0, else Xc, and Y likewise from σ2; the interaction term uses the same X as
+//!   the σ1² term.
 //! - HOFF (Hoffman, J. Compos. Mater. 1 (1967) 200-206): FI = (1/Xt − 1/Xc)σ1 +
 //!   (1/Yt − 1/Yc)σ2 + σ1²/(Xt Xc) + σ2²/(Yt Yc) − σ1σ2/(Xt Xc) + τ12²/S².
 //! - TSAI (Tsai-Wu, J. Compos. Mater. 5 (1971) 58-80): FI = F1σ1 + F2σ2 + F11σ1² +
