@@ -49,6 +49,9 @@ impl Kernel for PointMass {
     fn recover(&self, _ue: &[f64], _stress: bool) -> Vec<f64> {
         Vec::new()
     }
+    fn material_law(&self, _strains: &[f64]) -> Option<Vec<f64>> {
+        None
+    }
     fn eq16_mass(&self) -> Option<f64> {
         None
     }

@@ -132,6 +132,13 @@ pub trait Kernel: fmt::Debug + Send + Sync + Any {
     /// Recovered values from the local displacements, in the order of
     /// [`Kernel::recovered`].
     fn recover(&self, ue: &[f64], stress: bool) -> Vec<f64>;
+    /// The stresses the kind's material law gives for the strains it recovers
+    /// (`strains` in the order of `recovered(false)`), in the order of the stresses in
+    /// `recovered(true)`; `None` for a kind that recovers no stress. Computed from the
+    /// strains alone, apart from [`Kernel::recover`]: `verify`'s material_law holds
+    /// every written stress to it, and fails on a kind that recovers stresses and
+    /// answers `None`.
+    fn material_law(&self, strains: &[f64]) -> Option<Vec<f64>>;
     /// The mass whose mean nodal velocity the paper's Eq. 16 books; `None` for a
     /// point mass (not part of Eq. 16).
     fn eq16_mass(&self) -> Option<f64>;
@@ -325,7 +332,8 @@ mod tests {
     /// element's own matrices and names, for every kind: strain_energy(u) is ½uᵀKu of
     /// the local stiffness matrices it hands to assembly (to 1e-12, every local DOF
     /// displaced), recover gives exactly as many values as recovered names, with and
-    /// without stresses, and each names the deck card it comes from.
+    /// without stresses, the stresses it recovers are its material law of the strains
+    /// it recovers, and each names the deck card it comes from.
     #[test]
     fn every_kernel_books_half_utku_and_recovers_what_it_names() {
         for (kind, k) in ["CROD", "CQUAD4", "CQUAD4", "CONM2"].iter().zip(kernels()) {
@@ -352,6 +360,26 @@ mod tests {
                     k.recovered(stress).len(),
                     "{kind} stress {stress}"
                 );
+            }
+            // The stresses it recovers are its material law of the strains it recovers.
+            let with = k.recover(&u, true);
+            let stresses: Vec<f64> = k
+                .recovered(true)
+                .iter()
+                .zip(&with)
+                .filter(|(r, _)| r.measure == Measure::Stress)
+                .map(|(_, &v)| v)
+                .collect();
+            match k.material_law(&k.recover(&u, false)) {
+                Some(law) => {
+                    let scale = stresses.iter().fold(0.0f64, |m, s| m.max(s.abs()));
+                    assert_eq!(law.len(), stresses.len(), "{kind}");
+                    assert!(
+                        law.iter().zip(&stresses).all(|(l, s)| (l - s).abs() <= 1e-12 * scale),
+                        "{kind}: {law:?} vs {stresses:?}"
+                    );
+                }
+                None => assert!(stresses.is_empty(), "{kind} recovers stresses and answers no law"),
             }
         }
     }

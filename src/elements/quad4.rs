@@ -428,6 +428,22 @@ impl Kernel for Quad4 {
             strains
         }
     }
+    fn material_law(&self, strains: &[f64]) -> Option<Vec<f64>> {
+        // From the fibre strains at z1 = −T/2 and z2 = +T/2: the membrane strain and
+        // κ·T/2, then G1 ε⁰ ∓ G2 κ T/2 at each fibre.
+        let v = |k: usize| Vector3::new(strains[k], strains[k + 1], strains[k + 2]);
+        let (eps1, eps2) = (v(0), v(3));
+        let membrane = (eps1 + eps2) * 0.5;
+        let bending = (eps2 - eps1) * 0.5;
+        let gm = self.section.g_membrane.unwrap_or_default();
+        let gb = self.section.g_bending.unwrap_or_default();
+        let mut out = Vec::with_capacity(6);
+        for sign in [-1.0, 1.0] {
+            let law = gm * membrane + gb * bending * sign;
+            out.extend(law.iter());
+        }
+        Some(out)
+    }
     fn eq16_mass(&self) -> Option<f64> {
         Some(self.section.mass_per_area * area(&self.xy))
     }

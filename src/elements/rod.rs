@@ -130,6 +130,9 @@ impl Kernel for Rod {
             vec![axial(Measure::Strain)]
         }
     }
+    fn material_law(&self, strains: &[f64]) -> Option<Vec<f64>> {
+        Some(vec![self.section.e * strains[0]])
+    }
     fn recover(&self, ue: &[f64], stress: bool) -> Vec<f64> {
         let t = |k: usize| -> [f64; 3] { std::array::from_fn(|c| ue[6 * k + c]) };
         let eps = axial_strain(self.x[0], self.x[1], t(0), t(1));

@@ -791,63 +791,63 @@ fn file_problems(model: &Model, run: &RunResult) -> Vec<String> {
 /// the ply strains written beside them. Value: the largest difference relative to the
 /// peak |stress|; round-off passes (≤ 1e-10), a wrong sign, scale or component fails.
 pub fn material_law(case: &Case, model: &Model, run: &RunResult) -> CheckResult {
-    use crate::elements::{quad4::Quad4, rod::Rod, Fibre, Measure, Plane, Recovered};
+    use crate::elements::Measure;
     use nalgebra::Vector3;
-    let col = |eid: i64, measure: Measure, at: Option<(Fibre, Plane)>| {
-        run.column(&Column::Element {
-            eid,
-            value: Recovered { measure, at },
-        })
-    };
     let (mut worst, mut peak, mut elements) = (0.0f64, 0.0f64, 0usize);
     let mut at = String::new();
+    let mut unanswered = Vec::new();
     for e in model.elements.iter() {
-        if let Some(r) = e.kind::<Rod>() {
-            let (Some(js), Some(je)) = (col(e.eid, Measure::Stress, None), col(e.eid, Measure::Strain, None)) else {
-                continue;
+        // Every value the kind recovers with stresses, written: its stresses against
+        // its law (Kernel::material_law) applied to its written strains.
+        let names = e.kernel.recovered(true);
+        let Some(cols) = names
+            .iter()
+            .map(|r| run.column(&Column::Element { eid: e.eid, value: *r }))
+            .collect::<Option<Vec<usize>>>()
+        else {
+            continue;
+        };
+        let of = |m: Measure| -> Vec<usize> {
+            names
+                .iter()
+                .zip(&cols)
+                .filter(|(r, _)| r.measure == m)
+                .map(|(_, &j)| j)
+                .collect()
+        };
+        let (stresses, strains) = (of(Measure::Stress), of(Measure::Strain));
+        if stresses.is_empty() {
+            continue;
+        }
+        elements += 1;
+        for row in &run.history {
+            let Some(law) = e
+                .kernel
+                .material_law(&strains.iter().map(|&j| row[j]).collect::<Vec<_>>())
+            else {
+                unanswered.push(format!("element {} ({})", e.eid, e.kernel.card()));
+                break;
             };
-            elements += 1;
-            for row in &run.history {
-                peak = peak.max(row[js].abs());
-                let d = (row[js] - r.section.e * row[je]).abs();
-                if d > worst {
-                    (worst, at) = (d, format!("element {} at t = {:e}", e.eid, row[0]));
-                }
+            let mut d = 0.0f64;
+            for (&j, l) in stresses.iter().zip(&law) {
+                peak = peak.max(row[j].abs());
+                d = d.max((row[j] - l).abs());
             }
-        } else if let Some(q) = e.kind::<Quad4>() {
-            let idx = |m: Measure, f: Fibre| -> Option<[usize; 3]> {
-                Some([
-                    col(e.eid, m, Some((f, Plane::Xx)))?,
-                    col(e.eid, m, Some((f, Plane::Yy)))?,
-                    col(e.eid, m, Some((f, Plane::Xy)))?,
-                ])
-            };
-            let (Some(s1), Some(s2), Some(e1), Some(e2)) = (
-                idx(Measure::Stress, Fibre::Z1),
-                idx(Measure::Stress, Fibre::Z2),
-                idx(Measure::Strain, Fibre::Z1),
-                idx(Measure::Strain, Fibre::Z2),
-            ) else {
-                continue;
-            };
-            elements += 1;
-            let gm = q.section.g_membrane.unwrap_or_default();
-            let gb = q.section.g_bending.unwrap_or_default();
-            for row in &run.history {
-                let v = |j: [usize; 3]| Vector3::new(row[j[0]], row[j[1]], row[j[2]]);
-                let (eps1, eps2) = (v(e1), v(e2));
-                let membrane = (eps1 + eps2) * 0.5;
-                let bending = (eps2 - eps1) * 0.5; // κ·h, at z2 = +h
-                for (s, sign) in [(v(s1), -1.0), (v(s2), 1.0)] {
-                    let law = gm * membrane + gb * bending * sign;
-                    peak = peak.max(s.amax());
-                    let d = (s - law).amax();
-                    if d > worst {
-                        (worst, at) = (d, format!("element {} at t = {:e}", e.eid, row[0]));
-                    }
-                }
+            if d > worst {
+                (worst, at) = (d, format!("element {} at t = {:e}", e.eid, row[0]));
             }
         }
+    }
+    if !unanswered.is_empty() {
+        return CheckResult::new(
+            case,
+            "material_law stress = law(strain)".into(),
+            f64::INFINITY,
+            None,
+            Bound::of_peak(1e-10),
+            false,
+            format!("{} recover stresses and answer no material law", unanswered.join(", ")),
+        );
     }
     // Ply stresses: the ply's own Q (its axes) times its written strain, at both faces.
     for (e, plies) in &model.outputs.plies {
