@@ -141,23 +141,30 @@ fn one_isotropic_ply_is_the_pshell_plate() {
         3 * 12,
         "one ply, three elements written"
     );
-    let cols = &pshell.history_columns;
-    let units: Vec<String> = cols.iter().map(|c| c.unit(&pshell.summary.units)).collect();
-    let peak = |j: usize| pshell.history.iter().map(|r| r[j].abs()).fold(0.0, f64::max);
+    assert_same_history(&pshell, &pcomp, 1e-12);
+}
+
+/// Asserts that `b`'s history has `a`'s columns first and agrees with `a` there, every
+/// row, within `tol` of the largest column of each unit: a column that vanishes by
+/// symmetry (the shear on the plate's centre lines) is round-off, measured against
+/// its family.
+fn assert_same_history(a: &RunResult, b: &RunResult, tol: f64) {
+    let cols = &a.history_columns;
+    assert_eq!(b.history_columns[..cols.len()], cols[..]);
+    let units: Vec<String> = cols.iter().map(|c| c.unit(&a.summary.units)).collect();
+    let peak = |j: usize| a.history.iter().map(|r| r[j].abs()).fold(0.0, f64::max);
     for j in 1..cols.len() {
-        // A column that vanishes by symmetry (the shear on the centre lines) is
-        // round-off: it is measured against the largest column of its unit.
         let family = (1..cols.len())
             .filter(|&i| units[i] == units[j])
             .map(peak)
             .fold(0.0, f64::max);
-        let worst = pshell
+        let worst = a
             .history
             .iter()
-            .zip(&pcomp.history)
-            .map(|(a, b)| (a[j] - b[j]).abs())
+            .zip(&b.history)
+            .map(|(x, y)| (x[j] - y[j]).abs())
             .fold(0.0, f64::max);
-        assert!(worst <= 1e-12 * family, "{}: {worst:e} of {family:e}", cols[j].name());
+        assert!(worst <= tol * family, "{}: {worst:e} of {family:e}", cols[j].name());
     }
 }
 
@@ -470,23 +477,7 @@ fn an_unsymmetric_laminate_couples_membrane_and_bending() {
         mat2(103, b, None)
     );
     let twin = run(&plate_with(dir.path(), "mid4.bdf", &pshell), 600);
-    let n = twin.history_columns.len();
-    assert_eq!(lam.history_columns[..n], twin.history_columns[..]);
-    // Measured against the largest column of its unit, as a column that vanishes by
-    // symmetry (the shear on the centre lines) is round-off.
-    let cols = &twin.history_columns;
-    let units: Vec<String> = cols.iter().map(|c| c.unit(&twin.summary.units)).collect();
-    let peak = |j: usize| lam.history.iter().map(|r| r[j].abs()).fold(0.0, f64::max);
-    for j in 1..n {
-        let family = (1..n).filter(|&i| units[i] == units[j]).map(peak).fold(0.0, f64::max);
-        let worst = lam
-            .history
-            .iter()
-            .zip(&twin.history)
-            .map(|(a, b)| (a[j] - b[j]).abs())
-            .fold(0.0, f64::max);
-        assert!(worst <= 1e-12 * family, "{}: {worst:e} of {family:e}", cols[j].name());
-    }
+    assert_same_history(&twin, &lam, 1e-12);
 }
 
 /// Goal: a PSHELL's MID4 is refused where it cannot couple anything (no MID1 or no
