@@ -393,8 +393,7 @@ impl Kernels {
             dofs: model.dofs.clone(),
             snapshots: Vec::new(),
         };
-        run.summary = summarize(model, &run, tripped, opts);
-        run.summary.run.engine = Engine::Convolution;
+        run.summary = summarize(model, &run, tripped, opts, Engine::Convolution);
         match tripped {
             None => Ok(run),
             Some(trip) => Err(RunError::EnergyGuard {

@@ -729,7 +729,7 @@ pub fn run_system(model: &Model, sys: &System, opts: &RunOptions) -> Result<RunR
         dofs: model.dofs.clone(),
         snapshots: rec.snapshots,
     };
-    run.summary = summarize(model, &run, rec.tripped, opts);
+    run.summary = summarize(model, &run, rec.tripped, opts, Engine::Direct);
     match rec.tripped {
         None => Ok(run),
         Some(trip) => Err(RunError::EnergyGuard {
@@ -761,7 +761,8 @@ pub fn contact_intervals(t: &[f64], alpha: &[f64]) -> (Vec<[f64; 2]>, bool) {
     (out, open)
 }
 
-fn summarize(model: &Model, run: &RunResult, tripped: Option<GuardTrip>, opts: &RunOptions) -> Summary {
+/// The summary of a run by `engine`.
+fn summarize(model: &Model, run: &RunResult, tripped: Option<GuardTrip>, opts: &RunOptions, engine: Engine) -> Summary {
     let s = &run.series;
     let (intervals, open) = contact_intervals(&s.time, &s.alpha);
     let (kmax, fmax) = s
@@ -839,7 +840,7 @@ fn summarize(model: &Model, run: &RunResult, tripped: Option<GuardTrip>, opts: &
         },
         run: RunSummary {
             scheme: run.scheme,
-            engine: Engine::Direct,
+            engine,
             kernel_cache: None,
             dt: run.dt,
             steps: run.steps,
