@@ -27,6 +27,9 @@ impl Kernel for PointMass {
     fn card(&self) -> &'static str {
         "CONM2"
     }
+    fn family(&self) -> super::Family<'_> {
+        super::Family::Point
+    }
     fn stiffness(&self) -> Vec<LocalMatrix> {
         Vec::new()
     }

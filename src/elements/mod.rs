@@ -146,6 +146,22 @@ pub trait Kernel: fmt::Debug + Send + Sync + Any {
     fn points(&self) -> Vec<[f64; 3]>;
     /// The cell it draws as in field output (`None`: not drawn).
     fn cell(&self) -> Option<Cell>;
+    /// What it is to the computations over a whole target (the analytic references,
+    /// the report's figures and checks): its family and section.
+    fn family(&self) -> Family<'_>;
+}
+
+/// What an element kind is to the computations over a whole target: a line of a rod
+/// section, a shell of a shell section, or a concentrated mass. Its geometry is
+/// [`Kernel::points`].
+#[derive(Debug, Clone, Copy)]
+pub enum Family<'a> {
+    /// A rod (CROD) of this section.
+    Rod(&'a rod::RodSection),
+    /// A shell (CQUAD4) of this section.
+    Shell(&'a quad4::ShellSection),
+    /// A concentrated mass (CONM2).
+    Point,
 }
 
 /// A kernel behind a box: cloned, and seen as its concrete kind; every `Kernel` that

@@ -351,6 +351,9 @@ impl Kernel for Quad4 {
     fn card(&self) -> &'static str {
         "CQUAD4"
     }
+    fn family(&self) -> super::Family<'_> {
+        super::Family::Shell(&self.section)
+    }
     fn stiffness(&self) -> Vec<LocalMatrix> {
         // Full matrices as the kernels compute them (assembly runs once).
         let mut out = Vec::new();

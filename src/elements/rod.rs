@@ -106,6 +106,9 @@ impl Kernel for Rod {
     fn card(&self) -> &'static str {
         "CROD"
     }
+    fn family(&self) -> super::Family<'_> {
+        super::Family::Rod(&self.section)
+    }
     fn stiffness(&self) -> Vec<LocalMatrix> {
         let k = stiffness(self.x[0], self.x[1], &self.section);
         vec![LocalMatrix {

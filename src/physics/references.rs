@@ -3,7 +3,6 @@
 //! on an infinite plate. They read the model's data; they run no solver code.
 
 use super::analytic::{self, Events, HertzDashpot, Trace};
-use crate::elements::quad4::Quad4;
 use crate::model::Model;
 
 /// A reference that does not apply to a model.
@@ -71,7 +70,7 @@ pub fn rod_critical_step(model: &Model) -> Result<f64, ReferenceError> {
     let n = model
         .elements
         .iter()
-        .filter(|e| e.kind::<crate::elements::rod::Rod>().is_some())
+        .filter(|e| matches!(e.kernel.family(), crate::elements::Family::Rod(_)))
         .count();
     Ok(r.length / n as f64 / r.wave_speed)
 }
@@ -101,7 +100,10 @@ fn plate_section(model: &Model) -> Result<crate::elements::quad4::ShellSection, 
     model
         .elements
         .iter()
-        .find_map(|e| e.kind::<Quad4>().map(|q| q.section.clone()))
+        .find_map(|e| match e.kernel.family() {
+            crate::elements::Family::Shell(s) => Some(s.clone()),
+            _ => None,
+        })
         .ok_or(ReferenceError::NoPlate)
 }
 

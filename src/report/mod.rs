@@ -5,7 +5,7 @@
 
 pub mod fields;
 
-use crate::elements::{quad4::Quad4, rod::Rod, Fibre, Measure, Plane};
+use crate::elements::{Family, Fibre, Measure, Plane};
 use crate::error::Error;
 use crate::ledger::EnergyRow;
 use crate::model::Model;
@@ -71,7 +71,7 @@ pub fn report_case(outcome: &CaseOutcome, dir: &Path) -> Result<CaseReport, Erro
     let plate = model
         .elements
         .iter()
-        .any(|e| e.kind::<Quad4>().is_some_and(|q| q.section.g_bending.is_some()));
+        .any(|e| matches!(e.kernel.family(), Family::Shell(s) if s.g_bending.is_some()));
     std::fs::create_dir_all(dir).map_err(io(dir))?;
     let footer = format!(
         "case {} · deck {} · scheme {} · dt {:e} s · {} steps",
@@ -369,7 +369,8 @@ fn rod_strain(f: &Fig, tr: &analytic::Trace, lc: f64) -> Result<Vec<PathBuf>, Er
         .elements
         .iter()
         .filter_map(|e| {
-            let x = e.kind::<Rod>()?.x;
+            let Family::Rod(_) = e.kernel.family() else { return None };
+            let x = e.kernel.points();
             let xc = 0.5 * (x[0][0] + x[1][0]);
             run.column_values(&Column::rod_strain(e.eid)).map(|v| (e.eid, xc, v))
         })
@@ -384,7 +385,13 @@ fn rod_strain(f: &Fig, tr: &analytic::Trace, lc: f64) -> Result<Vec<PathBuf>, Er
         let x0 = model
             .elements
             .iter()
-            .find_map(|e| e.kind::<Rod>().map(|r| r.x[0][0].min(r.x[1][0])))
+            .find_map(|e| match e.kernel.family() {
+                Family::Rod(_) => {
+                    let x = e.kernel.points();
+                    Some(x[0][0].min(x[1][0]))
+                }
+                _ => None,
+            })
             .unwrap_or(0.0);
         let ea = rod.e * rod.area;
         let dal: Vec<f64> = t
@@ -581,10 +588,15 @@ fn plate_displacement(f: &Fig) -> Result<Vec<PathBuf>, Error> {
         .take(3)
         .zip(["impact", "A", "B"])
         .filter_map(|(eid, label)| {
-            let q = model.elements.iter().find(|e| e.eid == *eid)?.kind::<Quad4>()?;
-            let c =
-                q.xy.iter()
-                    .fold((0.0, 0.0), |a, p| (a.0 + p[0] / 4.0, a.1 + p[1] / 4.0));
+            let e = model.elements.iter().find(|e| e.eid == *eid)?;
+            let Family::Shell(_) = e.kernel.family() else {
+                return None;
+            };
+            let c = e
+                .kernel
+                .points()
+                .iter()
+                .fold((0.0, 0.0), |a, p| (a.0 + p[0] / 4.0, a.1 + p[1] / 4.0));
             Some((c, label.to_string()))
         })
         .collect();
@@ -592,7 +604,17 @@ fn plate_displacement(f: &Fig) -> Result<Vec<PathBuf>, Error> {
     let grid_xy: std::collections::BTreeMap<i64, (f64, f64)> = model
         .elements
         .iter()
-        .filter_map(|e| Some(e.grids.iter().copied().zip(e.kind::<Quad4>()?.xy.map(|p| (p[0], p[1])))))
+        .filter_map(|e| {
+            let Family::Shell(_) = e.kernel.family() else {
+                return None;
+            };
+            Some(
+                e.grids
+                    .iter()
+                    .copied()
+                    .zip(e.kernel.points().into_iter().map(|p| (p[0], p[1]))),
+            )
+        })
         .flatten()
         .collect();
     let panels: Vec<Contour> = run
@@ -605,14 +627,18 @@ fn plate_displacement(f: &Fig) -> Result<Vec<PathBuf>, Error> {
                 .elements
                 .iter()
                 .filter_map(|e| {
-                    let xy = e.kind::<Quad4>()?.xy;
+                    let Family::Shell(_) = e.kernel.family() else {
+                        return None;
+                    };
+                    let points = e.kernel.points();
+                    let xy: [(f64, f64); 4] = std::array::from_fn(|k| (points[k][0], points[k][1]));
                     let v: f64 = e
                         .grids
                         .iter()
                         .map(|g| w_index.get(g).map_or(0.0, |&i| snap.u[i]))
                         .sum::<f64>()
                         / 4.0;
-                    Some((xy.map(|p| (p[0], p[1])), v))
+                    Some((xy, v))
                 })
                 .collect(),
             lattice: {

@@ -346,22 +346,24 @@ const PATCH_CURVATURE: [f64; 3] = [1.0e-2, -6.0e-3, 3.5e-3];
 /// R3) from the field with NASTRAN's rotations R1 = ∂w/∂y, R2 = −∂w/∂x; the expected
 /// strains come from the field and the section's thickness alone, not from the element.
 fn shell_recovery_patch(cx: &Cx, max: f64) -> CheckResult {
-    use crate::elements::quad4::Quad4;
     let [ex, ey, gxy] = PATCH_MEMBRANE;
     let [a, b, c] = PATCH_CURVATURE;
     let (mut worst, mut count, mut at) = (0.0f64, 0, 0);
     for e in cx.model.elements.iter() {
-        let Some(q) = e.kind::<Quad4>() else { continue };
-        let (x0, y0) = (q.xy[0][0], q.xy[0][1]);
+        let crate::elements::Family::Shell(section) = e.kernel.family() else {
+            continue;
+        };
+        let xy = e.kernel.points();
+        let (x0, y0) = (xy[0][0], xy[0][1]);
         let mut ue = Vec::with_capacity(24);
-        for p in &q.xy {
+        for p in &xy {
             let (x, y) = (p[0] - x0, p[1] - y0);
             let w = 0.5 * a * x * x + 0.5 * b * y * y + c * x * y;
             let (wx, wy) = (a * x + c * y, b * y + c * x);
             ue.extend([ex * x + 0.5 * gxy * y, ey * y + 0.5 * gxy * x, w, wy, -wx, 0.0]);
         }
         let got = e.kernel.recover(&ue, false);
-        let h = 0.5 * q.section.thickness;
+        let h = 0.5 * section.thickness;
         let want: Vec<f64> = [-h, h]
             .iter()
             .flat_map(|&z| [ex - a * z, ey - b * z, gxy - 2.0 * c * z])
@@ -891,17 +893,25 @@ pub fn material_law(case: &Case, model: &Model, run: &RunResult) -> CheckResult 
 }
 
 fn navier_frequencies(cx: &Cx, meshes: [usize; 2], modes: usize, max: f64) -> Result<CheckResult, CheckError> {
-    use crate::elements::quad4::Quad4;
+    use crate::elements::Family;
     let check = "navier_frequencies";
     let case = || cx.case.name.clone();
-    let quads: Vec<&Quad4> = cx.model.elements.iter().filter_map(|e| e.kind::<Quad4>()).collect();
-    let section = quads
+    let shells: Vec<_> = cx
+        .model
+        .elements
+        .iter()
+        .filter(|e| matches!(e.kernel.family(), Family::Shell(_)))
+        .collect();
+    let section = shells
         .first()
-        .map(|q| q.section.clone())
+        .and_then(|e| match e.kernel.family() {
+            Family::Shell(s) => Some(s.clone()),
+            _ => None,
+        })
         .filter(|s| s.g_bending.is_some())
         .ok_or_else(|| CheckError::NoPlate { case: case(), check })?;
     let g = section.g_bending.expect("filtered");
-    let xs = quads.iter().flat_map(|q| q.xy.iter().map(|p| p[0]));
+    let xs = shells.iter().flat_map(|e| e.kernel.points().into_iter().map(|p| p[0]));
     let side = xs.clone().fold(f64::NEG_INFINITY, f64::max) - xs.fold(f64::INFINITY, f64::min);
     let t = section.thickness;
     let d = |x: f64| x * t.powi(3) / 12.0;
@@ -959,7 +969,6 @@ fn navier_frequencies(cx: &Cx, meshes: [usize; 2], modes: usize, max: f64) -> Re
 }
 
 fn navier_strains(cx: &Cx, n: usize, until: f64, max: [f64; 2]) -> Result<CheckResult, CheckError> {
-    use crate::elements::quad4::Quad4;
     use crate::mesh::{Edges, PlateMesh, PLATE_SIDE};
     let check = "navier_strains";
     let failed = |message: String| CheckError::Failed {
@@ -980,8 +989,11 @@ fn navier_strains(cx: &Cx, n: usize, until: f64, max: [f64; 2]) -> Result<CheckR
     let section = model
         .elements
         .iter()
-        .find_map(|e| e.kind::<Quad4>())
-        .and_then(|q| q.section.d().map(|d| (d, q.section.mass_per_area, q.section.thickness)));
+        .find_map(|e| match e.kernel.family() {
+            crate::elements::Family::Shell(s) => Some(s),
+            _ => None,
+        })
+        .and_then(|s| s.d().map(|d| (d, s.mass_per_area, s.thickness)));
     let (d, mass_per_area, t) = section.ok_or_else(|| CheckError::NoPlate {
         case: cx.case.name.clone(),
         check,
