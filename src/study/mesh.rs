@@ -429,7 +429,7 @@ pub fn redraw(dir: &Path) -> Result<(), Error> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::elements::quad4::Quad4;
+    use crate::elements::{quad4::ShellSection, Family};
 
     /// Goal: the study's laminate is the reference deck's: on a 9×9 mesh every plate
     /// element has the section the cross-ply of `reference-data/decks/plate-pcomp.bdf`
@@ -445,9 +445,16 @@ mod tests {
         .unwrap()
         .0;
         let section = |m: &crate::model::Model| {
-            let quads: Vec<&Quad4> = m.elements.iter().filter_map(|e| e.kind::<Quad4>()).collect();
-            assert!(quads.iter().all(|q| q.section == quads[0].section));
-            quads[0].section.clone()
+            let shells: Vec<&ShellSection> = m
+                .elements
+                .iter()
+                .filter_map(|e| match e.kernel.family() {
+                    Family::Shell(s) => Some(s),
+                    _ => None,
+                })
+                .collect();
+            assert!(shells.iter().all(|s| *s == shells[0]));
+            shells[0].clone()
         };
         assert_eq!(section(&lam), section(&reference));
         assert_eq!(lam.dofs, plate_model(9).unwrap().dofs);
