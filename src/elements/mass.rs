@@ -28,7 +28,7 @@ impl Kernel for PointMass {
         "CONM2"
     }
     fn family(&self) -> super::Family<'_> {
-        super::Family::Point
+        super::Family::Point { mass: self.mass }
     }
     fn stiffness(&self) -> Vec<LocalMatrix> {
         Vec::new()

@@ -156,12 +156,20 @@ pub trait Kernel: fmt::Debug + Send + Sync + Any {
 /// [`Kernel::points`].
 #[derive(Debug, Clone, Copy)]
 pub enum Family<'a> {
-    /// A rod (CROD) of this section.
-    Rod(&'a rod::RodSection),
+    /// A rod (CROD) of a section and a length.
+    Rod {
+        /// Its section.
+        section: &'a rod::RodSection,
+        /// Its length.
+        length: f64,
+    },
     /// A shell (CQUAD4) of this section.
     Shell(&'a quad4::ShellSection),
-    /// A concentrated mass (CONM2).
-    Point,
+    /// A concentrated mass (CONM2) of this mass.
+    Point {
+        /// Its mass.
+        mass: f64,
+    },
 }
 
 /// A kernel behind a box: cloned, and seen as its concrete kind; every `Kernel` that

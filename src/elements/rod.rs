@@ -107,7 +107,10 @@ impl Kernel for Rod {
         "CROD"
     }
     fn family(&self) -> super::Family<'_> {
-        super::Family::Rod(&self.section)
+        super::Family::Rod {
+            section: &self.section,
+            length: self.length(),
+        }
     }
     fn stiffness(&self) -> Vec<LocalMatrix> {
         let k = stiffness(self.x[0], self.x[1], &self.section);

@@ -7,6 +7,7 @@ use crate::elements::{
     mass::PointMass,
     quad4::Quad4,
     rod::{Rod, RodSection},
+    Family,
 };
 use nalgebra::Matrix3;
 use std::collections::{BTreeMap, HashMap};
@@ -683,7 +684,7 @@ fn output_plan(
     let elem_pos: HashMap<i64, usize> = elements
         .iter()
         .enumerate()
-        .filter(|(_, e)| e.kind::<PointMass>().is_none())
+        .filter(|(_, e)| !matches!(e.kernel.family(), Family::Point { .. }))
         .map(|(i, e)| (e.eid, i))
         .collect();
     for key in ["STRESS", "STRAIN"] {
@@ -752,7 +753,10 @@ fn build_contact(
         .elements
         .iter()
         .filter(|e| e.grids == [imp.label.point])
-        .filter_map(|e| e.kind::<PointMass>().map(|p| p.mass))
+        .filter_map(|e| match e.kernel.family() {
+            Family::Point { mass } => Some(mass),
+            _ => None,
+        })
         .sum::<f64>();
     if mass <= 0.0 {
         cx.err(
@@ -959,7 +963,7 @@ fn impactor_dofs(elements: &[Element], imp: &NonlinearLoad) -> Vec<usize> {
     let imp_grid = imp.label.point;
     let mut v = Vec::new();
     for e in elements.iter().filter(|e| e.grids == [imp_grid]) {
-        if e.kind::<PointMass>().is_some() {
+        if matches!(e.kernel.family(), Family::Point { .. }) {
             v.extend(e.dofs.iter().flatten().flatten().copied());
         }
     }
@@ -1136,12 +1140,18 @@ fn laminate_section(
 
 /// A target made of CRODs of one section along one line: wave speed and length.
 fn rod_info(elements: &[Element]) -> Option<RodInfo> {
-    let rods: Vec<&Rod> = elements.iter().filter_map(|e| e.kind::<Rod>()).collect();
-    let s0 = &rods.first()?.section;
-    if rods.iter().any(|r| r.section != *s0) || s0.rho <= 0.0 {
+    let rods: Vec<(&RodSection, f64)> = elements
+        .iter()
+        .filter_map(|e| match e.kernel.family() {
+            Family::Rod { section, length } => Some((section, length)),
+            _ => None,
+        })
+        .collect();
+    let s0 = rods.first()?.0;
+    if rods.iter().any(|r| r.0 != s0) || s0.rho <= 0.0 {
         return None;
     }
-    let length: f64 = rods.iter().map(|r| r.length()).sum();
+    let length: f64 = rods.iter().map(|r| r.1).sum();
     Some(RodInfo {
         wave_speed: (s0.e / s0.rho).sqrt(),
         length,

@@ -70,7 +70,7 @@ pub fn rod_critical_step(model: &Model) -> Result<f64, ReferenceError> {
     let n = model
         .elements
         .iter()
-        .filter(|e| matches!(e.kernel.family(), crate::elements::Family::Rod(_)))
+        .filter(|e| matches!(e.kernel.family(), crate::elements::Family::Rod { .. }))
         .count();
     Ok(r.length / n as f64 / r.wave_speed)
 }

@@ -369,7 +369,9 @@ fn rod_strain(f: &Fig, tr: &analytic::Trace, lc: f64) -> Result<Vec<PathBuf>, Er
         .elements
         .iter()
         .filter_map(|e| {
-            let Family::Rod(_) = e.kernel.family() else { return None };
+            let Family::Rod { .. } = e.kernel.family() else {
+                return None;
+            };
             let x = e.kernel.points();
             let xc = 0.5 * (x[0][0] + x[1][0]);
             run.column_values(&Column::rod_strain(e.eid)).map(|v| (e.eid, xc, v))
@@ -386,7 +388,7 @@ fn rod_strain(f: &Fig, tr: &analytic::Trace, lc: f64) -> Result<Vec<PathBuf>, Er
             .elements
             .iter()
             .find_map(|e| match e.kernel.family() {
-                Family::Rod(_) => {
+                Family::Rod { .. } => {
                     let x = e.kernel.points();
                     Some(x[0][0].min(x[1][0]))
                 }

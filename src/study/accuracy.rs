@@ -267,7 +267,7 @@ impl RodStudy {
         let n = m
             .elements
             .iter()
-            .filter(|e| matches!(e.kernel.family(), crate::elements::Family::Rod(_)))
+            .filter(|e| matches!(e.kernel.family(), crate::elements::Family::Rod { .. }))
             .count();
         let eid = n / 2;
         let Some(j) = run.column(&crate::run::Column::rod_strain(eid as i64)) else {
