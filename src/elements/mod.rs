@@ -172,6 +172,16 @@ pub enum Family<'a> {
     },
 }
 
+impl<'a> Family<'a> {
+    /// The shell section, for a shell.
+    pub fn shell(self) -> Option<&'a quad4::ShellSection> {
+        match self {
+            Family::Shell(s) => Some(s),
+            _ => None,
+        }
+    }
+}
+
 /// A kernel behind a box: cloned, and seen as its concrete kind; every `Kernel` that
 /// is `Clone` is one.
 pub trait BoxedKernel: Kernel {

@@ -705,11 +705,9 @@ fn output_plan(
     }
     // Ply results of every written laminate element, in the order its element's
     // results are written.
-    let mut written: Vec<usize> = outputs.stress.clone();
-    written.extend(outputs.strain.iter().filter(|e| !outputs.stress.contains(e)));
-    outputs.plies = written
-        .into_iter()
-        .filter_map(|e| Some((e, built.plies.get(&e)?.clone())))
+    outputs.plies = outputs
+        .written()
+        .filter_map(|(e, _)| Some((e, built.plies.get(&e)?.clone())))
         .collect();
     outputs.failure_fields = built
         .plies

@@ -189,6 +189,19 @@ pub struct OutputPlan {
     pub failure_fields: Vec<(usize, PlyStack)>,
 }
 
+impl OutputPlan {
+    /// The elements whose results are recorded, with whether their stresses are:
+    /// STRESS requests (stress and strain), then STRAIN requests not already there.
+    pub fn written(&self) -> impl Iterator<Item = (usize, bool)> + '_ {
+        self.stress.iter().map(|&e| (e, true)).chain(
+            self.strain
+                .iter()
+                .filter(|e| !self.stress.contains(e))
+                .map(|&e| (e, false)),
+        )
+    }
+}
+
 /// A laminate's plies as its results need them, shared by the elements of one PCOMP.
 pub type PlyStack = std::sync::Arc<Vec<crate::laminate::PlyLayer>>;
 

@@ -100,10 +100,7 @@ fn plate_section(model: &Model) -> Result<crate::elements::quad4::ShellSection, 
     model
         .elements
         .iter()
-        .find_map(|e| match e.kernel.family() {
-            crate::elements::Family::Shell(s) => Some(s.clone()),
-            _ => None,
-        })
+        .find_map(|e| e.kernel.family().shell().cloned())
         .ok_or(ReferenceError::NoPlate)
 }
 

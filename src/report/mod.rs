@@ -71,7 +71,7 @@ pub fn report_case(outcome: &CaseOutcome, dir: &Path) -> Result<CaseReport, Erro
     let plate = model
         .elements
         .iter()
-        .any(|e| matches!(e.kernel.family(), Family::Shell(s) if s.g_bending.is_some()));
+        .any(|e| e.kernel.family().shell().is_some_and(|s| s.g_bending.is_some()));
     std::fs::create_dir_all(dir).map_err(io(dir))?;
     let footer = format!(
         "case {} · deck {} · scheme {} · dt {:e} s · {} steps",
@@ -591,9 +591,7 @@ fn plate_displacement(f: &Fig) -> Result<Vec<PathBuf>, Error> {
         .zip(["impact", "A", "B"])
         .filter_map(|(eid, label)| {
             let e = model.elements.iter().find(|e| e.eid == *eid)?;
-            let Family::Shell(_) = e.kernel.family() else {
-                return None;
-            };
+            e.kernel.family().shell()?;
             let c = e
                 .kernel
                 .points()
@@ -607,9 +605,7 @@ fn plate_displacement(f: &Fig) -> Result<Vec<PathBuf>, Error> {
         .elements
         .iter()
         .filter_map(|e| {
-            let Family::Shell(_) = e.kernel.family() else {
-                return None;
-            };
+            e.kernel.family().shell()?;
             Some(
                 e.grids
                     .iter()
@@ -629,9 +625,7 @@ fn plate_displacement(f: &Fig) -> Result<Vec<PathBuf>, Error> {
                 .elements
                 .iter()
                 .filter_map(|e| {
-                    let Family::Shell(_) = e.kernel.family() else {
-                        return None;
-                    };
+                    e.kernel.family().shell()?;
                     let points = e.kernel.points();
                     let xy: [(f64, f64); 4] = std::array::from_fn(|k| (points[k][0], points[k][1]));
                     let v: f64 = e

@@ -423,7 +423,7 @@ pub fn history_columns(m: &Model) -> Vec<Column> {
     if let Some(c) = &m.contact {
         cols.extend(m.outputs.nlload.iter().map(|&k| Column::NlLoad(c.loads[k].label)));
     }
-    for (e, stress) in recovered_elements(m) {
+    for (e, stress) in m.outputs.written() {
         let e = &m.elements[e];
         cols.extend(
             e.kernel
@@ -447,16 +447,6 @@ pub const FIXED_COLUMNS: [Column; 5] = [
     Column::ImpactorVelo,
 ];
 
-/// The elements whose results are recorded, with whether their stresses are: STRESS
-/// requests (stress and strain), then STRAIN requests not already there.
-fn recovered_elements(m: &Model) -> impl Iterator<Item = (usize, bool)> + '_ {
-    let o = &m.outputs;
-    o.stress
-        .iter()
-        .map(|&e| (e, true))
-        .chain(o.strain.iter().filter(|e| !o.stress.contains(e)).map(|&e| (e, false)))
-}
-
 /// The history outputs that are linear in the state, in column order: DISP, VELO,
 /// then the recovered element values.
 fn linear_outputs(m: &Model, u: &[f64], v: &[f64]) -> Vec<f64> {
@@ -467,7 +457,7 @@ fn linear_outputs(m: &Model, u: &[f64], v: &[f64]) -> Vec<f64> {
     for (_, src) in &m.outputs.velo {
         out.push(m.value(*src, v));
     }
-    for (e, stress) in recovered_elements(m) {
+    for (e, stress) in m.outputs.written() {
         out.extend(m.elements[e].recover(u, stress));
     }
     for (e, plies) in &m.outputs.plies {

@@ -429,7 +429,7 @@ pub fn redraw(dir: &Path) -> Result<(), Error> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::elements::{quad4::ShellSection, Family};
+    use crate::elements::quad4::ShellSection;
 
     /// Goal: the study's laminate is the reference deck's: on a 9×9 mesh every plate
     /// element has the section the cross-ply of `reference-data/decks/plate-pcomp.bdf`
@@ -445,14 +445,7 @@ mod tests {
         .unwrap()
         .0;
         let section = |m: &crate::model::Model| {
-            let shells: Vec<&ShellSection> = m
-                .elements
-                .iter()
-                .filter_map(|e| match e.kernel.family() {
-                    Family::Shell(s) => Some(s),
-                    _ => None,
-                })
-                .collect();
+            let shells: Vec<&ShellSection> = m.elements.iter().filter_map(|e| e.kernel.family().shell()).collect();
             assert!(shells.iter().all(|s| *s == shells[0]));
             shells[0].clone()
         };

@@ -350,7 +350,7 @@ fn shell_recovery_patch(cx: &Cx, max: f64) -> CheckResult {
     let [a, b, c] = PATCH_CURVATURE;
     let (mut worst, mut count, mut at) = (0.0f64, 0, 0);
     for e in cx.model.elements.iter() {
-        let crate::elements::Family::Shell(section) = e.kernel.family() else {
+        let Some(section) = e.kernel.family().shell() else {
             continue;
         };
         let xy = e.kernel.points();
@@ -786,10 +786,10 @@ fn file_problems(model: &Model, run: &RunResult) -> Vec<String> {
 }
 
 /// Recovered stresses against the material law applied to the recovered strains, for
-/// every element whose stresses are written: a rod's σ = E·ε (MAT1), a shell's
-/// σ(z) = G_m·ε_m + G_b·κz (MAT2 of MID1 and MID2), with the membrane strain
-/// ε_m = (ε(z1) + ε(z2))/2 and κh = (ε(z2) − ε(z1))/2 taken from the two written
-/// fibres; a laminate's ply stresses σ = Q·ε in each ply's axes (Q of its MAT8), from
+/// every element whose stresses are written, by its kind's law
+/// ([`crate::elements::Kernel::material_law`]: a rod's σ = E·ε, a shell's
+/// σ(z) = G_m·ε_m + G_b·κz from its two written fibres), a kind that recovers
+/// stresses and answers no law failing the check; a laminate's ply stresses σ = Q·ε in each ply's axes (Q of its MAT8), from
 /// the ply strains written beside them. Value: the largest difference relative to the
 /// peak |stress|; round-off passes (≤ 1e-10), a wrong sign, scale or component fails.
 pub fn material_law(case: &Case, model: &Model, run: &RunResult) -> CheckResult {
@@ -893,21 +893,17 @@ pub fn material_law(case: &Case, model: &Model, run: &RunResult) -> CheckResult 
 }
 
 fn navier_frequencies(cx: &Cx, meshes: [usize; 2], modes: usize, max: f64) -> Result<CheckResult, CheckError> {
-    use crate::elements::Family;
     let check = "navier_frequencies";
     let case = || cx.case.name.clone();
     let shells: Vec<_> = cx
         .model
         .elements
         .iter()
-        .filter(|e| matches!(e.kernel.family(), Family::Shell(_)))
+        .filter(|e| e.kernel.family().shell().is_some())
         .collect();
     let section = shells
         .first()
-        .and_then(|e| match e.kernel.family() {
-            Family::Shell(s) => Some(s.clone()),
-            _ => None,
-        })
+        .and_then(|e| e.kernel.family().shell().cloned())
         .filter(|s| s.g_bending.is_some())
         .ok_or_else(|| CheckError::NoPlate { case: case(), check })?;
     let g = section.g_bending.expect("filtered");
@@ -989,10 +985,7 @@ fn navier_strains(cx: &Cx, n: usize, until: f64, max: [f64; 2]) -> Result<CheckR
     let section = model
         .elements
         .iter()
-        .find_map(|e| match e.kernel.family() {
-            crate::elements::Family::Shell(s) => Some(s),
-            _ => None,
-        })
+        .find_map(|e| e.kernel.family().shell())
         .and_then(|s| s.d().map(|d| (d, s.mass_per_area, s.thickness)));
     let (d, mass_per_area, t) = section.ok_or_else(|| CheckError::NoPlate {
         case: cx.case.name.clone(),
