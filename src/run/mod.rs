@@ -472,19 +472,40 @@ fn linear_outputs(m: &Model, u: &[f64], v: &[f64]) -> Vec<f64> {
 pub fn largest_failure_index(e: &crate::elements::Element, plies: &[crate::laminate::PlyLayer], u: &[f64]) -> f64 {
     let mut values = Vec::new();
     ply_outputs(e, plies, u, &mut values);
-    let v = |k: usize| nalgebra::Vector3::new(values[k], values[k + 1], values[k + 2]);
-    plies
-        .iter()
-        .enumerate()
-        .flat_map(|(p, layer)| {
-            let v = &v;
-            layer
-                .criteria
+    ply_points(plies, &values)
+        .flat_map(|(_, p, _, strain, stress)| {
+            p.criteria
                 .iter()
                 .filter(|c| c.theory != crate::damage::Theory::MaxStress)
-                .flat_map(move |c| (0..2).map(move |face| c.index(&v(12 * p + 6 * face), &v(12 * p + 6 * face + 3))))
+                .map(move |c| c.index(&strain, &stress))
         })
         .fold(f64::NAN, f64::max)
+}
+
+/// The points of a laminate element's plies from its ply values in [`Column::plies`]
+/// order: each ply (from 0) with its layer, bottom then top, and the strain and
+/// stress there in the ply's axes.
+pub fn ply_points<'a>(
+    plies: &'a [crate::laminate::PlyLayer],
+    values: &'a [f64],
+) -> impl Iterator<
+    Item = (
+        usize,
+        &'a crate::laminate::PlyLayer,
+        Face,
+        nalgebra::Vector3<f64>,
+        nalgebra::Vector3<f64>,
+    ),
+> + 'a {
+    plies.iter().enumerate().flat_map(move |(k, p)| {
+        [Face::Bottom, Face::Top].into_iter().enumerate().map(move |(f, face)| {
+            let v = |o: usize| {
+                let b = 12 * k + 6 * f + o;
+                nalgebra::Vector3::new(values[b], values[b + 1], values[b + 2])
+            };
+            (k, p, face, v(0), v(3))
+        })
+    })
 }
 
 /// The ply strains and stresses of a laminate element, in [`Column::plies`] order:
@@ -526,58 +547,51 @@ fn ply_outputs(e: &crate::elements::Element, plies: &[crate::laminate::PlyLayer]
 /// history's ply strain and stress columns. `None` when no written ply has a criterion.
 fn failure_summary(model: &Model, columns: &[Column], rows: &[Vec<f64>]) -> Option<summary::FailureSummary> {
     use crate::damage::Theory;
-    use crate::elements::Measure;
     use summary::PlyIndex;
-    let at: std::collections::HashMap<Column, usize> = columns.iter().enumerate().map(|(k, c)| (*c, k)).collect();
     // Per criterion slot (0: the FT theory, 1: maximum stress): its running result.
+    let slot = |t: Theory| usize::from(t == Theory::MaxStress);
     let mut found: [Option<PlyIndex>; 2] = [None, None];
     let mut names: [Vec<&str>; 2] = [Vec::new(), Vec::new()];
     for (e, plies) in &model.outputs.plies {
         let eid = model.elements[*e].eid;
-        for (k, p) in plies.iter().enumerate() {
-            for face in [Face::Bottom, Face::Top] {
-                let col = |measure, axis| {
-                    at[&Column::Ply {
-                        eid,
-                        ply: k as u16 + 1,
-                        face,
-                        measure,
-                        axis,
-                    }]
-                };
-                let axes = [PlyAxis::P11, PlyAxis::P22, PlyAxis::P12];
-                let strain = axes.map(|a| col(Measure::Strain, a));
-                let stress = axes.map(|a| col(Measure::Stress, a));
+        for c in plies.iter().flat_map(|p| &p.criteria) {
+            let n = &mut names[slot(c.theory)];
+            if !n.contains(&c.theory.name()) {
+                n.push(c.theory.name());
+            }
+        }
+        // The element's ply columns, contiguous in Column::plies order.
+        let first = Column::plies(eid, 1)[0];
+        let start = columns
+            .iter()
+            .position(|c| *c == first)
+            .expect("a written laminate element has its ply columns");
+        let end = start + 12 * plies.len();
+        for row in rows {
+            let time = row[0];
+            for (k, p, face, strain, stress) in ply_points(plies, &row[start..end]) {
                 for c in &p.criteria {
-                    let slot = usize::from(c.theory == Theory::MaxStress);
-                    if !names[slot].contains(&c.theory.name()) {
-                        names[slot].push(c.theory.name());
+                    let index = c.index(&strain, &stress);
+                    let r = found[slot(c.theory)].get_or_insert_with(|| PlyIndex {
+                        largest: f64::NEG_INFINITY,
+                        ..Default::default()
+                    });
+                    if index > r.largest {
+                        *r = PlyIndex {
+                            largest: index,
+                            time,
+                            element: eid,
+                            ply: k as u16 + 1,
+                            face: match face {
+                                Face::Bottom => "bottom",
+                                Face::Top => "top",
+                            }
+                            .into(),
+                            ..std::mem::take(r)
+                        };
                     }
-                    for row in rows {
-                        let v = |cols: [usize; 3]| nalgebra::Vector3::from_fn(|i, _| row[cols[i]]);
-                        let index = c.index(&v(strain), &v(stress));
-                        let time = row[0];
-                        let r = found[slot].get_or_insert_with(|| PlyIndex {
-                            largest: f64::NEG_INFINITY,
-                            ..Default::default()
-                        });
-                        if index > r.largest {
-                            *r = PlyIndex {
-                                largest: index,
-                                time,
-                                element: eid,
-                                ply: k as u16 + 1,
-                                face: match face {
-                                    Face::Bottom => "bottom",
-                                    Face::Top => "top",
-                                }
-                                .into(),
-                                ..std::mem::take(r)
-                            };
-                        }
-                        if index >= 1.0 && r.first_reaches_one.is_none_or(|t| time < t) {
-                            r.first_reaches_one = Some(time);
-                        }
+                    if index >= 1.0 && r.first_reaches_one.is_none_or(|t| time < t) {
+                        r.first_reaches_one = Some(time);
                     }
                 }
             }

@@ -794,7 +794,6 @@ fn file_problems(model: &Model, run: &RunResult) -> Vec<String> {
 /// peak |stress|; round-off passes (≤ 1e-10), a wrong sign, scale or component fails.
 pub fn material_law(case: &Case, model: &Model, run: &RunResult) -> CheckResult {
     use crate::elements::Measure;
-    use nalgebra::Vector3;
     let (mut worst, mut peak, mut elements) = (0.0f64, 0.0f64, 0usize);
     let mut at = String::new();
     let mut unanswered = Vec::new();
@@ -861,17 +860,12 @@ pub fn material_law(case: &Case, model: &Model, run: &RunResult) -> CheckResult 
         }
         elements += 1;
         for row in &run.history {
-            // Per ply and face: strain 11, 22, 12 then stress 11, 22, 12.
-            for (k, p) in plies.iter().enumerate() {
-                for face in 0..2 {
-                    let base = 12 * k + 6 * face;
-                    let v = |o: usize| Vector3::new(row[j[base + o]], row[j[base + o + 1]], row[j[base + o + 2]]);
-                    let (strain, stress) = (v(0), v(3));
-                    peak = peak.max(stress.amax());
-                    let d = (stress - p.q * strain).amax();
-                    if d > worst {
-                        (worst, at) = (d, format!("element {eid} ply {} at t = {:e}", k + 1, row[0]));
-                    }
+            let values: Vec<f64> = j.iter().map(|&c| row[c]).collect();
+            for (k, p, _, strain, stress) in crate::run::ply_points(plies, &values) {
+                peak = peak.max(stress.amax());
+                let d = (stress - p.q * strain).amax();
+                if d > worst {
+                    (worst, at) = (d, format!("element {eid} ply {} at t = {:e}", k + 1, row[0]));
                 }
             }
         }
