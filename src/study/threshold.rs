@@ -16,7 +16,7 @@
 //! 1e-6 of v_hi: each evaluation is one run on the convolution engine (the kernels are
 //! computed once), so the whole search costs about one direct run. Both ends of the
 //! final bracket are then run on the direct engine, which must agree with the
-//! convolution engine to [`super::sweep::DIRECT_CHECK_MAX`] and put the target force
+//! convolution engine to [`super::sweep::DIRECT_CHECK_MAX`] and put the target (force or index)
 //! between them.
 
 use super::sweep::{point_model, Param, Vary, DIRECT_CHECK_MAX};
