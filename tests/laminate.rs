@@ -421,8 +421,10 @@ const UNSYMMETRIC: &str = "PCOMP,1,,,,,,,,+P0
 /// Goal: an unsymmetric laminate couples membrane and bending in the element. The
 /// plate as [0₈/90₇] under the paper's impact: its membrane DOFs are no longer inert
 /// (the symmetric cross-ply leaves 4608 at rest), the struck element's mid-plane
-/// strain is no longer zero (it is at least 1 % of its fibre strain), the ledger
-/// closes as tightly as the symmetric plate's; and a PSHELL with the laminate's
+/// strain is no longer zero (at least 1 % of its fibre strain, far above round-off,
+/// which is all a symmetric laminate's is: measured 47 %), the ledger closes within
+/// the plate cases' energy_balance bound, 5e-6 (measured 2.06e-6, the deck's NOLIN3
+/// mismatch booked as external work, as for the symmetric plate); and a PSHELL with the laminate's
 /// A/T, 12D/T³ and B/T² as MAT2 cards for MID1, MID2 and MID4 (NASTRAN's
 /// coupling material) runs the same history to 1e-12 of the largest column of each
 /// unit (measured 8.8e-14). 600 steps.
@@ -455,7 +457,7 @@ fn an_unsymmetric_laminate_couples_membrane_and_bending() {
     let bend = z1.iter().map(|a| a.abs()).fold(0.0, f64::max);
     assert!(mid >= 0.01 * bend, "mid-plane {mid:e} against fibre {bend:e}");
     let err = lam.summary.energy.max_relative_error.unwrap();
-    assert!(err.abs() <= 1e-5, "{err:e}");
+    assert!(err.abs() <= 5e-6, "{err:e}");
 
     let mat2 = |mid: i64, g: nalgebra::Matrix3<f64>, rho: Option<f64>| {
         format!(
