@@ -7,11 +7,13 @@
 //!
 //! - [`numerics`]: shared numerics: interpolation, crossings, slopes, medians.
 //! - [`plot`]: the figure writer (PNG and SVG with a bundled font).
-//! - [`deck`]: input: NASTRAN decks to typed cards with source positions.
+//! - [`elements`]: element kernels, the one element interface and the table of element
+//!   cards (pure functions of geometry and section: they use no other module).
+//! - [`deck`]: input: NASTRAN decks to typed cards with source positions (element cards
+//!   by the elements' table).
 //! - [`damage`]: damage onset: the delamination threshold load and the plies' failure
 //!   indices.
 //! - [`laminate`]: classical lamination theory: a PCOMP's plies to A, B, D.
-//! - [`elements`]: element kernels and the one element interface.
 //! - [`model`]: DOFs, constraints, elements, contact, initial conditions, output plan.
 //! - [`assembly`]: global K and M over the solved DOFs; inert DOFs dropped.
 //! - [`physics`]: the Hertz law and the analytic references, with no solver code.
@@ -33,10 +35,10 @@
 
 pub mod numerics;
 pub mod plot;
+pub mod elements;
 pub mod deck;
 pub mod damage;
 pub mod laminate;
-pub mod elements;
 pub mod model;
 pub mod assembly;
 pub mod physics;

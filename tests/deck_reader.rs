@@ -46,8 +46,11 @@ fn replication_generates_the_rod_decks_grids_and_elements() {
     assert_eq!(d.bulk.grids.len(), 145);
     let last = d.bulk.grids.last().unwrap();
     assert_eq!((last.id, last.x), (145, [36.0, 0.0, 0.0]));
-    assert_eq!(d.bulk.crods.len(), 144);
-    assert_eq!(d.bulk.crods[143].g, [144, 145]);
+    assert_eq!(d.bulk.elements.len(), 144);
+    assert_eq!(
+        (d.bulk.elements[143].kind.card, &d.bulk.elements[143].g[..]),
+        ("CROD", &[144, 145][..])
+    );
     // MSC-style forms without parentheses, `==` and a bare =(n) repeating the pattern.
     let d = deck("GRID,10,,1.0,2.0,3.0\n=,*1,==\n=2\nSPC1,1,123,10\n=,=,=,*100\n=(2)");
     let ids: Vec<i64> = d.bulk.grids.iter().map(|g| g.id).collect();
@@ -188,10 +191,10 @@ fn structural_mistakes_are_errors() {
 fn the_papers_restored_decks_parse_as_is() {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("reference-data/decks");
     let rod = impactlab::deck::read_deck(&root.join("rod.bdf"), ReadOptions::default()).unwrap();
-    assert_eq!((rod.bulk.grids.len(), rod.bulk.crods.len()), (146, 144));
+    assert_eq!((rod.bulk.grids.len(), rod.bulk.elements.len()), (146, 144));
     assert_eq!(rod.units.length, "in");
     let plate = impactlab::deck::read_deck(&root.join("plate.bdf"), ReadOptions::default()).unwrap();
-    assert_eq!((plate.bulk.grids.len(), plate.bulk.cquad4s.len()), (2501, 2401));
+    assert_eq!((plate.bulk.grids.len(), plate.bulk.elements.len()), (2501, 2401));
     // Edge SPC1s: two THRU rows of 50, and two columns of 1 + 1 + 48 replicated cards.
     let spc: usize = plate
         .bulk

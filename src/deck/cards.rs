@@ -70,15 +70,18 @@ pub struct GrdSet {
     pub ps: Components,
 }
 
-/// CROD: a rod element between two grids.
+/// An element card of [`crate::elements::KINDS`] (CROD, CQUAD4, CTRIA3): the element
+/// and the grids it connects.
 #[derive(Debug, Clone)]
-pub struct Crod {
+pub struct Connection {
+    /// Its kind.
+    pub kind: &'static crate::elements::Kind,
     /// Element id (field 2).
     pub eid: i64,
-    /// PROD id (field 3).
+    /// Property id (field 3; the element id when blank).
     pub pid: i64,
-    /// End grids G1, G2 (fields 4-5).
-    pub g: [i64; 2],
+    /// Grids G1..Gn (fields 4 on; a shell's corners counter-clockwise).
+    pub g: Vec<i64>,
     /// The card.
     pub at: CardRef,
 }
@@ -96,19 +99,6 @@ pub struct Prod {
     pub j: f64,
     /// Non-structural mass per unit length, NSM (field 7).
     pub nsm: f64,
-    /// The card.
-    pub at: CardRef,
-}
-
-/// CQUAD4: a four-node shell element.
-#[derive(Debug, Clone)]
-pub struct Cquad4 {
-    /// Element id (field 2).
-    pub eid: i64,
-    /// PSHELL id (field 3).
-    pub pid: i64,
-    /// Corner grids G1-G4, counter-clockwise (fields 4-7).
-    pub g: [i64; 4],
     /// The card.
     pub at: CardRef,
 }
@@ -372,12 +362,10 @@ pub struct Bulk {
     pub epoints: Vec<(i64, CardRef)>,
     /// SPOINT ids (scalar points), each with its card.
     pub spoints: Vec<(i64, CardRef)>,
-    /// CROD cards.
-    pub crods: Vec<Crod>,
+    /// Element cards (CROD, CQUAD4, CTRIA3), in deck order.
+    pub elements: Vec<Connection>,
     /// PROD cards.
     pub prods: Vec<Prod>,
-    /// CQUAD4 cards.
-    pub cquad4s: Vec<Cquad4>,
     /// PSHELL cards.
     pub pshells: Vec<Pshell>,
     /// MAT1 cards.
@@ -660,10 +648,21 @@ impl<'a> Reader<'a> {
 }
 
 /// Cards the reader knows. `PARAM` is accepted and ignored with a warning.
-pub const KNOWN_CARDS: [&str; 21] = [
-    "GRID", "GRDSET", "EPOINT", "SPOINT", "CROD", "PROD", "CQUAD4", "PSHELL", "PCOMP", "MAT1", "MAT2", "MAT8", "CONM2",
-    "SPC1", "TF", "TSTEP", "NOLIN3", "TIC", "PARAM", "INCLUDE", "ENDDATA",
+/// Element cards are those of [`crate::elements::KINDS`] besides these.
+pub const KNOWN_CARDS: [&str; 19] = [
+    "GRID", "GRDSET", "EPOINT", "SPOINT", "PROD", "PSHELL", "PCOMP", "MAT1", "MAT2", "MAT8", "CONM2", "SPC1", "TF",
+    "TSTEP", "NOLIN3", "TIC", "PARAM", "INCLUDE", "ENDDATA",
 ];
+
+/// Every card the reader types: the element cards of [`crate::elements::KINDS`], then
+/// [`KNOWN_CARDS`].
+pub fn supported() -> Vec<&'static str> {
+    crate::elements::KINDS
+        .iter()
+        .map(|k| k.card)
+        .chain(KNOWN_CARDS)
+        .collect()
+}
 
 /// Types all raw cards. Unknown card names are collected and returned. `ids_left` is
 /// what remains of [`super::Limits::max_listed_ids`].
@@ -676,9 +675,7 @@ pub fn type_cards(raw: &[RawCard], ids_left: &mut usize, diags: &mut Diagnostics
             "GRID" => card_grid(&mut r, &mut b),
             "GRDSET" => card_grdset(&mut r, &mut b),
             "EPOINT" | "SPOINT" => card_points(&mut r, &mut b, card),
-            "CROD" => card_crod(&mut r, &mut b),
             "PROD" => card_prod(&mut r, &mut b),
-            "CQUAD4" => card_cquad4(&mut r, &mut b),
             "PSHELL" => card_pshell(&mut r, &mut b),
             "MAT1" => card_mat1(&mut r, &mut b),
             "MAT2" => card_mat2(&mut r, &mut b),
@@ -695,7 +692,10 @@ pub fn type_cards(raw: &[RawCard], ids_left: &mut usize, diags: &mut Diagnostics
                     .card("PARAM")
                     .quote(&card.source),
             ),
-            _ => unknown.push((card.name.clone(), card.pos.clone())),
+            name => match crate::elements::kind(name) {
+                Some(kind) => card_element(&mut r, &mut b, kind),
+                None => unknown.push((card.name.clone(), card.pos.clone())),
+            },
         }
     }
     (b, unknown)
@@ -749,21 +749,52 @@ fn card_points(r: &mut Reader, b: &mut Bulk, card: &RawCard) {
     }
 }
 
-/// CROD.
-fn card_crod(r: &mut Reader, b: &mut Bulk) {
-    let c = Crod {
+/// An element card of the kinds' table: EID, PID (blank: EID), G1..Gn; a shell's
+/// THETA/MCID and ZOFFS after its grids must be blank or zero.
+fn card_element(r: &mut Reader, b: &mut Bulk, kind: &'static crate::elements::Kind) {
+    let n = kind.grids;
+    let c = Connection {
+        kind,
         eid: r.id(0, "EID"),
         pid: r.int_or(1, "PID", 0),
-        g: [r.id(2, "G1"), r.id(3, "G2")],
+        g: (0..n).map(|k| r.id(2 + k, &format!("G{}", k + 1))).collect(),
         at: r.at(),
     };
     let pid = if r.text(1).is_empty() { c.eid } else { c.pid };
-    if c.g[0] == c.g[1] && r.ok {
-        r.fail(3, "G2", "is the same grid as G1");
+    let shell = matches!(kind.build, crate::elements::Build::Shell(_));
+    if shell {
+        let theta = r.real_or(2 + n, "THETA/MCID", 0.0);
+        if theta != 0.0 {
+            r.fail(
+                2 + n,
+                "THETA/MCID",
+                "a material orientation is not supported (must be blank or 0.0)",
+            );
+        }
+        let zoffs = r.real_or(3 + n, "ZOFFS", 0.0);
+        if zoffs != 0.0 {
+            r.fail(
+                3 + n,
+                "ZOFFS",
+                "an offset plate is not supported (must be blank or 0.0)",
+            );
+        }
     }
-    r.extra_fields(4);
+    let mut gs = c.g.clone();
+    gs.sort();
+    gs.dedup();
+    if gs.len() != n && r.ok {
+        if n == 2 {
+            r.fail(3, "G2", "is the same grid as G1");
+        } else {
+            r.fail(2, &format!("G1-G{n}"), "the corner grids must be distinct");
+        }
+    }
+    if !shell {
+        r.extra_fields(2 + n);
+    }
     if r.ok {
-        b.crods.push(Crod { pid, ..c });
+        b.elements.push(Connection { pid, ..c });
     }
 }
 
@@ -783,38 +814,6 @@ fn card_prod(r: &mut Reader, b: &mut Bulk) {
     r.extra_fields(6);
     if r.ok {
         b.prods.push(p);
-    }
-}
-
-/// CQUAD4.
-fn card_cquad4(r: &mut Reader, b: &mut Bulk) {
-    let c = Cquad4 {
-        eid: r.id(0, "EID"),
-        pid: r.int_or(1, "PID", 0),
-        g: [r.id(2, "G1"), r.id(3, "G2"), r.id(4, "G3"), r.id(5, "G4")],
-        at: r.at(),
-    };
-    let pid = if r.text(1).is_empty() { c.eid } else { c.pid };
-    let theta = r.real_or(6, "THETA/MCID", 0.0);
-    if theta != 0.0 {
-        r.fail(
-            6,
-            "THETA/MCID",
-            "a material orientation is not supported (must be blank or 0.0)",
-        );
-    }
-    let zoffs = r.real_or(7, "ZOFFS", 0.0);
-    if zoffs != 0.0 {
-        r.fail(7, "ZOFFS", "an offset plate is not supported (must be blank or 0.0)");
-    }
-    let mut gs = c.g.to_vec();
-    gs.sort();
-    gs.dedup();
-    if gs.len() != 4 && r.ok {
-        r.fail(2, "G1-G4", "the four corner grids must be distinct");
-    }
-    if r.ok {
-        b.cquad4s.push(Cquad4 { pid, ..c });
     }
 }
 

@@ -280,7 +280,7 @@ fn report_unknown(unknown: &[(String, Pos)], opts: ReadOptions, diags: &mut Diag
         let msg = format!(
             "unknown card (this deck has {} unknown card type(s): {list}); supported: {}",
             names.len(),
-            cards::KNOWN_CARDS.join(" ")
+            cards::supported().join(" ")
         );
         let d = if opts.allow_unknown {
             Diagnostic::warning(Some(pos.clone()), format!("{msg}; ignored because of --allow-unknown"))
@@ -313,10 +313,9 @@ fn check_duplicates(b: &Bulk, diags: &mut Diagnostics) {
     );
     dup(
         "element",
-        b.crods
+        b.elements
             .iter()
             .map(|c| (c.eid, &c.at))
-            .chain(b.cquad4s.iter().map(|c| (c.eid, &c.at)))
             .chain(b.conm2s.iter().map(|c| (c.eid, &c.at))),
         diags,
     );

@@ -8,10 +8,17 @@
 //! element kind to assemble, book energy, recover results or draw a cell: a new kind
 //! is a new [`Kernel`] implementation, and the ledger's strain energy, the history
 //! columns and the VTK cells follow from it.
+//!
+//! An element card's kind is one line of [`KINDS`]: its card name, its grid count and
+//! how it is built from its grids and resolved property. The deck reader types every
+//! card of the table alike and the model builder builds it through the table: a new
+//! kind is a kernel file here and a line there.
 
 pub mod mass;
 pub mod quad4;
 pub mod rod;
+pub mod shell;
+pub mod tria3;
 
 use nalgebra::DMatrix;
 use std::any::Any;
@@ -112,8 +119,96 @@ pub enum Cell {
     Vertex,
     /// A two-node line (VTK_LINE).
     Line,
+    /// A three-node triangle (VTK_TRIANGLE).
+    Triangle,
     /// A four-node quadrilateral (VTK_QUAD).
     Quad,
+}
+
+impl Cell {
+    /// The VTK cell type number.
+    pub fn vtk_type(self) -> u8 {
+        match self {
+            Cell::Vertex => 1,
+            Cell::Line => 3,
+            Cell::Triangle => 5,
+            Cell::Quad => 9,
+        }
+    }
+}
+
+/// Why an element's geometry cannot be built: the rest of the sentence after the
+/// card and element id ("has zero length (its grids coincide)").
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct BadShape(pub &'static str);
+
+/// A kind's builder: its grids' coordinates (in connection order) and its resolved
+/// section to its kernel.
+pub type Builder<S> = fn(&[[f64; 3]], S) -> Result<Box<dyn BoxedKernel>, BadShape>;
+
+/// How an element kind is built, by the property it takes.
+#[derive(Clone, Copy)]
+pub enum Build {
+    /// From a PROD and its MAT1.
+    Rod(Builder<rod::RodSection>),
+    /// From a PSHELL or a PCOMP and their materials (the material x axis of a
+    /// laminate: the G1→G2 side).
+    Shell(Builder<shell::ShellSection>),
+}
+
+/// An element card: its name, how many grids it connects (fields 4 on) and how it
+/// is built.
+#[derive(Clone, Copy)]
+pub struct Kind {
+    /// The bulk data card.
+    pub card: &'static str,
+    /// Its grids G1..Gn.
+    pub grids: usize,
+    /// Its property and builder.
+    pub build: Build,
+}
+
+/// Every element card, one line per kind (CONM2, a mass rather than an element
+/// connecting grids, is read on its own).
+pub static KINDS: [Kind; 3] = [
+    Kind {
+        card: "CROD",
+        grids: 2,
+        build: Build::Rod(|x, s| Ok(Box::new(rod::Rod::build(x, s)?))),
+    },
+    Kind {
+        card: "CQUAD4",
+        grids: 4,
+        build: Build::Shell(|x, s| Ok(Box::new(quad4::Quad4::build(x, s)?))),
+    },
+    Kind {
+        card: "CTRIA3",
+        grids: 3,
+        build: Build::Shell(|x, s| Ok(Box::new(tria3::Tria3::build(x, s)?))),
+    },
+];
+
+impl fmt::Debug for Kind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{} ({} grids)", self.card, self.grids)
+    }
+}
+
+/// The element kind of a card name.
+pub fn kind(card: &str) -> Option<&'static Kind> {
+    KINDS.iter().find(|k| k.card == card)
+}
+
+/// The in-plane coordinates of a flat shell's corners, refused when they are not in
+/// one plane z = const (within 1e-9 relative).
+pub fn flat_xy<const N: usize>(points: &[[f64; 3]]) -> Result<[[f64; 2]; N], BadShape> {
+    let z = points[0][2];
+    if points.iter().any(|p| (p[2] - z).abs() > 1e-9 * (1.0 + z.abs())) {
+        return Err(BadShape(
+            "is not in a plane z = const: only flat plates in the basic XY plane are supported",
+        ));
+    }
+    Ok(std::array::from_fn(|k| [points[k][0], points[k][1]]))
 }
 
 /// What an element kind computes, over its local DOFs (6 per grid, grid-major).
@@ -163,8 +258,8 @@ pub enum Family<'a> {
         /// Its length.
         length: f64,
     },
-    /// A shell (CQUAD4) of this section.
-    Shell(&'a quad4::ShellSection),
+    /// A shell (CQUAD4, CTRIA3) of this section.
+    Shell(&'a shell::ShellSection),
     /// A concentrated mass (CONM2) of this mass.
     Point {
         /// Its mass.
@@ -174,7 +269,7 @@ pub enum Family<'a> {
 
 impl<'a> Family<'a> {
     /// The shell section, for a shell.
-    pub fn shell(self) -> Option<&'a quad4::ShellSection> {
+    pub fn shell(self) -> Option<&'a shell::ShellSection> {
         match self {
             Family::Shell(s) => Some(s),
             _ => None,
@@ -233,13 +328,18 @@ impl Clone for Element {
 impl Element {
     /// An element of kernel `kernel` on `grids`, with the solved DOFs of each grid.
     pub fn new(eid: i64, grids: Vec<i64>, dofs: Vec<[Option<usize>; 6]>, kernel: impl Kernel + Clone) -> Self {
+        Element::boxed(eid, grids, dofs, Box::new(kernel))
+    }
+
+    /// An element of a boxed kernel (as [`Kind`]'s builders give it) on `grids`.
+    pub fn boxed(eid: i64, grids: Vec<i64>, dofs: Vec<[Option<usize>; 6]>, kernel: Box<dyn BoxedKernel>) -> Self {
         debug_assert_eq!(grids.len(), dofs.len());
         debug_assert!(grids.len() <= MAX_GRIDS);
         Element {
             eid,
             grids,
             dofs,
-            kernel: Box::new(kernel),
+            kernel,
         }
     }
 
@@ -314,8 +414,8 @@ mod tests {
     use super::*;
     use nalgebra::Matrix3;
 
-    /// One kernel of each kind: a skewed rod in space, a distorted CQUAD4 with membrane
-    /// and bending, a CONM2.
+    /// One kernel of each kind: a skewed rod in space, a distorted CQUAD4 and a scalene
+    /// CTRIA3 with membrane and bending (each also coupled), a CONM2.
     fn kernels() -> Vec<Box<dyn BoxedKernel>> {
         let section = rod::RodSection {
             e: 1.0e7,
@@ -326,7 +426,7 @@ mod tests {
             nsm: 0.0,
         };
         let g = Matrix3::new(4.3e6, 2.9e5, 0.0, 2.9e5, 2.8e6, 0.0, 0.0, 0.0, 5.7e5);
-        let shell = quad4::ShellSection {
+        let shell = shell::ShellSection {
             thickness: 0.15,
             g_membrane: Some(g),
             g_bending: Some(g * 1.3),
@@ -347,11 +447,26 @@ mod tests {
             Box::new(quad4::Quad4::new(
                 [[0.0, 0.0], [2.0, 0.3], [2.4, 1.7], [0.3, 1.2]],
                 0.0,
-                quad4::ShellSection {
+                shell::ShellSection {
                     g_coupling: Some(Matrix3::new(
                         3.0e5, 1.0e4, 2.0e4, 1.0e4, -3.0e5, 5.0e3, 2.0e4, 5.0e3, 1.0e4,
                     )),
                     ..shell
+                },
+            )),
+            Box::new(tria3::Tria3::new(
+                [[0.1, -0.2], [2.3, 0.4], [0.7, 1.9]],
+                0.0,
+                shell.clone(),
+            )),
+            Box::new(tria3::Tria3::new(
+                [[0.1, -0.2], [2.3, 0.4], [0.7, 1.9]],
+                0.0,
+                shell::ShellSection {
+                    g_coupling: Some(Matrix3::new(
+                        3.0e5, 1.0e4, 2.0e4, 1.0e4, -3.0e5, 5.0e3, 2.0e4, 5.0e3, 1.0e4,
+                    )),
+                    ..shell.clone()
                 },
             )),
             Box::new(mass::PointMass {
@@ -370,7 +485,10 @@ mod tests {
     /// it recovers, and each names the deck card it comes from.
     #[test]
     fn every_kernel_books_half_utku_and_recovers_what_it_names() {
-        for (kind, k) in ["CROD", "CQUAD4", "CQUAD4", "CONM2"].iter().zip(kernels()) {
+        for (kind, k) in ["CROD", "CQUAD4", "CQUAD4", "CTRIA3", "CTRIA3", "CONM2"]
+            .iter()
+            .zip(kernels())
+        {
             assert_eq!(k.card(), *kind);
             let n = 6 * k.points().len();
             let u: Vec<f64> = (0..n).map(|i| 1e-3 * ((i as f64) * 0.71 + 0.2).sin()).collect();

@@ -16,7 +16,8 @@
 //!   no rotary inertia (NASTRAN's default lumped mass).
 //! - Recovery at the centre: fibre strain ε(z) = ε_m + z κ (z from the mid-plane).
 
-use super::{Cell, Fibre, Kernel, LocalMatrix, Measure, Plane, Recovered};
+use super::shell::{h_vectors, side_coefficients, ShellSection};
+use super::{BadShape, Cell, Kernel, LocalMatrix, Recovered};
 use nalgebra::{DMatrix, Matrix3, SMatrix, Vector3};
 
 /// Corner coordinates (x, y) of a quadrilateral, counter-clockwise.
@@ -127,51 +128,13 @@ fn serendipity_derivatives(xi: f64, eta: f64) -> ([f64; 8], [f64; 8]) {
     (dxi, deta)
 }
 
-/// Side coefficients a, b, c, d, e of Batoz & Tahar for the sides 12, 23, 34, 41.
-fn side_coefficients(xy: &Xy) -> [[f64; 5]; 4] {
-    let mut out = [[0.0; 5]; 4];
-    for (k, o) in out.iter_mut().enumerate() {
-        let (i, j) = (k, (k + 1) % 4);
-        let x = xy[i][0] - xy[j][0];
-        let y = xy[i][1] - xy[j][1];
-        let l2 = x * x + y * y;
-        *o = [
-            -x / l2,
-            0.75 * x * y / l2,
-            (0.25 * x * x - 0.5 * y * y) / l2,
-            -y / l2,
-            (0.25 * y * y - 0.5 * x * x) / l2,
-        ];
-    }
-    out
-}
-
-/// Hx, Hy (βx = Hx·U, βy = Hy·U, U = (w, θx, θy) per corner) for given serendipity values.
-fn h_vectors(n: &[f64; 8], sc: &[[f64; 5]; 4]) -> ([f64; 12], [f64; 12]) {
-    let mut hx = [0.0; 12];
-    let mut hy = [0.0; 12];
-    for i in 0..4 {
-        let m = i; // side starting at corner i
-        let l = (i + 3) % 4; // side ending at corner i
-        let (nm, nl) = (n[4 + m], n[4 + l]);
-        let [am, bm, cm, dm, em] = sc[m];
-        let [al, bl, cl, dl, el] = sc[l];
-        hx[3 * i] = 1.5 * (am * nm - al * nl);
-        hx[3 * i + 1] = bm * nm + bl * nl;
-        hx[3 * i + 2] = n[i] - cm * nm - cl * nl;
-        hy[3 * i] = 1.5 * (dm * nm - dl * nl);
-        hy[3 * i + 1] = -n[i] + em * nm + el * nl;
-        hy[3 * i + 2] = -hx[3 * i + 1];
-    }
-    (hx, hy)
-}
-
 /// Curvature-displacement matrix of the DKQ at (ξ, η).
 fn b_bending(xy: &Xy, xi: f64, eta: f64) -> (SMatrix<f64, 3, 12>, f64) {
     let sc = side_coefficients(xy);
     let (dxi, deta) = serendipity_derivatives(xi, eta);
-    let (hx_xi, hy_xi) = h_vectors(&dxi, &sc);
-    let (hx_eta, hy_eta) = h_vectors(&deta, &sc);
+    let (mut hx_xi, mut hy_xi, mut hx_eta, mut hy_eta) = ([0.0; 12], [0.0; 12], [0.0; 12], [0.0; 12]);
+    h_vectors(&dxi, &sc, &mut hx_xi, &mut hy_xi);
+    h_vectors(&deta, &sc, &mut hx_eta, &mut hy_eta);
     let (j, det) = jacobian(xy, xi, eta);
     let mut b = SMatrix::<f64, 3, 12>::zeros();
     for k in 0..12 {
@@ -226,39 +189,6 @@ pub fn lumped_mass(xy: &Xy, mass_per_area: f64) -> [f64; 4] {
     m
 }
 
-/// A PSHELL with its materials resolved.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ShellSection {
-    /// Thickness T.
-    pub thickness: f64,
-    /// Membrane material matrix G(MID1) (stress/strain), if any.
-    pub g_membrane: Option<Matrix3<f64>>,
-    /// Bending material matrix G(MID2)·(12I/T³), if any: D = this · T³/12.
-    pub g_bending: Option<Matrix3<f64>>,
-    /// Membrane-bending coupling material matrix G(MID4), if any: B = this · T²
-    /// (an unsymmetric laminate's, or PSHELL's MID4).
-    pub g_coupling: Option<Matrix3<f64>>,
-    /// (ρ T + NSM), mass per unit area.
-    pub mass_per_area: f64,
-}
-
-impl ShellSection {
-    /// Membrane stiffness per unit length A = G(MID1)·T.
-    pub fn a(&self) -> Option<Matrix3<f64>> {
-        self.g_membrane.map(|g| g * self.thickness)
-    }
-
-    /// Bending stiffness D = G(MID2)·(12I/T³)·T³/12.
-    pub fn d(&self) -> Option<Matrix3<f64>> {
-        self.g_bending.map(|g| g * self.thickness.powi(3) / 12.0)
-    }
-
-    /// Membrane-bending coupling stiffness B = G(MID4)·T².
-    pub fn b(&self) -> Option<Matrix3<f64>> {
-        self.g_coupling.map(|g| g * self.thickness.powi(2))
-    }
-}
-
 /// A CQUAD4 in the plane z = `z`. The upper triangles of its stiffness matrices are
 /// kept (packed, row by row) for the strain energy the ledger books every step: half
 /// the memory of the full matrices, which is what a step's pass over all elements
@@ -277,6 +207,19 @@ pub struct Quad4 {
 }
 
 impl Quad4 {
+    /// The element on four grids' coordinates (counter-clockwise): refused when they
+    /// are not in a plane z = const, or the element is degenerate, concave or
+    /// numbered clockwise.
+    pub fn build(points: &[[f64; 3]], section: ShellSection) -> Result<Self, BadShape> {
+        let xy = super::flat_xy::<4>(points)?;
+        if min_jacobian(&xy) <= 0.0 {
+            return Err(BadShape(
+                "is degenerate, concave or numbered clockwise (non-positive Jacobian)",
+            ));
+        }
+        Ok(Quad4::new(xy, points[0][2], section))
+    }
+
     /// The element, its stiffness matrices computed once.
     pub fn new(xy: Xy, z: f64, section: ShellSection) -> Self {
         Quad4 {
@@ -344,9 +287,6 @@ fn parts(ue: &[f64]) -> (SMatrix<f64, 8, 1>, SMatrix<f64, 12, 1>) {
     (um, ub)
 }
 
-const FIBRES: [Fibre; 2] = [Fibre::Z1, Fibre::Z2];
-const PLANE: [Plane; 3] = [Plane::Xx, Plane::Yy, Plane::Xy];
-
 impl Kernel for Quad4 {
     fn card(&self) -> &'static str {
         "CQUAD4"
@@ -392,60 +332,15 @@ impl Kernel for Quad4 {
         }
     }
     fn recovered(&self, stress: bool) -> Vec<Recovered> {
-        let measures: &[Measure] = if stress {
-            &[Measure::Stress, Measure::Strain]
-        } else {
-            &[Measure::Strain]
-        };
-        let mut v = Vec::new();
-        for &measure in measures {
-            for f in FIBRES {
-                for c in PLANE {
-                    v.push(Recovered {
-                        measure,
-                        at: Some((f, c)),
-                    });
-                }
-            }
-        }
-        v
+        ShellSection::recovered(stress)
     }
     fn recover(&self, ue: &[f64], stress: bool) -> Vec<f64> {
         let (um, ub) = parts(ue);
-        let em = membrane_strain(&self.xy, &um);
-        let kappa = curvature(&self.xy, &ub);
-        let h = 0.5 * self.section.thickness;
-        let mut stresses = Vec::new();
-        let mut strains = Vec::new();
-        for z in [-h, h] {
-            let eps: Vector3<f64> = em + kappa * z;
-            strains.extend(eps.iter());
-            let sm = self.section.g_membrane.map(|g| g * em).unwrap_or_default();
-            let sb = self.section.g_bending.map(|g| g * kappa * z).unwrap_or_default();
-            stresses.extend((sm + sb).iter());
-        }
-        if stress {
-            stresses.extend(strains);
-            stresses
-        } else {
-            strains
-        }
+        self.section
+            .recover(membrane_strain(&self.xy, &um), curvature(&self.xy, &ub), stress)
     }
     fn material_law(&self, strains: &[f64]) -> Option<Vec<f64>> {
-        // From the fibre strains at z1 = −T/2 and z2 = +T/2: the membrane strain and
-        // κ·T/2, then G1 ε⁰ ∓ G2 κ T/2 at each fibre.
-        let v = |k: usize| Vector3::new(strains[k], strains[k + 1], strains[k + 2]);
-        let (eps1, eps2) = (v(0), v(3));
-        let membrane = (eps1 + eps2) * 0.5;
-        let bending = (eps2 - eps1) * 0.5;
-        let gm = self.section.g_membrane.unwrap_or_default();
-        let gb = self.section.g_bending.unwrap_or_default();
-        let mut out = Vec::with_capacity(6);
-        for sign in [-1.0, 1.0] {
-            let law = gm * membrane + gb * bending * sign;
-            out.extend(law.iter());
-        }
-        Some(out)
+        Some(self.section.material_law(strains))
     }
     fn eq16_mass(&self) -> Option<f64> {
         Some(self.section.mass_per_area * area(&self.xy))

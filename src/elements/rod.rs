@@ -6,7 +6,7 @@
 //! translational DOFs (NASTRAN's default, no COUPMASS): (ρA + NSM)·L/2 per node.
 //! Recovery: axial strain (e·(u2 − u1))/L, constant over the element.
 
-use super::{Cell, Kernel, LocalMatrix, Measure, Recovered};
+use super::{BadShape, Cell, Kernel, LocalMatrix, Measure, Recovered};
 use nalgebra::{DMatrix, SMatrix, Vector3};
 
 /// Section and material of a rod.
@@ -92,6 +92,15 @@ pub struct Rod {
 }
 
 impl Rod {
+    /// The rod between two grids' coordinates: refused when they coincide.
+    pub fn build(points: &[[f64; 3]], section: RodSection) -> Result<Self, BadShape> {
+        let x = [points[0], points[1]];
+        if x[0] == x[1] {
+            return Err(BadShape("has zero length (its grids coincide)"));
+        }
+        Ok(Rod { x, section })
+    }
+
     /// Its length.
     pub fn length(&self) -> f64 {
         axis(self.x[0], self.x[1]).1

@@ -1,14 +1,10 @@
 //! Deck → model.
 
 use super::*;
+use crate::deck::cards::Connection;
 use crate::deck::case::{OutputSet, Selection};
 use crate::deck::{Deck, Diagnostic};
-use crate::elements::{
-    mass::PointMass,
-    quad4::Quad4,
-    rod::{Rod, RodSection},
-    Family,
-};
+use crate::elements::{mass::PointMass, rod::RodSection, BadShape, Build, Family};
 use nalgebra::Matrix3;
 use std::collections::{BTreeMap, HashMap};
 
@@ -401,167 +397,165 @@ fn dependent_points(cx: &mut Ctx, tf_of: &BTreeMap<i64, &crate::deck::cards::Tf>
     }
 }
 
-/// CRODs, CQUAD4s and CONM2s with their materials and sections resolved.
+/// The element cards and CONM2s with their materials and sections resolved.
 fn build_elements(cx: &mut Ctx, deck: &Deck, num: &Numbering) -> Elements {
     let mut out = Elements {
         list: Vec::new(),
         on_element: HashMap::new(),
         plies: HashMap::new(),
     };
-    rods(cx, deck, num, &mut out);
-    quads(cx, deck, num, &mut out);
+    connected(cx, deck, num, &mut out);
     point_masses(cx, deck, num, &mut out);
     out
 }
 
-/// CRODs with their PROD and MAT1.
-fn rods(cx: &mut Ctx, deck: &Deck, num: &Numbering, out: &mut Elements) {
+/// The element cards of [`crate::elements::KINDS`], kind by kind in the table's
+/// order and each in deck order, with their properties and materials resolved.
+fn connected(cx: &mut Ctx, deck: &Deck, num: &Numbering, out: &mut Elements) {
     let b = &deck.bulk;
-    let grids = &num.grids;
-    let grid_dofs = |g: i64| num.grid_dofs(g);
-    let (elements, on_element) = (&mut out.list, &mut out.on_element);
-    let mat1: HashMap<i64, &crate::deck::cards::Mat1> = b.mat1s.iter().map(|m| (m.mid, m)).collect();
-    let prod: HashMap<i64, &crate::deck::cards::Prod> = b.prods.iter().map(|p| (p.pid, p)).collect();
-    for c in &b.crods {
-        let mut ok = true;
-        let mut x = [[0.0; 3]; 2];
-        for (k, g) in c.g.iter().enumerate() {
-            match grids.get(g) {
-                Some(gr) => x[k] = gr.x,
-                None => {
-                    cx.err(c.at.error(format!("CROD {} references grid {g}, which does not exist", c.eid)));
-                    ok = false;
+    let mut props = Properties::new(cx, b);
+    for kind in &crate::elements::KINDS {
+        for c in b.elements.iter().filter(|c| c.kind.card == kind.card) {
+            let mut ok = true;
+            let mut xyz = Vec::with_capacity(c.g.len());
+            for g in &c.g {
+                match num.grids.get(g) {
+                    Some(gr) => xyz.push(gr.x),
+                    None => {
+                        cx.err(c.at.error(format!(
+                            "{} {} references grid {g}, which does not exist",
+                            kind.card, c.eid
+                        )));
+                        ok = false;
+                    }
                 }
             }
+            let mut plies = None;
+            let kernel = match kind.build {
+                Build::Rod(build) => {
+                    let Some(section) = props.rod(cx, c) else { continue };
+                    if !ok {
+                        continue;
+                    }
+                    build(&xyz, section)
+                }
+                Build::Shell(build) => {
+                    // A laminate's stiffness in the basic axes depends on the element's
+                    // material x axis: the G1→G2 side, this many degrees counter-clockwise
+                    // from basic x.
+                    let axes = ok.then(|| (xyz[1][1] - xyz[0][1]).atan2(xyz[1][0] - xyz[0][0]).to_degrees());
+                    let (Some((section, layers)), true) = (props.shell(cx, c, axes), ok) else {
+                        continue;
+                    };
+                    plies = layers;
+                    build(&xyz, section)
+                }
+            };
+            let kernel = match kernel {
+                Ok(k) => k,
+                Err(BadShape(why)) => {
+                    cx.err(c.at.error(format!("{} {} {why}", kind.card, c.eid)));
+                    continue;
+                }
+            };
+            for &g in &c.g {
+                *out.on_element.entry(g).or_default() += 1;
+            }
+            let dofs = c.g.iter().map(|&g| num.grid_dofs(g)).collect();
+            if let Some(layers) = plies {
+                out.plies.insert(out.list.len(), layers);
+            }
+            out.list.push(Element::boxed(c.eid, c.g.clone(), dofs, kernel));
         }
-        let Some(p) = prod.get(&c.pid) else {
+    }
+}
+
+/// The property and material cards, resolved once per property (a laminate once per
+/// property and material axis).
+struct Properties<'d> {
+    bulk: &'d crate::deck::cards::Bulk,
+    mat1: HashMap<i64, &'d crate::deck::cards::Mat1>,
+    prod: HashMap<i64, &'d crate::deck::cards::Prod>,
+    pshell: HashMap<i64, &'d crate::deck::cards::Pshell>,
+    pcomp: HashMap<i64, &'d crate::deck::cards::Pcomp>,
+    shells: HashMap<i64, Option<ShellSection>>,
+    laminates: HashMap<(i64, u64), Option<(ShellSection, PlyStack)>>,
+}
+
+impl<'d> Properties<'d> {
+    fn new(cx: &mut Ctx, b: &'d crate::deck::cards::Bulk) -> Self {
+        let pshell: HashMap<i64, &crate::deck::cards::Pshell> = b.pshells.iter().map(|p| (p.pid, p)).collect();
+        for p in b.pcomps.iter().filter(|p| pshell.contains_key(&p.pid)) {
+            cx.err(p.at.error(format!("property {} is both a PSHELL and a PCOMP", p.pid)));
+        }
+        Properties {
+            bulk: b,
+            mat1: b.mat1s.iter().map(|m| (m.mid, m)).collect(),
+            prod: b.prods.iter().map(|p| (p.pid, p)).collect(),
+            pshell,
+            pcomp: b.pcomps.iter().map(|p| (p.pid, p)).collect(),
+            shells: HashMap::new(),
+            laminates: HashMap::new(),
+        }
+    }
+
+    /// A rod's PROD and MAT1.
+    fn rod(&self, cx: &mut Ctx, c: &Connection) -> Option<RodSection> {
+        let Some(p) = self.prod.get(&c.pid) else {
             cx.err(c.at.error(format!(
-                "CROD {} references PROD {}, which does not exist",
-                c.eid, c.pid
+                "{} {} references PROD {}, which does not exist",
+                c.kind.card, c.eid, c.pid
             )));
-            continue;
+            return None;
         };
-        let Some(m) = mat1.get(&p.mid) else {
+        let Some(m) = self.mat1.get(&p.mid) else {
             cx.err(p.at.error(format!(
                 "PROD {} references MAT1 {}, which does not exist",
                 p.pid, p.mid
             )));
-            continue;
+            return None;
         };
-        if !ok {
-            continue;
-        }
-        if x[0] == x[1] {
-            cx.err(c.at.error(format!("CROD {} has zero length (its grids coincide)", c.eid)));
-            continue;
-        }
-        for g in c.g {
-            *on_element.entry(g).or_default() += 1;
-        }
-        let section = RodSection {
+        Some(RodSection {
             e: m.e,
             g: m.g,
             area: p.a,
             torsion: p.j,
             rho: m.rho,
             nsm: p.nsm,
-        };
-        let dofs = c.g.iter().map(|&g| grid_dofs(g)).collect();
-        elements.push(Element::new(c.eid, c.g.to_vec(), dofs, Rod { x, section }));
+        })
     }
-}
 
-/// CQUAD4s with their PSHELL and materials, flat in the basic XY plane.
-fn quads(cx: &mut Ctx, deck: &Deck, num: &Numbering, out: &mut Elements) {
-    let b = &deck.bulk;
-    let grids = &num.grids;
-    let grid_dofs = |g: i64| num.grid_dofs(g);
-    let (elements, on_element) = (&mut out.list, &mut out.on_element);
-    let mat1: HashMap<i64, &crate::deck::cards::Mat1> = b.mat1s.iter().map(|m| (m.mid, m)).collect();
-    let pshell: HashMap<i64, &crate::deck::cards::Pshell> = b.pshells.iter().map(|p| (p.pid, p)).collect();
-    let pcomp: HashMap<i64, &crate::deck::cards::Pcomp> = b.pcomps.iter().map(|p| (p.pid, p)).collect();
-    for p in b.pcomps.iter().filter(|p| pshell.contains_key(&p.pid)) {
-        cx.err(p.at.error(format!("property {} is both a PSHELL and a PCOMP", p.pid)));
-    }
-    let mut sections: HashMap<i64, Option<ShellSection>> = HashMap::new();
-    // A laminate's stiffness in the basic axes depends on the element's material axis.
-    let mut laminates: HashMap<(i64, u64), Option<(ShellSection, PlyStack)>> = HashMap::new();
-    for c in &b.cquad4s {
-        let mut xyz = [[0.0; 3]; 4];
-        let mut ok = true;
-        for (k, g) in c.g.iter().enumerate() {
-            match grids.get(g) {
-                Some(gr) => xyz[k] = gr.x,
-                None => {
-                    cx.err(c.at.error(format!("CQUAD4 {} references grid {g}, which does not exist", c.eid)));
-                    ok = false;
-                }
-            }
-        }
-        let mut plies = None;
-        let section = match (sections.get(&c.pid), pcomp.get(&c.pid)) {
-            (_, Some(p)) if ok && !pshell.contains_key(&c.pid) => {
-                // The material x axis: the G1→G2 side, this many degrees counter-clockwise
-                // from basic x.
-                let axes = (xyz[1][1] - xyz[0][1]).atan2(xyz[1][0] - xyz[0][0]).to_degrees();
-                let lam = laminates
+    /// A shell's PSHELL or PCOMP with its materials, and a laminate's plies; `axes`
+    /// the material x axis (degrees from basic x), `None` when the element's grids
+    /// are not all known (a laminate is then not resolved).
+    fn shell(&mut self, cx: &mut Ctx, c: &Connection, axes: Option<f64>) -> Option<(ShellSection, Option<PlyStack>)> {
+        let b = self.bulk;
+        match (self.shells.get(&c.pid), self.pcomp.get(&c.pid)) {
+            (_, Some(p)) if !self.pshell.contains_key(&c.pid) => {
+                let axes = axes?;
+                let lam = self
+                    .laminates
                     .entry((c.pid, axes.to_bits()))
                     .or_insert_with(|| laminate_section(cx, p, &b.mat1s, &b.mat8s, axes))
                     .clone();
-                lam.map(|(section, layers)| {
-                    plies = Some(layers);
-                    section
-                })
+                lam.map(|(section, layers)| (section, Some(layers)))
             }
-            (Some(s), _) => s.clone(),
+            (Some(s), _) => s.clone().map(|s| (s, None)),
             (None, _) => {
-                let s = match pshell.get(&c.pid) {
-                    Some(p) => shell_section(cx, p, &mat1, &b.mat2s),
-                    None if pcomp.contains_key(&c.pid) => None,
+                let s = match self.pshell.get(&c.pid) {
+                    Some(p) => shell_section(cx, p, &self.mat1, &b.mat2s),
                     None => {
                         cx.err(c.at.error(format!(
-                            "CQUAD4 {} references property {} (PSHELL or PCOMP), which does not exist",
-                            c.eid, c.pid
+                            "{} {} references property {} (PSHELL or PCOMP), which does not exist",
+                            c.kind.card, c.eid, c.pid
                         )));
                         None
                     }
                 };
-                sections.insert(c.pid, s.clone());
-                s
+                self.shells.insert(c.pid, s.clone());
+                s.map(|s| (s, None))
             }
-        };
-        let (Some(section), true) = (section, ok) else { continue };
-        if xyz
-            .iter()
-            .any(|p| (p[2] - xyz[0][2]).abs() > 1e-9 * (1.0 + xyz[0][2].abs()))
-        {
-            cx.err(c.at.error(format!(
-                "CQUAD4 {} is not in a plane z = const: only flat plates in the basic XY plane are supported",
-                c.eid
-            )));
-            continue;
         }
-        let xy = xyz.map(|p| [p[0], p[1]]);
-        if crate::elements::quad4::min_jacobian(&xy) <= 0.0 {
-            cx.err(c.at.error(format!(
-                "CQUAD4 {} is degenerate, concave or numbered clockwise (non-positive Jacobian)",
-                c.eid
-            )));
-            continue;
-        }
-        for g in c.g {
-            *on_element.entry(g).or_default() += 1;
-        }
-        let dofs = c.g.iter().map(|&g| grid_dofs(g)).collect();
-        if let Some(layers) = plies {
-            out.plies.insert(elements.len(), layers);
-        }
-        elements.push(Element::new(
-            c.eid,
-            c.g.to_vec(),
-            dofs,
-            Quad4::new(xy, xyz[0][2], section),
-        ));
     }
 }
 

@@ -13,7 +13,7 @@ pub use build::{build_model, ModelError};
 pub use modify::{Modify, ModifyError};
 
 use crate::deck::{CardRef, Units};
-pub use crate::elements::quad4::ShellSection;
+pub use crate::elements::shell::ShellSection;
 pub use crate::elements::Element;
 use std::fmt;
 

@@ -96,7 +96,7 @@ pub fn infinite_plate(model: &Model) -> Result<(HertzDashpot, f64), ReferenceErr
 }
 
 /// The first shell section of the model's plate.
-fn plate_section(model: &Model) -> Result<crate::elements::quad4::ShellSection, ReferenceError> {
+fn plate_section(model: &Model) -> Result<crate::elements::shell::ShellSection, ReferenceError> {
     model
         .elements
         .iter()

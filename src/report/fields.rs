@@ -12,7 +12,7 @@
 //! `time_unit`, `displacement_unit`, `velocity_unit`, with the model's name and the
 //! deck's SHA-256.
 
-use crate::elements::{Cell, Element, Fibre, Plane, Recovered};
+use crate::elements::{Element, Fibre, Plane, Recovered};
 use crate::model::{DofLabel, Model};
 use crate::run::{Column, RunResult, Snapshot, UnitSystem};
 use quick_xml::events::{BytesDecl, BytesText, Event};
@@ -205,12 +205,7 @@ impl<'m> Mesh<'m> {
                 });
                 m.conn.push(p as i64);
             }
-            // VTK_VERTEX, VTK_LINE, VTK_QUAD.
-            m.types.push(match cell {
-                Cell::Vertex => 1,
-                Cell::Line => 3,
-                Cell::Quad => 9,
-            });
+            m.types.push(cell.vtk_type());
             m.offsets.push(m.conn.len() as i64);
             m.cells.push(e);
         }

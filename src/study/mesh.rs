@@ -429,7 +429,7 @@ pub fn redraw(dir: &Path) -> Result<(), Error> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::elements::quad4::ShellSection;
+    use crate::elements::shell::ShellSection;
 
     /// Goal: the study's laminate is the reference deck's: on a 9×9 mesh every plate
     /// element has the section the cross-ply of `reference-data/decks/plate-pcomp.bdf`
