@@ -189,6 +189,10 @@ pub enum MeshKind {
         /// Elements along each side.
         #[arg(long)]
         n: usize,
+        /// The shell elements: `quad4` (CQUAD4, the paper's) or `tria3` (each square
+        /// cut into two CTRIA3).
+        #[arg(long, default_value = "quad4", value_parser = cells_parser())]
+        cells: impactlab::mesh::Cells,
         /// Where to write the deck [default: stdout].
         #[arg(long)]
         out: Option<PathBuf>,
@@ -348,6 +352,15 @@ fn scheme_parser() -> impl clap::builder::TypedValueParser<Value = Scheme> {
     use clap::builder::TypedValueParser;
     clap::builder::PossibleValuesParser::new(Scheme::ALL.map(Scheme::name))
         .map(|name| Scheme::from_name(&name).expect("one of the listed names"))
+}
+
+fn cells_parser() -> impl clap::builder::TypedValueParser<Value = impactlab::mesh::Cells> {
+    use clap::builder::TypedValueParser;
+    use impactlab::mesh::Cells;
+    clap::builder::PossibleValuesParser::new(["quad4", "tria3"]).map(|name| match name.as_str() {
+        "tria3" => Cells::Tria3,
+        _ => Cells::Quad4,
+    })
 }
 
 /// `--scheme` of a sweep: the schemes the convolution engine runs (the trapezoidal

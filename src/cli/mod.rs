@@ -387,8 +387,8 @@ pub fn scene(a: SceneArgs) -> Result<u8, Error> {
 
 /// `impactlab mesh plate`: a generated deck.
 pub fn mesh(what: MeshKind) -> Result<u8, Error> {
-    let MeshKind::Plate { n, out } = what;
-    let text = impactlab::mesh::plate_deck(n)?;
+    let MeshKind::Plate { n, cells, out } = what;
+    let text = impactlab::mesh::plate_deck_with(n, impactlab::mesh::Edges::Clamped, cells)?;
     match out {
         Some(p) => output::write_file_atomically(&p, text.as_bytes()).map_err(io_error(&p))?,
         None => say(&text),

@@ -550,7 +550,7 @@ fn plate_bulk(w: &mut String, s: &Scene, k: f64, tstep: &str) -> Result<(), Scen
     );
     let _ = writeln!(w, "CONM2,999999,999,0,{}", format_real(s.impactor.mass));
     let last = n + 1;
-    m.write_grids_and_quads(w, *a);
+    m.write_grids_and_shells(w, *a, crate::mesh::Cells::Quad4);
     let _ = writeln!(w, "PSHELL,1,101,{},201,1.0", format_real(*thickness));
     mat2_line(w, 101, membrane, Some(*rho));
     mat2_line(w, 201, bending, None);

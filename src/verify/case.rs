@@ -65,6 +65,9 @@ pub struct Case {
     pub deck: Option<PathBuf>,
     /// Or the paper's plate on a generated n×n mesh.
     pub plate_mesh: Option<usize>,
+    /// The generated plate's elements (default CQUAD4).
+    #[serde(default)]
+    pub plate_cells: crate::mesh::Cells,
     /// The scheme (default `newmark`).
     #[serde(default = "default_scheme")]
     pub scheme: Scheme,
@@ -432,7 +435,7 @@ pub fn rel(case: &Case, p: &Path) -> PathBuf {
 pub fn case_model(case: &Case) -> Result<Model, CaseError> {
     let mut m = match (&case.deck, case.plate_mesh) {
         (Some(d), _) => crate::load_deck(&rel(case, d), Default::default())?.0,
-        (None, Some(n)) => crate::mesh::plate_model(n)?,
+        (None, Some(n)) => crate::mesh::plate_model_with(n, case.plate_cells)?,
         _ => unreachable!("checked by read_case"),
     };
     if case.every_step {

@@ -349,10 +349,14 @@ fn shell_recovery_patch(cx: &Cx, max: f64) -> CheckResult {
     let [ex, ey, gxy] = PATCH_MEMBRANE;
     let [a, b, c] = PATCH_CURVATURE;
     let (mut worst, mut count, mut at) = (0.0f64, 0, 0);
+    let mut cards: Vec<&str> = Vec::new();
     for e in cx.model.elements.iter() {
         let Some(section) = e.kernel.family().shell() else {
             continue;
         };
+        if !cards.contains(&e.kernel.card()) {
+            cards.push(e.kernel.card());
+        }
         let xy = e.kernel.points();
         let (x0, y0) = (xy[0][0], xy[0][1]);
         let mut ue = Vec::with_capacity(24);
@@ -386,9 +390,12 @@ fn shell_recovery_patch(cx: &Cx, max: f64) -> CheckResult {
         Bound::of_peak(max),
         count > 0 && worst <= max,
         if count == 0 {
-            "no CQUAD4 in the model".into()
+            "no shell element in the model".into()
         } else {
-            format!("{count} CQUAD4s, fibre strains at ∓T/2 of constant strain and curvature; largest at element {at}")
+            format!(
+                "{count} {}s, fibre strains at ∓T/2 of constant strain and curvature; largest at element {at}",
+                cards.join("s and ")
+            )
         },
     )
 }
@@ -967,7 +974,8 @@ fn navier_strains(cx: &Cx, n: usize, until: f64, max: [f64; 2]) -> Result<CheckR
         message,
     };
     let mesh = PlateMesh::new(n).map_err(|e| failed(e.to_string()))?;
-    let deck = crate::mesh::plate_deck_with_edges(n, Edges::SimplySupported).map_err(|e| failed(e.to_string()))?;
+    let deck = crate::mesh::plate_deck_with(n, Edges::SimplySupported, crate::mesh::Cells::Quad4)
+        .map_err(|e| failed(e.to_string()))?;
     let model =
         crate::model_from_text(&format!("plate-{n}x{n}-simply-supported"), &deck).map_err(|e| failed(e.to_string()))?;
     let mut o = super::case_options(cx.case);
