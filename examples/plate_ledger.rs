@@ -6,7 +6,7 @@
 use impactlab::integrate::Scheme;
 use impactlab::run::{run_model, RunOptions};
 
-fn main() -> Result<(), impactlab::Error> {
+fn main() -> Result<(), Box<dyn std::error::Error>> {
     let model = impactlab::mesh::plate_model(25)?;
     let opts = RunOptions {
         scheme: Scheme::Energy,

@@ -4,7 +4,7 @@
 
 use impactlab::run::{run_model, RunOptions};
 
-fn main() -> Result<(), impactlab::Error> {
+fn main() -> Result<(), Box<dyn std::error::Error>> {
     let path = std::env::args()
         .nth(1)
         .unwrap_or_else(|| "reference-data/decks/rod.bdf".into());

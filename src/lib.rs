@@ -2,8 +2,9 @@
 //! a rigid impactor through a Hertzian contact, with an audited energy ledger.
 //!
 //! Modules in stage order (their declaration order below): each uses only modules
-//! listed before it (`tests/stages.rs` checks it), except [`error`], which gathers
-//! every stage's error type into one, and the two deck-to-model functions below.
+//! listed before it (`tests/stages.rs` checks it); the two deck-to-model functions
+//! below count as the model stage. Each stage returns its own error type; the
+//! program-wide error, which maps them to exit codes, is the command line's.
 //!
 //! - [`numerics`]: shared numerics: interpolation, crossings, slopes, medians.
 //! - [`plot`]: the figure writer (PNG and SVG with a bundled font).
@@ -29,7 +30,6 @@
 //! - [`study`]: families of runs: verification cases, convergence, accuracy, stability,
 //!   sweeps, bench.
 //! - [`report`]: reports from case outcomes; VTU fields.
-//! - [`error`]: the program's error, one variant per stage, and its exit codes.
 
 #![warn(missing_docs)]
 
@@ -52,9 +52,6 @@ pub mod output;
 pub mod verify;
 pub mod study;
 pub mod report;
-pub mod error;
-
-pub use error::Error;
 
 /// Reads a deck and builds its model; warnings are returned alongside.
 ///
@@ -66,12 +63,12 @@ pub use error::Error;
 /// for w in &warnings {
 ///     eprintln!("{w}"); // file:line:column, card, field, message and the card quoted
 /// }
-/// # Ok::<(), impactlab::Error>(())
+/// # Ok::<(), impactlab::model::LoadError>(())
 /// ```
 pub fn load_deck(
     path: &std::path::Path,
     opts: deck::ReadOptions,
-) -> Result<(model::Model, Vec<deck::Diagnostic>), Error> {
+) -> Result<(model::Model, Vec<deck::Diagnostic>), model::LoadError> {
     let d = deck::read_deck(path, opts)?;
     let (m, mut warnings) = model::build_model(&d)?;
     let mut all = d.warnings;
@@ -86,9 +83,9 @@ pub fn load_deck(
 /// let model = impactlab::model_from_text("rod", impactlab::paper::ROD_DECK)?;
 /// assert_eq!(model.units.length, "in");
 /// assert_eq!(model.elements.len(), 145); // 144 CRODs and the ball's CONM2
-/// # Ok::<(), impactlab::Error>(())
+/// # Ok::<(), impactlab::model::LoadError>(())
 /// ```
-pub fn model_from_text(name: &str, text: &str) -> Result<model::Model, Error> {
+pub fn model_from_text(name: &str, text: &str) -> Result<model::Model, model::LoadError> {
     let d = deck::parse_deck_str(name, text, deck::ReadOptions::default())?;
     Ok(model::build_model(&d)?.0)
 }

@@ -17,9 +17,8 @@ pub const PLATE_SIDE: f64 = 6.0;
 /// centres of elements 3325 and 4125 of the paper's 49×49 mesh.
 pub const GAGE_Y: [f64; 2] = [8.0 * 6.0 / 49.0, 16.0 * 6.0 / 49.0];
 
-/// Ids of a generated plate mesh.
-/// A mesh size a generated deck cannot have.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+/// A mesh size a generated deck cannot have, or its model that cannot be built.
+#[derive(Debug, thiserror::Error)]
 pub enum MeshError {
     /// An even, too small or too large plate mesh size.
     #[error("the plate mesh needs an odd N from 3 to 997 (an element at the centre; grid ids 1000·row + col unique), not {0}")]
@@ -27,6 +26,9 @@ pub enum MeshError {
     /// An odd or too small rod element count.
     #[error("the rod mesh needs an even number of elements (at least 2), not {0}")]
     Rod(usize),
+    /// The generated deck's model could not be built.
+    #[error("{0}")]
+    Load(#[from] crate::model::LoadError),
 }
 
 /// An N×N plate mesh: grid id = base·row + col (rows and columns from 1).
@@ -304,18 +306,18 @@ pub fn rod_deck(n: usize) -> Result<String, MeshError> {
 
 /// The paper's plate on an n×n mesh, built from the generated deck (through the deck
 /// reader, as a user's deck would be).
-pub fn plate_model(n: usize) -> Result<crate::model::Model, crate::Error> {
+pub fn plate_model(n: usize) -> Result<crate::model::Model, MeshError> {
     plate_model_with(n, Cells::Quad4)
 }
 
 /// The paper's plate on an n×n mesh of `cells`, built from the generated deck.
-pub fn plate_model_with(n: usize, cells: Cells) -> Result<crate::model::Model, crate::Error> {
+pub fn plate_model_with(n: usize, cells: Cells) -> Result<crate::model::Model, MeshError> {
     let text = plate_deck_with(n, Edges::Clamped, cells)?;
     let name = match cells {
         Cells::Quad4 => format!("plate-{n}x{n}"),
         Cells::Tria3 => format!("plate-{n}x{n}-tria3"),
     };
-    crate::model_from_text(&name, &text)
+    Ok(crate::model_from_text(&name, &text)?)
 }
 
 /// A simply supported square plate side × side on an n×n CQUAD4 mesh (w = 0 on the
@@ -329,7 +331,7 @@ pub fn simply_supported_plate(
     thickness: f64,
     g: [f64; 6],
     rho: f64,
-) -> Result<crate::model::Model, crate::Error> {
+) -> Result<crate::model::Model, crate::model::LoadError> {
     let cards = format!(
         "PSHELL,1,1,{thickness:?},1,1.0\nMAT2,1,{:?},{:?},{:?},{:?},{:?},{:?},{rho:?}",
         g[0], g[1], g[2], g[3], g[4], g[5]

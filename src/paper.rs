@@ -12,25 +12,25 @@ pub const PLATE_DECK: &str = include_str!("../reference-data/decks/plate.bdf");
 pub const PLATE_MESH: &str = include_str!("../reference-data/decks/plate-mesh-49x49.bdf");
 
 /// The model of the paper's rod deck.
-pub fn rod_model() -> Result<crate::model::Model, crate::Error> {
+pub fn rod_model() -> Result<crate::model::Model, crate::model::LoadError> {
     read(&[("rod.bdf", ROD_DECK)])
 }
 
 /// The model of the paper's plate deck.
-pub fn plate_model() -> Result<crate::model::Model, crate::Error> {
+pub fn plate_model() -> Result<crate::model::Model, crate::model::LoadError> {
     read(&[("plate.bdf", PLATE_DECK), ("plate-mesh-49x49.bdf", PLATE_MESH)])
 }
 
 /// Writes the files into a temporary directory and reads the first as a deck, so that
 /// INCLUDEs, positions and the deck's SHA-256 are those of the files themselves.
-fn read(files: &[(&str, &str)]) -> Result<crate::model::Model, crate::Error> {
-    let dir = tempfile::tempdir().map_err(|source| crate::Error::Io {
+fn read(files: &[(&str, &str)]) -> Result<crate::model::Model, crate::model::LoadError> {
+    let dir = tempfile::tempdir().map_err(|source| crate::model::LoadError::Io {
         path: "a temporary directory".into(),
         source,
     })?;
     for (name, text) in files {
         let p = dir.path().join(name);
-        std::fs::write(&p, text).map_err(|source| crate::Error::Io {
+        std::fs::write(&p, text).map_err(|source| crate::model::LoadError::Io {
             path: p.display().to_string(),
             source,
         })?;

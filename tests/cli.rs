@@ -263,7 +263,7 @@ fn bench_runs_from_any_directory() {
 /// deck: minutes, so here two small plates).
 #[test]
 fn size_benchmark_reports_each_plate() {
-    let out = impactlab::study::bench_size(&[3, 5], &[3, 7], 2).unwrap();
+    let out = impactlab::study::bench::bench_size(&[3, 5], &[3, 7], 2).unwrap();
     let rows: Vec<Vec<&str>> = out.lines().map(|l| l.split_whitespace().collect()).collect();
     let plate = |n: &str| {
         rows.iter()

@@ -10,7 +10,7 @@ use common::{deck, rod_model};
 use impactlab::integrate::convolution::{linear_response, unit_response, Convolver};
 use impactlab::integrate::Scheme;
 use impactlab::model::DofLabel;
-use impactlab::run::{run_model, solved_system, Engine, RunError, RunOptions};
+use impactlab::run::{prepare, run_model, Engine, RunError, RunOptions};
 
 fn options(scheme: Scheme, engine: Engine) -> RunOptions {
     RunOptions {
@@ -132,8 +132,9 @@ fn the_convolution_engine_refuses_what_it_cannot_compute() {
 #[test]
 fn the_kernel_is_passive() {
     let rod = rod_model();
-    let (model, sys) = solved_system(&rod, true).unwrap();
-    let k = unit_response(&model, &sys, 2e-7, 2500, &mut |_, _| {}).unwrap();
+    let p = prepare(&rod, &RunOptions::default()).unwrap();
+    let (model, sys) = (p.model.as_ref(), &p.system);
+    let k = unit_response(model, sys, 2e-7, 2500, &mut |_, _| {}).unwrap();
     let pulse: Vec<f64> = (0..400)
         .map(|n| (std::f64::consts::PI * n as f64 / 400.0).sin())
         .collect();
@@ -174,14 +175,15 @@ fn the_kernel_is_reciprocal() {
         (rod_model(), (1, 1), (73, 1), 2e-7, 1000),
         (plate, (2525, 3), (3325, 3), 1e-7, 300),
     ] {
-        let (model, sys) = solved_system(&model, true).unwrap();
+        let p = prepare(&model, &RunOptions::default()).unwrap();
+        let (model, sys) = (p.model.as_ref(), &p.system);
         let at = |(point, comp): (i64, u8)| model.dofs.iter().position(|d| *d == DofLabel { point, comp }).unwrap();
         let (ia, ib) = (at(a), at(b));
         let response = |from: usize, to: usize| {
             let mut load = vec![0.0; model.n()];
             load[from] = 1.0;
             let mut out = Vec::new();
-            linear_response(&model, &sys, dt, steps, &load, &mut |u, _| out.push(u[to])).unwrap();
+            linear_response(model, sys, dt, steps, &load, &mut |u, _| out.push(u[to])).unwrap();
             out
         };
         let (ab, ba) = (response(ia, ib), response(ib, ia));

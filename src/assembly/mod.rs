@@ -32,7 +32,6 @@ pub struct System {
 /// Assembles K and M of a model over its solved DOFs, element by element through
 /// [`crate::elements::Element::scatter`]: no element kind is named here.
 pub fn assemble(model: &Model) -> System {
-    let n = model.n();
     let mut k = Vec::new();
     let mut m = Vec::new();
     for e in model.elements.iter() {
@@ -41,31 +40,48 @@ pub fn assemble(model: &Model) -> System {
     let triplets = |v: Vec<(usize, usize, f64)>| -> Vec<Triplet<usize, usize, f64>> {
         v.into_iter().map(|(i, j, x)| Triplet::new(i, j, x)).collect()
     };
-    let (k, m) = (triplets(k), triplets(m));
-    let by_rows =
-        |lower: &SparseColMat<usize, f64>| lower.to_row_major().expect("a transpose fits where the matrix did");
-    let k_lower_by_columns = lower_triangle(n, &k);
-    let k_lower_by_rows = by_rows(&k_lower_by_columns);
-    let k_csc = mirrored(&k_lower_by_columns, &k_lower_by_rows);
-    let k_lower = LowerRows::new(&k_lower_by_rows);
-    let m_lower = LowerRows::new(&by_rows(&lower_triangle(n, &m)));
-    let lumped = m.iter().all(|t| t.row == t.col || t.val == 0.0);
-    let mut sys = System {
-        m_lumped: None,
-        n,
-        k,
-        m,
-        k_csc,
-        k_lower,
-        m_lower,
-    };
-    if lumped {
-        sys.m_lumped = Some(sys.m_diag());
-    }
-    sys
+    System::from_triplets(model.n(), triplets(k), triplets(m))
 }
 
 impl System {
+    /// The system of these element entries over `n` DOFs.
+    fn from_triplets(n: usize, k: Vec<Triplet<usize, usize, f64>>, m: Vec<Triplet<usize, usize, f64>>) -> System {
+        let by_rows =
+            |lower: &SparseColMat<usize, f64>| lower.to_row_major().expect("a transpose fits where the matrix did");
+        let k_lower_by_columns = lower_triangle(n, &k);
+        let k_lower_by_rows = by_rows(&k_lower_by_columns);
+        let k_csc = mirrored(&k_lower_by_columns, &k_lower_by_rows);
+        let k_lower = LowerRows::new(&k_lower_by_rows);
+        let m_lower = LowerRows::new(&by_rows(&lower_triangle(n, &m)));
+        let lumped = m.iter().all(|t| t.row == t.col || t.val == 0.0);
+        let mut sys = System {
+            m_lumped: None,
+            n,
+            k,
+            m,
+            k_csc,
+            k_lower,
+            m_lower,
+        };
+        if lumped {
+            sys.m_lumped = Some(sys.m_diag());
+        }
+        sys
+    }
+
+    /// The system over the DOFs `map` keeps (`map[i]`: DOF i's new number, `None`
+    /// to drop it), `n` of them: the element entries between kept DOFs, renumbered,
+    /// in their order. The same entries, in the same order, as assembling the model
+    /// with the dropped DOFs unsolved: so the same sums, to the bit.
+    pub fn restricted(&self, map: &[Option<usize>], n: usize) -> System {
+        let keep = |v: &[Triplet<usize, usize, f64>]| -> Vec<Triplet<usize, usize, f64>> {
+            v.iter()
+                .filter_map(|t| Some(Triplet::new(map[t.row]?, map[t.col]?, t.val)))
+                .collect()
+        };
+        System::from_triplets(n, keep(&self.k), keep(&self.m))
+    }
+
     /// a·M + b·K, compressed.
     pub fn combine(&self, a: f64, b: f64) -> SparseColMat<usize, f64> {
         let t: Vec<_> = self

@@ -68,8 +68,9 @@ fn live_dofs(model: &Model, sys: &System) -> Vec<bool> {
 }
 
 /// Returns the model with the inert DOFs removed (renumbered densely; their count
-/// added to `inert_dofs`), or `None` when every DOF is live.
-pub fn drop_inert(model: &Model, sys: &System) -> Option<Model> {
+/// added to `inert_dofs`) and its system (`sys` restricted, not assembled again), or
+/// `None` when every DOF is live.
+pub fn drop_inert(model: &Model, sys: &System) -> Option<(Model, System)> {
     let live = live_dofs(model, sys);
     if live.iter().all(|&l| l) {
         return None;
@@ -110,7 +111,8 @@ pub fn drop_inert(model: &Model, sys: &System) -> Option<Model> {
         }
     }
     m.inert_dofs = model.inert_dofs + (model.n() - next);
-    Some(m)
+    let reduced = sys.restricted(&map, next);
+    Some((m, reduced))
 }
 
 fn keep<T: Clone>(v: &[T], live: &[bool]) -> Vec<T> {

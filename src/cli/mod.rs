@@ -2,12 +2,15 @@
 //! files, and return the exit code (0 success, 1 verification failed); errors map to
 //! theirs in `main`. Progress bars are made here.
 
+pub mod error;
+
 use crate::{
     AuditArgs, AuditFormat, BenchArgs, CollectArgs, MeshKind, ReportArgs, RunArgs, SceneArgs, StudyKind, SweepArgs,
     VerifyArgs,
 };
+use error::Error;
 use impactlab::run::RunOptions;
-use impactlab::{deck, output, verify, Error};
+use impactlab::{deck, output, verify};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
@@ -380,7 +383,10 @@ pub fn scene(a: SceneArgs) -> Result<u8, Error> {
         sayln(&format!("deck: {}", p.display()));
     }
     if a.costs {
-        say(&impactlab::study::scene_costs(&model, &RunOptions::for_scene(&s))?);
+        say(&impactlab::study::bench::scene_costs(
+            &model,
+            &RunOptions::for_scene(&s),
+        )?);
     }
     Ok(0)
 }
@@ -547,26 +553,78 @@ pub fn audit(a: AuditArgs) -> Result<u8, Error> {
 /// `impactlab bench`: where the plate's time goes.
 pub fn bench(a: BenchArgs) -> Result<u8, Error> {
     if a.size {
-        say(&impactlab::study::bench_size(
+        say(&impactlab::study::bench::bench_size(
             &[49, 99, 199],
             &[177, 353, 705],
             a.steps,
         )?);
         return Ok(0);
     }
-    say(&impactlab::study::bench_plate(a.repeats.max(1), a.steps)?);
+    say(&impactlab::study::bench::bench_plate(a.repeats.max(1), a.steps)?);
     Ok(0)
 }
 
 /// `impactlab sweep`.
 pub fn sweep(a: SweepArgs) -> Result<u8, Error> {
-    use impactlab::study::sweep::{self, SweepOptions, Vary};
+    use impactlab::study::sweep::{self, SweepOptions};
     if a.deck.extension().is_some_and(|e| e == "toml") {
         return Err(Error::Usage(format!("{}: sweep takes a deck (.bdf)", a.deck.display())));
     }
     if a.find.is_some() {
         return threshold(a);
     }
+    let (varies, shard, checks) = sweep_arguments(&a)?;
+    if checks.is_off() {
+        say_err("warning: --checks 0: no point of this sweep is checked against the direct engine");
+    }
+    let (model, warnings) = impactlab::load_deck(&a.deck, Default::default())?;
+    for w in &warnings {
+        say_err(&w.to_string());
+    }
+    let jobs = a
+        .jobs
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    let bar = progress(format!("{} sweep", model.name)).inspect(|b| {
+        b.set_style(
+            ProgressStyle::with_template("{spinner} {msg} [{bar:40}] {pos}/{len} points ({eta})")
+                .expect("valid template")
+                .progress_chars("=> "),
+        )
+    });
+    let run = RunOptions {
+        dt: a.dt,
+        steps: a.steps,
+        kernel_cache: kernel_cache(a.cache.clone(), a.no_cache),
+        ..Default::default()
+    };
+    let opts = SweepOptions {
+        varies,
+        scheme: a.scheme,
+        jobs,
+        shard,
+        progress: bar,
+        checks,
+    };
+    let out = sweep::sweep(&model, &run, &opts)?;
+    report_cache(&Some(out.kernel_cache.clone()));
+    let dir = a
+        .out
+        .clone()
+        .unwrap_or_else(|| PathBuf::from("out").join(format!("{}-sweep", model.name)));
+    write_sweep(&a, &model, &opts, &out, &dir)?;
+    Ok(if out.passed() { 0 } else { 1 })
+}
+
+/// A sweep's --vary (with --log), --shard (I of N) and self-check arguments.
+type SweepArguments = (
+    Vec<impactlab::study::sweep::Vary>,
+    Option<(usize, usize)>,
+    impactlab::study::sweep::SelfCheck,
+);
+
+/// Reads and checks a sweep's [`SweepArguments`].
+fn sweep_arguments(a: &SweepArgs) -> Result<SweepArguments, Error> {
+    use impactlab::study::sweep::{SelfCheck, Vary};
     let varies = a
         .vary
         .iter()
@@ -590,7 +648,7 @@ pub fn sweep(a: SweepArgs) -> Result<u8, Error> {
                 .ok_or_else(|| Error::Usage(format!("--shard {s}: expected I/N with 1 ≤ I ≤ N")))
         })
         .transpose()?;
-    let checks = sweep::SelfCheck {
+    let checks = SelfCheck {
         spread: a.checks,
         every: a.check_every.map(|n| n as usize),
     };
@@ -599,43 +657,21 @@ pub fn sweep(a: SweepArgs) -> Result<u8, Error> {
             "--checks 0 turns the self-check off; --check-every needs it on".into(),
         ));
     }
-    if checks.is_off() {
-        say_err("warning: --checks 0: no point of this sweep is checked against the direct engine");
-    }
-    let (model, warnings) = impactlab::load_deck(&a.deck, Default::default())?;
-    for w in &warnings {
-        say_err(&w.to_string());
-    }
-    let points = sweep::points(&varies).len();
-    let jobs = a
-        .jobs
-        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
-    let bar = progress(format!("{} sweep", model.name)).inspect(|b| {
-        b.set_style(
-            ProgressStyle::with_template("{spinner} {msg} [{bar:40}] {pos}/{len} points ({eta})")
-                .expect("valid template")
-                .progress_chars("=> "),
-        )
-    });
-    let run = RunOptions {
-        dt: a.dt,
-        steps: a.steps,
-        kernel_cache: kernel_cache(a.cache, a.no_cache),
-        ..Default::default()
-    };
-    let opts = SweepOptions {
-        varies: varies.clone(),
-        scheme: a.scheme,
-        jobs,
-        shard,
-        progress: bar,
-        checks,
-    };
-    let out = sweep::sweep(&model, &run, &opts)?;
-    report_cache(&Some(out.kernel_cache.clone()));
-    let dir = a
-        .out
-        .unwrap_or_else(|| PathBuf::from("out").join(format!("{}-sweep", model.name)));
+    Ok((varies, shard, checks))
+}
+
+/// Writes a sweep's sweep.csv, summary.json and figures into `dir`, and prints what
+/// it cost.
+fn write_sweep(
+    a: &SweepArgs,
+    model: &impactlab::model::Model,
+    opts: &impactlab::study::sweep::SweepOptions,
+    out: &impactlab::study::sweep::SweepOutcome,
+    dir: &Path,
+) -> Result<(), Error> {
+    use impactlab::study::sweep;
+    let (varies, shard, checks, jobs) = (&opts.varies, opts.shard, opts.checks, opts.jobs);
+    let points = sweep::points(varies).len();
     let units = impactlab::run::UnitSystem::of(&model.units);
     let mass = model.contact.as_ref().map_or(f64::NAN, |c| c.impactor.mass);
     let summary = serde_json::json!({
@@ -655,7 +691,7 @@ pub fn sweep(a: SweepArgs) -> Result<u8, Error> {
             "off": checks.is_off(),
             "spread": checks.spread,
             "every": checks.every,
-            "deck_point": sweep::deck_point(&model, &varies),
+            "deck_point": sweep::deck_point(model, varies),
             "points": out.checked,
         },
         "direct_checks": out.direct_checks,
@@ -675,13 +711,13 @@ pub fn sweep(a: SweepArgs) -> Result<u8, Error> {
             (serde_json::to_string_pretty(&summary).expect("plain JSON") + "\n").into_bytes(),
         ),
     ];
-    output::write_dir_atomically(&dir, &files).map_err(io_error(&dir))?;
+    output::write_dir_atomically(dir, &files).map_err(io_error(dir))?;
     let cx = sweep::FigureContext {
         deck: model.name.clone(),
         mass,
         units,
     };
-    let figures = sweep::figures(&out.header, &out.rows, &cx, &dir)?;
+    let figures = sweep::figures(&out.header, &out.rows, &cx, dir)?;
     sayln(&format!(
         "{}: {} of {points} points ({} jobs) in {:.2} s: kernel pass {:.2} s, direct checks {:.2} s, points {:.2} s (each summed over its tasks); {} direct checks, worst {:.2e} (max {:.0e})",
         model.name,
@@ -700,7 +736,7 @@ pub fn sweep(a: SweepArgs) -> Result<u8, Error> {
         dir.display(),
         figures.len() / 2
     ));
-    Ok(if out.passed() { 0 } else { 1 })
+    Ok(())
 }
 
 /// `impactlab collect`.

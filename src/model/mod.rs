@@ -12,6 +12,27 @@ mod modify;
 pub use build::{build_model, ModelError};
 pub use modify::{Modify, ModifyError};
 
+/// Loading a model from a deck failed: the deck's or the model builder's problems,
+/// or (for an embedded deck) the files it is read from could not be written.
+#[derive(Debug, thiserror::Error)]
+pub enum LoadError {
+    /// The deck could not be read.
+    #[error("{0}")]
+    Deck(#[from] crate::deck::DeckError),
+    /// The model could not be built.
+    #[error("{0}")]
+    Model(#[from] ModelError),
+    /// An embedded deck could not be written where it is read from.
+    #[error("cannot write {path}: {source}")]
+    Io {
+        /// The path being written.
+        path: String,
+        /// What failed.
+        #[source]
+        source: std::io::Error,
+    },
+}
+
 use crate::deck::{CardRef, Units};
 pub use crate::elements::shell::ShellSection;
 pub use crate::elements::Element;

@@ -169,6 +169,24 @@ impl Array<'_> {
 
 const XYZ: [&str; 3] = ["x", "y", "z"];
 
+/// The field data of a snapshot: its time, the units of time, displacement and
+/// velocity, the model and its deck's SHA-256.
+fn field_arrays(model: &Model, units: &UnitSystem, s: &Snapshot) -> [Array<'static>; 6] {
+    [
+        Array {
+            name: "TimeValue",
+            components: &[],
+            values: Values::F64(vec![s.time]),
+            field: true,
+        },
+        text("time_unit", Column::Time.unit(units)),
+        text("displacement_unit", Column::ImpactorDisp.unit(units)),
+        text("velocity_unit", Column::ImpactorVelo.unit(units)),
+        text("model", model.name.clone()),
+        text("deck_sha256", model.deck_sha256.clone()),
+    ]
+}
+
 /// The drawn model: every grid an element touches, and one cell per element.
 struct Mesh<'m> {
     /// Point index of each grid.
@@ -214,96 +232,13 @@ impl<'m> Mesh<'m> {
     }
 
     /// One snapshot's VTU, from the state over all of the model's DOFs.
+    /// The VTU file of one snapshot: field data (time, units, model), point data
+    /// (grid ids, displacement, velocity), cell data (element ids, failure index,
+    /// recovered strains), the points and the cells.
     fn vtu(&self, model: &Model, units: &UnitSystem, full: &HashMap<DofLabel, usize>, s: &Snapshot) -> Vec<u8> {
-        let mut disp = vec![0.0; self.points.len()];
-        let mut velo = vec![0.0; self.points.len()];
-        for (l, &i) in full {
-            if (1..=3).contains(&l.comp) {
-                if let Some(&p) = self.index.get(&l.point) {
-                    disp[3 * p + l.comp as usize - 1] = s.u[i];
-                    velo[3 * p + l.comp as usize - 1] = s.v[i];
-                }
-            }
-        }
-        let recovered: Vec<Vec<f64>> = self.cells.iter().map(|e| e.recover(&s.u, false)).collect();
-        let field = [
-            Array {
-                name: "TimeValue",
-                components: &[],
-                values: Values::F64(vec![s.time]),
-                field: true,
-            },
-            text("time_unit", Column::Time.unit(units)),
-            text("displacement_unit", Column::ImpactorDisp.unit(units)),
-            text("velocity_unit", Column::ImpactorVelo.unit(units)),
-            text("model", model.name.clone()),
-            text("deck_sha256", model.deck_sha256.clone()),
-        ];
-        let point = [
-            Array {
-                name: "grid_id",
-                components: &[],
-                values: Values::I64(self.grids.clone()),
-                field: false,
-            },
-            Array {
-                name: "displacement",
-                components: &XYZ,
-                values: Values::F64(disp),
-                field: false,
-            },
-            Array {
-                name: "velocity",
-                components: &XYZ,
-                values: Values::F64(velo),
-                field: false,
-            },
-        ];
-        let mut cell = vec![Array {
-            name: "element_id",
-            components: &[],
-            values: Values::I64(self.cells.iter().map(|e| e.eid).collect()),
-            field: false,
-        }];
-        if !model.outputs.failure_fields.is_empty() {
-            let stacks: HashMap<i64, &crate::model::PlyStack> = model
-                .outputs
-                .failure_fields
-                .iter()
-                .map(|(e, p)| (model.elements[*e].eid, p))
-                .collect();
-            let v = self
-                .cells
-                .iter()
-                .map(|e| {
-                    stacks
-                        .get(&e.eid)
-                        .map_or(f64::NAN, |p| crate::run::largest_failure_index(e, p, &s.u))
-                })
-                .collect();
-            cell.push(Array {
-                name: "failure_index",
-                components: &[],
-                values: Values::F64(v),
-                field: false,
-            });
-        }
-        for a in &self.layout {
-            let v = a
-                .columns
-                .iter()
-                .zip(&recovered)
-                .flat_map(|(cols, r)| {
-                    (0..a.components.len().max(1)).map(move |c| cols.as_ref().map_or(f64::NAN, |j| r[j[c]]))
-                })
-                .collect();
-            cell.push(Array {
-                name: &a.name,
-                components: a.components,
-                values: Values::F64(v),
-                field: false,
-            });
-        }
+        let field = field_arrays(model, units, s);
+        let point = self.point_arrays(full, s);
+        let cell = self.cell_arrays(model, s);
         let geometry = Array {
             name: "Points",
             components: &XYZ,
@@ -358,6 +293,92 @@ impl<'m> Mesh<'m> {
             })?;
             Ok(())
         })
+    }
+
+    /// Grid ids, displacement and velocity (translations) at each point.
+    fn point_arrays(&self, full: &HashMap<DofLabel, usize>, s: &Snapshot) -> [Array<'static>; 3] {
+        let mut disp = vec![0.0; self.points.len()];
+        let mut velo = vec![0.0; self.points.len()];
+        for (l, &i) in full {
+            if (1..=3).contains(&l.comp) {
+                if let Some(&p) = self.index.get(&l.point) {
+                    disp[3 * p + l.comp as usize - 1] = s.u[i];
+                    velo[3 * p + l.comp as usize - 1] = s.v[i];
+                }
+            }
+        }
+        [
+            Array {
+                name: "grid_id",
+                components: &[],
+                values: Values::I64(self.grids.clone()),
+                field: false,
+            },
+            Array {
+                name: "displacement",
+                components: &XYZ,
+                values: Values::F64(disp),
+                field: false,
+            },
+            Array {
+                name: "velocity",
+                components: &XYZ,
+                values: Values::F64(velo),
+                field: false,
+            },
+        ]
+    }
+
+    /// Element ids, each laminate element's largest failure index (when asked) and
+    /// the recovered strain arrays of [`strain_layout`], per cell.
+    fn cell_arrays(&self, model: &Model, s: &Snapshot) -> Vec<Array<'_>> {
+        let recovered: Vec<Vec<f64>> = self.cells.iter().map(|e| e.recover(&s.u, false)).collect();
+        let mut cell = vec![Array {
+            name: "element_id",
+            components: &[],
+            values: Values::I64(self.cells.iter().map(|e| e.eid).collect()),
+            field: false,
+        }];
+        if !model.outputs.failure_fields.is_empty() {
+            let stacks: HashMap<i64, &crate::model::PlyStack> = model
+                .outputs
+                .failure_fields
+                .iter()
+                .map(|(e, p)| (model.elements[*e].eid, p))
+                .collect();
+            let v = self
+                .cells
+                .iter()
+                .map(|e| {
+                    stacks
+                        .get(&e.eid)
+                        .map_or(f64::NAN, |p| crate::run::largest_failure_index(e, p, &s.u))
+                })
+                .collect();
+            cell.push(Array {
+                name: "failure_index",
+                components: &[],
+                values: Values::F64(v),
+                field: false,
+            });
+        }
+        for a in &self.layout {
+            let v = a
+                .columns
+                .iter()
+                .zip(&recovered)
+                .flat_map(|(cols, r)| {
+                    (0..a.components.len().max(1)).map(move |c| cols.as_ref().map_or(f64::NAN, |j| r[j[c]]))
+                })
+                .collect();
+            cell.push(Array {
+                name: &a.name,
+                components: a.components,
+                values: Values::F64(v),
+                field: false,
+            });
+        }
+        cell
     }
 }
 

@@ -6,7 +6,6 @@
 pub mod fields;
 
 use crate::elements::{Family, Fibre, Measure, Plane};
-use crate::error::Error;
 use crate::ledger::EnergyRow;
 use crate::model::Model;
 use crate::physics::analytic;
@@ -50,8 +49,35 @@ pub fn sig(x: f64, digits: usize) -> String {
     }
 }
 
-fn io(path: &Path) -> impl Fn(std::io::Error) -> Error + '_ {
-    move |source| Error::Io {
+/// A report that could not be made: a figure, a reference it draws, an external
+/// solver's file it overlays, or a file it writes.
+#[derive(Debug, thiserror::Error)]
+pub enum ReportError {
+    /// A figure could not be drawn.
+    #[error("{0}")]
+    Plot(#[from] crate::plot::PlotError),
+    /// A reference could not be computed.
+    #[error("{0}")]
+    Reference(#[from] crate::physics::references::ReferenceError),
+    /// An external solver's results could not be read.
+    #[error("{0}")]
+    Check(#[from] crate::verify::CheckError),
+    /// Field files could not be written.
+    #[error("{0}")]
+    Fields(#[from] fields::FieldsError),
+    /// A file could not be written.
+    #[error("cannot write outputs to {path}: {source}")]
+    Io {
+        /// The path being written.
+        path: String,
+        /// What failed.
+        #[source]
+        source: std::io::Error,
+    },
+}
+
+fn io(path: &Path) -> impl Fn(std::io::Error) -> ReportError + '_ {
+    move |source| ReportError::Io {
         path: path.display().to_string(),
         source,
     }
@@ -59,7 +85,7 @@ fn io(path: &Path) -> impl Fn(std::io::Error) -> Error + '_ {
 
 /// Writes the report of a case's outcome into `dir` (created; files replaced). Nothing
 /// is run: the figures and tables come from the outcome.
-pub fn report_case(outcome: &CaseOutcome, dir: &Path) -> Result<CaseReport, Error> {
+pub fn report_case(outcome: &CaseOutcome, dir: &Path) -> Result<CaseReport, ReportError> {
     let CaseOutcome {
         case,
         model,
@@ -154,7 +180,7 @@ fn energy_lines(e: &[EnergyRow], x: impl Fn(f64) -> f64) -> Vec<Line> {
 /// Refuses a history signal sampled coarser than a tenth of the contact pulse: drawn
 /// from so few points a pulse loses its peak (and a reference sampled at the same
 /// points seems to agree). The case should record every step (`every_step = true`).
-fn resolves_the_pulse(f: &Fig, stem: &Path) -> Result<(), Error> {
+fn resolves_the_pulse(f: &Fig, stem: &Path) -> Result<(), ReportError> {
     let h = &f.run.history;
     let (Some(pulse), true) = (f.run.summary.contact.duration, h.len() > 1) else {
         return Ok(());
@@ -230,7 +256,7 @@ impl<'a> Fig<'a> {
 }
 
 /// The external series of a case's `external` checks.
-fn external_series(case: &Case) -> Result<Vec<ExternalSeries>, Error> {
+fn external_series(case: &Case) -> Result<Vec<ExternalSeries>, ReportError> {
     let mut out: Vec<ExternalSeries> = Vec::new();
     for spec in &case.checks {
         if let CheckSpec::External {
@@ -258,7 +284,7 @@ fn external_series(case: &Case) -> Result<Vec<ExternalSeries>, Error> {
     Ok(out)
 }
 
-fn rod_figures(f: &Fig) -> Result<Vec<PathBuf>, Error> {
+fn rod_figures(f: &Fig) -> Result<Vec<PathBuf>, ReportError> {
     use crate::physics::references::{semi_infinite, ReferenceError};
     let (model, run) = (f.model, f.run);
     let (tr, _, lc) = match semi_infinite(model) {
@@ -282,7 +308,7 @@ fn rod_figures(f: &Fig) -> Result<Vec<PathBuf>, Error> {
 
 /// A rod struck by a contact much softer than the rod (it outlasts 2L/C): the force
 /// against two rigid bodies in Hertz contact (reduced mass), and the energies in time.
-fn rigid_rod_figures(f: &Fig) -> Result<Vec<PathBuf>, Error> {
+fn rigid_rod_figures(f: &Fig) -> Result<Vec<PathBuf>, ReportError> {
     let (model, run, ax, footer, dir) = (f.model, f.run, &f.ax, f.footer, f.dir);
     let u = &model.units;
     let (d, mu) = crate::physics::references::two_rigid_bodies(model)?;
@@ -330,7 +356,7 @@ fn rigid_rod_figures(f: &Fig) -> Result<Vec<PathBuf>, Error> {
 }
 
 /// The contact force against the ball on a semi-infinite rod (paper Fig. 2).
-fn rod_force(f: &Fig, tr: &analytic::Trace, lc: f64, end: f64) -> Result<Vec<PathBuf>, Error> {
+fn rod_force(f: &Fig, tr: &analytic::Trace, lc: f64, end: f64) -> Result<Vec<PathBuf>, ReportError> {
     let (u, s, ax, footer, dir) = (&f.model.units, &f.run.series, &f.ax, f.footer, f.dir);
     let mut out = Vec::new();
     let t_end = 1.2 * end * lc;
@@ -360,7 +386,7 @@ fn rod_force(f: &Fig, tr: &analytic::Trace, lc: f64, end: f64) -> Result<Vec<Pat
 }
 
 /// The strain of the requested element nearest mid-rod against d'Alembert (Fig. 3).
-fn rod_strain(f: &Fig, tr: &analytic::Trace, lc: f64) -> Result<Vec<PathBuf>, Error> {
+fn rod_strain(f: &Fig, tr: &analytic::Trace, lc: f64) -> Result<Vec<PathBuf>, ReportError> {
     let (model, run, footer, dir) = (f.model, f.run, f.footer, f.dir);
     let rod = model.rod.expect("a rod");
     let mut out = Vec::new();
@@ -436,7 +462,7 @@ fn rod_strain(f: &Fig, tr: &analytic::Trace, lc: f64) -> Result<Vec<PathBuf>, Er
 }
 
 /// The energy partition against tC/L with the paper's readings (Fig. 4).
-fn rod_energy(f: &Fig, lc: f64, end: f64) -> Result<Vec<PathBuf>, Error> {
+fn rod_energy(f: &Fig, lc: f64, end: f64) -> Result<Vec<PathBuf>, ReportError> {
     let (u, run, footer, dir) = (&f.model.units, f.run, f.footer, f.dir);
     let mut out = Vec::new();
     let mut lines = energy_lines(&run.energy, |t| t / lc);
@@ -480,7 +506,7 @@ fn rod_energy(f: &Fig, lc: f64, end: f64) -> Result<Vec<PathBuf>, Error> {
 
 /// The contact force of a target with no figures of its own (neither a rod of CRODs
 /// nor a plate in bending), with the curves of the solvers it is checked against.
-fn contact_force_figure(f: &Fig) -> Result<Vec<PathBuf>, Error> {
+fn contact_force_figure(f: &Fig) -> Result<Vec<PathBuf>, ReportError> {
     let (model, run, ax, footer, dir) = (f.model, f.run, &f.ax, f.footer, f.dir);
     let s = &run.series;
     let end = run.summary.contact.intervals.first().map_or(f64::INFINITY, |i| i[1]);
@@ -501,7 +527,7 @@ fn contact_force_figure(f: &Fig) -> Result<Vec<PathBuf>, Error> {
     )?)
 }
 
-fn plate_figures(f: &Fig) -> Result<Vec<PathBuf>, Error> {
+fn plate_figures(f: &Fig) -> Result<Vec<PathBuf>, ReportError> {
     let mut out = plate_force(f)?;
     out.extend(plate_displacement(f)?);
     out.extend(plate_gages(f)?);
@@ -510,7 +536,7 @@ fn plate_figures(f: &Fig) -> Result<Vec<PathBuf>, Error> {
 }
 
 /// The contact force against the infinite plate (paper Fig. 6).
-fn plate_force(f: &Fig) -> Result<Vec<PathBuf>, Error> {
+fn plate_force(f: &Fig) -> Result<Vec<PathBuf>, ReportError> {
     let (model, run, ax, footer, dir) = (f.model, f.run, &f.ax, f.footer, f.dir);
     let (u, s) = (&model.units, &run.series);
     let mut out = Vec::new();
@@ -571,7 +597,7 @@ fn plate_force(f: &Fig) -> Result<Vec<PathBuf>, Error> {
 }
 
 /// The transverse displacement at the case's snapshot times (paper Fig. 7).
-fn plate_displacement(f: &Fig) -> Result<Vec<PathBuf>, Error> {
+fn plate_displacement(f: &Fig) -> Result<Vec<PathBuf>, ReportError> {
     let (model, run, ax, footer, dir) = (f.model, f.run, &f.ax, f.footer, f.dir);
     let u = &model.units;
     let mut out = Vec::new();
@@ -676,7 +702,7 @@ fn recorded_strain_elements(run: &RunResult) -> Vec<i64> {
 }
 
 /// The strains at gages A and B, both fibres (paper Figs. 8 and 9).
-fn plate_gages(f: &Fig) -> Result<Vec<PathBuf>, Error> {
+fn plate_gages(f: &Fig) -> Result<Vec<PathBuf>, ReportError> {
     let (run, ax, footer, dir) = (f.run, &f.ax, f.footer, f.dir);
     let mut out = Vec::new();
     let mesh_gages = recorded_strain_elements(run);
@@ -727,7 +753,7 @@ fn plate_gages(f: &Fig) -> Result<Vec<PathBuf>, Error> {
 }
 
 /// The energy partition of impactor and plate with the deck's external work.
-fn plate_energy(f: &Fig) -> Result<Vec<PathBuf>, Error> {
+fn plate_energy(f: &Fig) -> Result<Vec<PathBuf>, ReportError> {
     let (model, run, ax, footer, dir) = (f.model, f.run, &f.ax, f.footer, f.dir);
     let u = &model.units;
     let mut out = Vec::new();

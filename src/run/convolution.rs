@@ -21,9 +21,10 @@ use crate::assembly::System;
 use crate::integrate::convolution::{
     contact_history, unit_response, ConvStep, Convolver, RunFailure, Spectrum, UnitResponse,
 };
+use crate::integrate::ContactForm;
 use crate::integrate::RunStats;
 use crate::ledger::EnergyRow;
-use crate::model::{apply, Model};
+use crate::model::{apply, Contact, Model};
 use indicatif::ProgressBar;
 
 impl From<RunFailure> for RunError {
@@ -35,8 +36,8 @@ impl From<RunFailure> for RunError {
     }
 }
 
-/// Runs a model whose system is assembled on the convolution engine.
-pub fn run_convolution(model: &Model, sys: &System, opts: &RunOptions) -> Result<RunResult, RunError> {
+/// Runs a prepared model ([`super::prepare`]) on the convolution engine.
+pub fn run(model: &Model, sys: &System, opts: &RunOptions) -> Result<RunResult, RunError> {
     let t0 = std::time::Instant::now();
     let dt = opts.dt.unwrap_or(model.time.dt);
     let steps = opts.steps.unwrap_or(model.time.steps);
@@ -217,22 +218,7 @@ impl Kernels {
     /// it trips at step n, ends the run's outputs at step n as a direct run's would be.
     pub fn run(&self, model: &Model, opts: &RunOptions, bar: &ProgressBar) -> Result<RunResult, RunError> {
         let t0 = std::time::Instant::now();
-        let form = opts.scheme.newmark_params().map(|p| p.contact).ok_or_else(|| {
-            RunError::Engine(format!(
-                "the convolution engine runs the trapezoidal schemes (newmark, energy), not {}",
-                opts.scheme
-            ))
-        })?;
-        if !opts.snapshot_times.is_empty() {
-            return Err(RunError::Engine(
-                "field snapshots need the whole field: run them on the direct engine".into(),
-            ));
-        }
-        let ct = model
-            .contact
-            .as_ref()
-            .ok_or_else(|| RunError::Engine("the convolution engine needs a model with a contact".into()))?;
-        let (dt, steps) = (self.dt, self.steps);
+        let (form, ct) = runnable(model, opts)?;
         // A K scaled by s scales every load, so every kernel (the work's by s²).
         let s = ct.stiffness / self.stiffness;
         let scaled;
@@ -242,8 +228,118 @@ impl Kernels {
             scaled = self.response.scaled(s);
             &scaled
         };
+        let mut rec = ContactRecord::run(model, ct, form, kernel, self.steps, opts, bar)?;
+        // Everything linear in the loads, as convolutions: y(n) = conv[n − 1], y(0) = 0.
+        let spectra = self.spectra();
+        let loads = spectra.fft.spectrum(&rec.p);
+        let width = self.columns.len();
+        let conv = |c: usize| {
+            spectra
+                .fft
+                .convolve(&spectra.columns[c], &loads, if c == width - 1 { s * s } else { s })
+        };
+        let (energy, tripped) = if opts.ledger {
+            let w = spectra.fft.convolve(&spectra.work, &loads, s * s);
+            ledger(
+                ct,
+                &rec.steps_done,
+                &w,
+                &conv(width - 2),
+                &conv(width - 1),
+                opts.max_energy_error,
+            )
+        } else {
+            (Vec::new(), None)
+        };
+        if let Some(trip) = &tripped {
+            rec.truncate(trip.step);
+        }
+        let columns: Vec<Vec<f64>> = (0..width - 2).map(conv).collect();
+        let history = history_rows(model, ct, &rec.heads, &columns);
+        let stats = RunStats {
+            steps: rec.p.len(),
+            factorizations: kernel.costs.factorizations,
+            solves: kernel.costs.solves,
+            contact_iterations: rec.steps_done.iter().map(|c| c.iterations).sum(),
+            factor_time: kernel.costs.factor_time,
+            solve_time: kernel.costs.solve_time,
+            total_time: t0.elapsed(),
+            assembly_time: Default::default(),
+        };
+        let mut run = RunResult {
+            scheme: opts.scheme,
+            dt: self.dt,
+            steps: self.steps,
+            stats,
+            series: rec.series,
+            energy,
+            history_columns: history_columns(model),
+            history,
+            summary: Default::default(),
+            dofs: model.dofs.clone(),
+            snapshots: Vec::new(),
+        };
+        run.summary = summarize(model, &run, tripped, opts, Engine::Convolution);
+        match tripped {
+            None => Ok(run),
+            Some(trip) => Err(RunError::EnergyGuard {
+                trip,
+                partial: Box::new(run),
+            }),
+        }
+    }
+}
 
-        // The contact history, with its planned stop.
+/// y(n) of a convolution's output `y` (y(0) = 0, y(n) = y[n − 1]).
+fn at(y: &[f64], n: usize) -> f64 {
+    if n == 0 {
+        0.0
+    } else {
+        y[n - 1]
+    }
+}
+
+/// What the convolution engine can run: a trapezoidal scheme's contact form, no field
+/// snapshots, a model with a contact.
+fn runnable<'m>(model: &'m Model, opts: &RunOptions) -> Result<(ContactForm, &'m Contact), RunError> {
+    let form = opts.scheme.newmark_params().map(|p| p.contact).ok_or_else(|| {
+        RunError::Engine(format!(
+            "the convolution engine runs the trapezoidal schemes (newmark, energy), not {}",
+            opts.scheme
+        ))
+    })?;
+    if !opts.snapshot_times.is_empty() {
+        return Err(RunError::Engine(
+            "field snapshots need the whole field: run them on the direct engine".into(),
+        ));
+    }
+    let ct = model
+        .contact
+        .as_ref()
+        .ok_or_else(|| RunError::Engine("the convolution engine needs a model with a contact".into()))?;
+    Ok((form, ct))
+}
+
+/// The contact history of a convolution run: the series every step, the heads of the
+/// history rows, every step's state, and the loads.
+struct ContactRecord {
+    series: Series,
+    heads: Vec<(usize, RowHead)>,
+    steps_done: Vec<ConvStep>,
+    p: Vec<f64>,
+}
+
+impl ContactRecord {
+    /// The contact history, with its planned stop (after separation, when asked).
+    fn run(
+        model: &Model,
+        ct: &Contact,
+        form: ContactForm,
+        kernel: &UnitResponse,
+        steps: usize,
+        opts: &RunOptions,
+        bar: &ProgressBar,
+    ) -> Result<ContactRecord, RunError> {
         let mut series = Series::default();
         let mut heads: Vec<(usize, RowHead)> = Vec::new();
         let mut steps_done: Vec<ConvStep> = Vec::with_capacity(steps + 1);
@@ -281,127 +377,101 @@ impl Kernels {
             let done = matches!((separated_at, opts.stop_after_separation), (Some(t), Some(w)) if c.time >= t + w);
             Ok(!done)
         };
-        let (mut p, _) = contact_history(model, form, kernel, steps, &mut observe)?;
-
-        // Everything linear in the loads, as convolutions: y(n) = conv[n − 1], y(0) = 0.
-        let spectra = self.spectra();
-        let fft = &spectra.fft;
-        let loads = fft.spectrum(&p);
-        let width = self.columns.len();
-        let conv = |c: usize| fft.convolve(&spectra.columns[c], &loads, if c == width - 1 { s * s } else { s });
-        let at = |y: &[f64], n: usize| if n == 0 { 0.0 } else { y[n - 1] };
-
-        // The ledger, and where its energy guard stops the run.
-        let mut energy: Vec<EnergyRow> = Vec::new();
-        let mut tripped = None;
-        if opts.ledger {
-            let w = fft.convolve(&spectra.work, &loads, s * s);
-            let (momentum_t, nc_t) = (conv(width - 2), conv(width - 1));
-            let imp = ct.impactor.dof;
-            let nc_imp: f64 = ct
-                .nonconservative
-                .iter()
-                .filter(|&&(j, _)| j == imp)
-                .map(|&(_, r)| r)
-                .sum();
-            let mass = ct.impactor.mass;
-            let (mut target_energy, mut external, mut initial) = (0.0, 0.0, None);
-            energy.reserve(steps_done.len());
-            for c in &steps_done {
-                let n = c.step;
-                if n > 0 {
-                    let prev = &steps_done[n - 1];
-                    target_energy += (at(&w, n) - at(&w, n - 1)) * c.work_factor;
-                    external += (nc_imp * (c.x - prev.x) + (at(&nc_t, n) - at(&nc_t, n - 1))) * c.work_factor;
-                }
-                let ke_i = 0.5 * mass * c.xv * c.xv;
-                let se_i = ct.potential(c.alpha);
-                let u0 = *initial.get_or_insert(ke_i + se_i + target_energy);
-                let momentum = mass * c.xv + at(&momentum_t, n);
-                let row = EnergyRow::with_target_total(c.time, ke_i, se_i, target_energy, external, u0, momentum);
-                let trip = opts
-                    .max_energy_error
-                    .filter(|&limit| row.error.abs() > limit || row.error.is_nan())
-                    .map(|limit| GuardTrip {
-                        step: n,
-                        time: c.time,
-                        error: row.error,
-                        limit,
-                    });
-                energy.push(row);
-                if trip.is_some() {
-                    tripped = trip;
-                    break;
-                }
-            }
-        }
-        if let Some(trip) = &tripped {
-            let kept = trip.step + 1;
-            for v in [
-                &mut series.time,
-                &mut series.alpha,
-                &mut series.force,
-                &mut series.impactor_u,
-                &mut series.impactor_v,
-            ] {
-                v.truncate(kept);
-            }
-            steps_done.truncate(kept);
-            heads.retain(|(n, _)| *n <= trip.step);
-            p.truncate(trip.step);
-        }
-        let iterations = steps_done.iter().map(|c| c.iterations).sum();
-
-        // The history rows: the impactor's part of each linear output plus the target's.
-        let outputs = width - 2;
-        let columns: Vec<Vec<f64>> = (0..outputs).map(conv).collect();
-        let (mut u_imp, mut v_imp) = (model.u0.clone(), model.v0.clone());
-        let imp = ct.impactor.dof;
-        let history: Vec<Vec<f64>> = heads
-            .iter()
-            .map(|(n, h)| {
-                u_imp[imp] = h.impactor_u;
-                v_imp[imp] = h.impactor_v;
-                let mut linear = linear_outputs(model, &u_imp, &v_imp);
-                for (y, c) in linear.iter_mut().zip(&columns) {
-                    *y += at(c, *n);
-                }
-                history_row(model, h, &linear)
-            })
-            .collect();
-
-        let stats = RunStats {
-            steps: p.len(),
-            factorizations: kernel.costs.factorizations,
-            solves: kernel.costs.solves,
-            contact_iterations: iterations,
-            factor_time: kernel.costs.factor_time,
-            solve_time: kernel.costs.solve_time,
-            total_time: t0.elapsed(),
-            assembly_time: Default::default(),
-        };
-        let mut run = RunResult {
-            scheme: opts.scheme,
-            dt,
-            steps,
-            stats,
+        let (p, _) = contact_history(model, form, kernel, steps, &mut observe)?;
+        Ok(ContactRecord {
             series,
-            energy,
-            history_columns: history_columns(model),
-            history,
-            summary: Default::default(),
-            dofs: model.dofs.clone(),
-            snapshots: Vec::new(),
-        };
-        run.summary = summarize(model, &run, tripped, opts, Engine::Convolution);
-        match tripped {
-            None => Ok(run),
-            Some(trip) => Err(RunError::EnergyGuard {
-                trip,
-                partial: Box::new(run),
-            }),
+            heads,
+            steps_done,
+            p,
+        })
+    }
+
+    /// Ends the record at step `last` (where the energy guard tripped), as a direct
+    /// run's would end.
+    fn truncate(&mut self, last: usize) {
+        let kept = last + 1;
+        let s = &mut self.series;
+        for v in [
+            &mut s.time,
+            &mut s.alpha,
+            &mut s.force,
+            &mut s.impactor_u,
+            &mut s.impactor_v,
+        ] {
+            v.truncate(kept);
+        }
+        self.steps_done.truncate(kept);
+        self.heads.retain(|(n, _)| *n <= last);
+        self.p.truncate(last);
+    }
+}
+
+/// The ledger of a convolution run from the target's work `w`, momentum and
+/// non-conservative work convolutions, and where its energy guard (`limit`) stops
+/// the run.
+fn ledger(
+    ct: &Contact,
+    steps_done: &[ConvStep],
+    w: &[f64],
+    momentum_t: &[f64],
+    nc_t: &[f64],
+    limit: Option<f64>,
+) -> (Vec<EnergyRow>, Option<GuardTrip>) {
+    let mut energy: Vec<EnergyRow> = Vec::with_capacity(steps_done.len());
+    let imp = ct.impactor.dof;
+    let nc_imp: f64 = ct
+        .nonconservative
+        .iter()
+        .filter(|&&(j, _)| j == imp)
+        .map(|&(_, r)| r)
+        .sum();
+    let mass = ct.impactor.mass;
+    let (mut target_energy, mut external, mut initial) = (0.0, 0.0, None);
+    for c in steps_done {
+        let n = c.step;
+        if n > 0 {
+            let prev = &steps_done[n - 1];
+            target_energy += (at(w, n) - at(w, n - 1)) * c.work_factor;
+            external += (nc_imp * (c.x - prev.x) + (at(nc_t, n) - at(nc_t, n - 1))) * c.work_factor;
+        }
+        let ke_i = 0.5 * mass * c.xv * c.xv;
+        let se_i = ct.potential(c.alpha);
+        let u0 = *initial.get_or_insert(ke_i + se_i + target_energy);
+        let momentum = mass * c.xv + at(momentum_t, n);
+        let row = EnergyRow::with_target_total(c.time, ke_i, se_i, target_energy, external, u0, momentum);
+        let trip = limit
+            .filter(|&limit| row.error.abs() > limit || row.error.is_nan())
+            .map(|limit| GuardTrip {
+                step: n,
+                time: c.time,
+                error: row.error,
+                limit,
+            });
+        energy.push(row);
+        if trip.is_some() {
+            return (energy, trip);
         }
     }
+    (energy, None)
+}
+
+/// The history rows: the impactor's part of each linear output plus the target's
+/// convolution `columns`.
+fn history_rows(model: &Model, ct: &Contact, heads: &[(usize, RowHead)], columns: &[Vec<f64>]) -> Vec<Vec<f64>> {
+    let (mut u_imp, mut v_imp) = (model.u0.clone(), model.v0.clone());
+    let imp = ct.impactor.dof;
+    heads
+        .iter()
+        .map(|(n, h)| {
+            u_imp[imp] = h.impactor_u;
+            v_imp[imp] = h.impactor_v;
+            let mut linear = linear_outputs(model, &u_imp, &v_imp);
+            for (y, c) in linear.iter_mut().zip(columns) {
+                *y += at(c, *n);
+            }
+            history_row(model, h, &linear)
+        })
+        .collect()
 }
 
 /// The kernels' spectra for [`Convolver`]: the output columns' (momentum and the

@@ -1,9 +1,13 @@
-//! One run: model → assembled system → integrator → recorded history, ledger and
-//! typed [`Summary`]. Plain data in, plain data out; writing files is [`crate::output`]'s job.
+//! One run: model → [`prepare`] (preflight, the one assembly, the inert-DOF
+//! reduction) → an engine ([`direct`] or [`convolution`]) → recorded history, ledger
+//! and typed [`Summary`], made by the engine that ran. [`run_model`] is the one path;
+//! sweeps and studies that drive the convolution engine's kernels themselves start
+//! from [`prepare`] too. Plain data in, plain data out; writing files is
+//! [`crate::output`]'s job.
 
 use crate::assembly::{assemble, drop_inert, System};
-use crate::integrate::{integrate, Observer, RunStats, Scheme, SolveError, StepState};
-use crate::ledger::{EnergyRow, Ledger};
+use crate::integrate::{RunStats, Scheme, SolveError};
+use crate::ledger::EnergyRow;
 use crate::model::Model;
 use crate::numerics::crossing;
 use indicatif::ProgressBar;
@@ -13,6 +17,7 @@ pub use summary::{
 };
 
 pub mod convolution;
+pub mod direct;
 pub mod history;
 pub mod summary;
 
@@ -65,7 +70,7 @@ pub const DEFAULT_MAX_MEMORY: u64 = 4 << 30;
 /// Bytes a run of `steps` steps would hold beyond the model: the assembled system
 /// (element triplets of K and M, and their compressed copies; the factor's fill is
 /// not counted) and the records kept per step ([`record_bytes`]). For the model as
-/// solved (its inert DOFs dropped, [`solved_system`]) this is the run's estimate;
+/// solved (its inert DOFs dropped, [`prepare`]) this is the run's estimate;
 /// for the model as read it is an upper bound (the plate's membrane DOFs, inert under
 /// a transverse impact, count there: 1.6-1.8× the measured peak).
 pub fn memory_estimate(model: &Model, steps: usize, engine: Engine) -> u64 {
@@ -99,13 +104,6 @@ pub fn record_bytes(model: &Model, steps: usize, engine: Engine) -> u64 {
         Engine::Convolution => steps * (columns + 4) * 8 * 2,
     };
     records + kernels
-}
-
-/// Refuses a run of a model as solved ([`solved_system`]) that cannot be computed
-/// sensibly: a bad Δt, or over its memory limit. [`run_model`] and [`run_system`] call
-/// it; a caller that drives an engine itself (a sweep's kernel pass) calls it first.
-pub fn preflight_solved(model: &Model, opts: &RunOptions) -> Result<(), RunError> {
-    preflight(model, opts, Preflight::AsSolved)
 }
 
 /// When [`preflight`] runs: before the assembly (the model as read: refuse what no
@@ -313,80 +311,6 @@ pub struct Snapshot {
     pub u: Vec<f64>,
     /// Velocities.
     pub v: Vec<f64>,
-}
-
-struct Recorder<'a> {
-    model: &'a Model,
-    ledger: Option<Ledger<'a>>,
-    stop_after_separation: Option<f64>,
-    separated_at: Option<f64>,
-    in_contact: bool,
-    every: usize,
-    energy: Vec<EnergyRow>,
-    series: Series,
-    history: Vec<Vec<f64>>,
-    max_energy_error: Option<f64>,
-    tripped: Option<GuardTrip>,
-    bar: ProgressBar,
-    snapshot_steps: Vec<usize>,
-    snapshots: Vec<Snapshot>,
-}
-
-impl Observer for Recorder<'_> {
-    fn observe(&mut self, s: &StepState) -> Result<bool, SolveError> {
-        let m = self.model;
-        if let Some(ledger) = &mut self.ledger {
-            let row = ledger.record(s);
-            if let Some(limit) = self.max_energy_error {
-                if row.error.abs() > limit || row.error.is_nan() {
-                    self.tripped = Some(GuardTrip {
-                        step: s.step,
-                        time: s.time,
-                        error: row.error,
-                        limit,
-                    });
-                }
-            }
-            self.energy.push(row);
-        }
-        if s.alpha > 0.0 {
-            self.in_contact = true;
-        } else if self.in_contact && self.separated_at.is_none() {
-            self.separated_at = Some(s.time);
-        }
-        let (force, iu) = match &m.contact {
-            Some(c) => (c.stiffness * s.load_factor, c.impactor.dof),
-            None => (0.0, 0),
-        };
-        self.series.time.push(s.time);
-        self.series.alpha.push(s.alpha);
-        self.series.force.push(force);
-        self.series.impactor_u.push(s.u.get(iu).copied().unwrap_or(0.0));
-        self.series.impactor_v.push(s.v.get(iu).copied().unwrap_or(0.0));
-        if s.step % self.every == 0 {
-            let head = RowHead {
-                time: s.time,
-                force,
-                alpha: s.alpha,
-                impactor_u: m.contact.as_ref().map_or(0.0, |c| s.u[c.impactor.dof]),
-                impactor_v: m.contact.as_ref().map_or(0.0, |c| s.v[c.impactor.dof]),
-                load_factor: s.load_factor,
-            };
-            self.history.push(history_row(m, &head, &linear_outputs(m, s.u, s.v)));
-        }
-        if self.snapshot_steps.contains(&s.step) {
-            self.snapshots.push(Snapshot {
-                time: s.time,
-                u: s.u.to_vec(),
-                v: s.v.to_vec(),
-            });
-        }
-        if s.step % 64 == 0 {
-            self.bar.set_position(s.step as u64);
-        }
-        let done = matches!((self.separated_at, self.stop_after_separation), (Some(t0), Some(w)) if s.time >= t0 + w);
-        Ok(!done && self.tripped.is_none())
-    }
 }
 
 impl RunResult {
@@ -633,7 +557,47 @@ fn history_row(m: &Model, h: &RowHead, linear: &[f64]) -> Vec<f64> {
     row
 }
 
-/// Runs a model: assembles it, drops its inert DOFs when asked, integrates.
+/// A model ready for an engine: preflight passed, its system assembled (once), its
+/// inert DOFs dropped when asked ([`drop_inert`]; the model is then a reduced copy).
+pub struct Prepared<'m> {
+    /// The model as solved.
+    pub model: std::borrow::Cow<'m, Model>,
+    /// Its assembled system.
+    pub system: System,
+    /// Wall-clock time of the assembly and reduction.
+    pub assembly_time: std::time::Duration,
+}
+
+/// The one stage before any engine: the preflight on the model as read (a bad Δt,
+/// records or an assembly of every DOF over the memory limit), the assembly,
+/// refused when a DOF has neither stiffness nor mass (a mechanism, whether or not
+/// anything loads it), the inert-DOF reduction of the assembled system when
+/// `opts.skip_inert`, and the preflight on the model as solved (its memory limit).
+pub fn prepare<'m>(model: &'m Model, opts: &RunOptions) -> Result<Prepared<'m>, RunError> {
+    preflight(model, opts, Preflight::AsRead)?;
+    let t0 = std::time::Instant::now();
+    let sys = assemble(model);
+    let (kd, md) = (sys.k_diag(), sys.m_diag());
+    if let Some(i) = (0..sys.n).find(|&i| kd[i] <= 0.0 && md[i] <= 0.0) {
+        return Err(SolveError::Mechanism {
+            dof: model.dofs[i].to_string(),
+        }
+        .into());
+    }
+    let (model, system) = match opts.skip_inert.then(|| drop_inert(model, &sys)).flatten() {
+        Some((m, s)) => (std::borrow::Cow::Owned(m), s),
+        None => (std::borrow::Cow::Borrowed(model), sys),
+    };
+    preflight(&model, opts, Preflight::AsSolved)?;
+    Ok(Prepared {
+        model,
+        system,
+        assembly_time: t0.elapsed(),
+    })
+}
+
+/// Runs a model: [`prepare`], then the engine `opts.engine` names, which summarises
+/// the run as its own.
 ///
 /// ```
 /// use impactlab::run::{run_model, RunOptions};
@@ -642,19 +606,20 @@ fn history_row(m: &Model, h: &RowHead, linear: &[f64]) -> Vec<f64> {
 /// let s = &run.summary;
 /// assert_eq!(s.contact.intervals.len(), 1);
 /// assert!((s.rod.as_ref().unwrap().contact_end_tcl.unwrap() - 0.4134).abs() < 1e-3);
-/// # Ok::<(), impactlab::Error>(())
+/// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn run_model(model: &Model, opts: &RunOptions) -> Result<RunResult, RunError> {
-    preflight(model, opts, Preflight::AsRead)?;
-    let t0 = std::time::Instant::now();
-    let (model, sys) = solved_system(model, opts.skip_inert)?;
-    let assembly_time = t0.elapsed();
-    let (model, sys) = (model.as_ref(), &sys);
+    let p = prepare(model, opts)?;
+    let (model, sys) = (p.model.as_ref(), &p.system);
     let with_assembly = |run: &mut RunResult| {
-        run.stats.assembly_time = assembly_time;
-        run.summary.run.assembly_s = assembly_time.as_secs_f64();
+        run.stats.assembly_time = p.assembly_time;
+        run.summary.run.assembly_s = p.assembly_time.as_secs_f64();
     };
-    match run_system(model, sys, opts) {
+    let run = match opts.engine {
+        Engine::Direct => direct::run(model, sys, opts),
+        Engine::Convolution => convolution::run(model, sys, opts),
+    };
+    match run {
         Ok(mut run) => {
             with_assembly(&mut run);
             Ok(run)
@@ -664,82 +629,6 @@ pub fn run_model(model: &Model, opts: &RunOptions) -> Result<RunResult, RunError
             Err(RunError::EnergyGuard { trip, partial })
         }
         Err(e) => Err(e),
-    }
-}
-
-/// The model as a run solves it, with its assembled system: refused when a DOF has
-/// neither stiffness nor mass (a mechanism, whether or not anything loads it), its
-/// inert DOFs dropped when `skip_inert` ([`drop_inert`]; the model is then a reduced
-/// copy).
-pub fn solved_system(model: &Model, skip_inert: bool) -> Result<(std::borrow::Cow<'_, Model>, System), RunError> {
-    let sys = assemble(model);
-    let (kd, md) = (sys.k_diag(), sys.m_diag());
-    if let Some(i) = (0..sys.n).find(|&i| kd[i] <= 0.0 && md[i] <= 0.0) {
-        return Err(SolveError::Mechanism {
-            dof: model.dofs[i].to_string(),
-        }
-        .into());
-    }
-    match skip_inert.then(|| drop_inert(model, &sys)).flatten() {
-        Some(m) => {
-            let s = assemble(&m);
-            Ok((std::borrow::Cow::Owned(m), s))
-        }
-        None => Ok((std::borrow::Cow::Borrowed(model), sys)),
-    }
-}
-
-/// Runs a model whose system is already assembled.
-pub fn run_system(model: &Model, sys: &System, opts: &RunOptions) -> Result<RunResult, RunError> {
-    preflight(model, opts, Preflight::AsSolved)?;
-    if opts.engine == Engine::Convolution {
-        return convolution::run_convolution(model, sys, opts);
-    }
-    let dt = opts.dt.unwrap_or(model.time.dt);
-    let steps = opts.steps.unwrap_or(model.time.steps);
-    let bar = opts.progress.clone().unwrap_or_else(ProgressBar::hidden);
-    bar.set_length(steps as u64);
-    bar.set_position(0);
-    // The bar's clock (its rate and estimate) starts with the stepping.
-    bar.reset_elapsed();
-    let mut rec = Recorder {
-        model,
-        ledger: opts.ledger.then(|| Ledger::new(model, sys)),
-        stop_after_separation: opts.stop_after_separation,
-        separated_at: None,
-        in_contact: false,
-        every: model.time.every.max(1),
-        energy: Vec::with_capacity(steps + 1),
-        series: Series::default(),
-        history: Vec::new(),
-        max_energy_error: opts.max_energy_error,
-        tripped: None,
-        bar,
-        snapshot_steps: opts.snapshot_times.iter().map(|t| (t / dt).round() as usize).collect(),
-        snapshots: Vec::new(),
-    };
-    let stats = integrate(model, sys, opts.scheme, dt, steps, &mut rec)?;
-    rec.bar.finish_and_clear();
-    let mut run = RunResult {
-        scheme: opts.scheme,
-        dt,
-        steps,
-        stats,
-        series: rec.series,
-        energy: rec.energy,
-        history_columns: history_columns(model),
-        history: rec.history,
-        summary: Summary::default(),
-        dofs: model.dofs.clone(),
-        snapshots: rec.snapshots,
-    };
-    run.summary = summarize(model, &run, rec.tripped, opts, Engine::Direct);
-    match rec.tripped {
-        None => Ok(run),
-        Some(trip) => Err(RunError::EnergyGuard {
-            trip,
-            partial: Box::new(run),
-        }),
     }
 }
 

@@ -8,7 +8,6 @@
 //! damping, gravity) are an error when asked for, never silently ignored.
 
 use crate::deck::number::format_real;
-use crate::error::Error;
 use crate::integrate::Scheme;
 use crate::model::Model;
 use crate::physics;
@@ -222,6 +221,9 @@ pub enum SceneError {
         /// What is wrong.
         issue: SceneIssue,
     },
+    /// The scene's deck could not be made into a model.
+    #[error("{0}")]
+    Load(#[from] crate::model::LoadError),
 }
 
 /// The error of the scene at `path`.
@@ -602,7 +604,7 @@ fn join<T: std::fmt::Display>(v: &[T]) -> String {
 }
 
 /// The scene's model (through its deck), its run options, and the computed K.
-pub fn load(path: &Path) -> Result<(Scene, Model, String), Error> {
+pub fn load(path: &Path) -> Result<(Scene, Model, String), SceneError> {
     let s = read(path)?;
     let deck = to_deck(&s).map_err(|e| invalid(path, e))?;
     let name = path

@@ -3,6 +3,7 @@
 //! convergence, here), in parallel over cases. The result is a [`CaseOutcome`] per
 //! case, which `verify` judges and `report` draws without running anything again.
 
+use super::StudyError;
 use crate::integrate::Scheme;
 use crate::mesh::plate_model;
 use crate::model::Model;
@@ -21,9 +22,9 @@ use std::time::Instant;
 /// for c in &outcome.checks {
 ///     assert!(c.passed, "{}: {} ({})", c.check, c.value, c.detail);
 /// }
-/// # Ok::<(), impactlab::Error>(())
+/// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-pub fn evaluate(case: &Case) -> Result<CaseOutcome, crate::Error> {
+pub fn evaluate(case: &Case) -> Result<CaseOutcome, StudyError> {
     let model = case_model(case)?;
     let t0 = Instant::now();
     let run = run_model(&model, &case_options(case))?;
@@ -59,7 +60,7 @@ pub fn evaluate(case: &Case) -> Result<CaseOutcome, crate::Error> {
 }
 
 /// Evaluates cases on up to `jobs` threads; outcomes in case order, each named.
-pub fn evaluate_all(cases: &[Case], jobs: usize) -> Vec<(String, Result<CaseOutcome, crate::Error>)> {
+pub fn evaluate_all(cases: &[Case], jobs: usize) -> Vec<(String, Result<CaseOutcome, StudyError>)> {
     super::in_parallel(jobs, cases.len(), |i| evaluate(&cases[i]))
         .into_iter()
         .zip(cases)
@@ -68,7 +69,7 @@ pub fn evaluate_all(cases: &[Case], jobs: usize) -> Vec<(String, Result<CaseOutc
 }
 
 /// The checks that need a family of runs.
-fn convergence(case: &Case, model: &Model, run: &RunResult, spec: &CheckSpec) -> Result<CheckResult, crate::Error> {
+fn convergence(case: &Case, model: &Model, run: &RunResult, spec: &CheckSpec) -> Result<CheckResult, StudyError> {
     let result = |check, value, reference, tolerance, passed, detail| {
         CheckResult::new(case, check, value, reference, tolerance, passed, detail)
     };
@@ -137,14 +138,14 @@ fn convergence(case: &Case, model: &Model, run: &RunResult, spec: &CheckSpec) ->
 /// step, the runs' forces interpolated linearly between their steps. Runs cover the
 /// reference's contact and 5 % more, not the case's whole span. Returns the two errors
 /// and what the reference was.
-fn errors_to_reference(case: &Case, model: &Model, run: &RunResult) -> Result<([f64; 2], String), crate::Error> {
+fn errors_to_reference(case: &Case, model: &Model, run: &RunResult) -> Result<([f64; 2], String), StudyError> {
     let dt0 = run.dt;
     let independent = if run.scheme == Scheme::Energy {
         Scheme::Newmark
     } else {
         Scheme::Energy
     };
-    let with = |scheme: Scheme, dt: f64, t_end: f64| -> Result<RunResult, crate::Error> {
+    let with = |scheme: Scheme, dt: f64, t_end: f64| -> Result<RunResult, StudyError> {
         let mut o = case_options(case);
         o.scheme = scheme;
         o.dt = Some(dt);
@@ -186,7 +187,7 @@ fn dt_family(
     run: &RunResult,
     quantity: Quantity,
     runs: usize,
-) -> Result<(Vec<f64>, Vec<f64>), crate::Error> {
+) -> Result<(Vec<f64>, Vec<f64>), StudyError> {
     let (dt0, t_end) = (run.dt, run.dt * run.steps as f64);
     let (mut dts, mut values) = (vec![dt0], vec![quantity.of(&run.summary)]);
     for i in 1..runs.max(3) {

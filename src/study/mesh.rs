@@ -11,9 +11,9 @@
 //! are made from those files alone ([`read_csv`], [`readme`], [`figures`]), so a test
 //! remakes them from the committed CSVs.
 
+use super::StudyError;
 use super::{history_extreme, secondary_peak};
 use crate::elements::{Fibre, Plane};
-use crate::error::Error;
 use crate::integrate::Scheme;
 use crate::mesh::{plate_model, PlateMesh};
 use crate::plot::{self, Chart, Line};
@@ -117,7 +117,7 @@ MAT8,8,5.735+6,1.2855+6,0.2231,5.7+5,,,1.8-4,+M1
 
 /// The plate on an n×n mesh as its cross-ply laminate: the generated deck with
 /// [`CROSS_PLY`] for its PSHELL and MAT2 cards (and their continuations).
-pub fn laminate_model(n: usize) -> Result<crate::model::Model, Error> {
+pub fn laminate_model(n: usize) -> Result<crate::model::Model, StudyError> {
     let text = crate::mesh::plate_deck(n)?;
     let mut out = String::new();
     let mut in_mat2 = false;
@@ -133,7 +133,7 @@ pub fn laminate_model(n: usize) -> Result<crate::model::Model, Error> {
             out.push('\n');
         }
     }
-    crate::model_from_text(&format!("plate-pcomp-{n}x{n}"), &out)
+    Ok(crate::model_from_text(&format!("plate-pcomp-{n}x{n}"), &out)?)
 }
 
 /// The study's run settings: newmark at the paper's Δt, 3000 steps (the contact ends
@@ -149,7 +149,7 @@ pub fn options(progress: Option<indicatif::ProgressBar>) -> RunOptions {
 }
 
 /// Runs the plate on each mesh: one row per mesh and the histories of all.
-pub fn run(ns: &[usize], opts: &RunOptions) -> Result<(Vec<MeshRow>, Vec<Sample>), Error> {
+pub fn run(ns: &[usize], opts: &RunOptions) -> Result<(Vec<MeshRow>, Vec<Sample>), StudyError> {
     let (mut rows, mut samples) = (Vec::new(), Vec::new());
     for &n in ns {
         let [a, b] = PlateMesh::new(n)?.gage_elements();
@@ -407,10 +407,10 @@ pub fn readme(rows: &[MeshRow], samples: &[Sample]) -> String {
 }
 
 /// Writes the study's CSVs, then its page and figures made from them as written.
-pub fn write(dir: &Path, rows: &[MeshRow], samples: &[Sample]) -> Result<(), Error> {
+pub fn write(dir: &Path, rows: &[MeshRow], samples: &[Sample]) -> Result<(), StudyError> {
     let (rows_csv, hist_csv) = (csv(rows), csv(samples));
     crate::output::write_dir_atomically(dir, &[("mesh-study.csv", rows_csv), ("mesh-histories.csv", hist_csv)])
-        .map_err(|source| Error::Io {
+        .map_err(|source| StudyError::Io {
             path: dir.display().to_string(),
             source,
         })?;
@@ -418,7 +418,7 @@ pub fn write(dir: &Path, rows: &[MeshRow], samples: &[Sample]) -> Result<(), Err
 }
 
 /// Remakes the page and figures in `dir` from the CSVs there.
-pub fn redraw(dir: &Path) -> Result<(), Error> {
+pub fn redraw(dir: &Path) -> Result<(), StudyError> {
     let rows: Vec<MeshRow> = super::read_rows_file(&dir.join("mesh-study.csv"))?;
     let samples: Vec<Sample> = super::read_rows_file(&dir.join("mesh-histories.csv"))?;
     super::write_page(&dir.join("README.md"), &readme(&rows, &samples))?;

@@ -8,7 +8,7 @@
 //! file alone ([`read_csv`], [`readme`], [`figure`]), so that a test can remake them
 //! from the committed CSV and find them current without running the study again.
 
-use crate::error::Error;
+use super::StudyError;
 use crate::integrate::Scheme;
 use crate::model::{Model, Modify};
 use crate::run::{run_model, RunError, RunOptions};
@@ -74,7 +74,7 @@ fn outcome(run: Result<crate::run::RunResult, RunError>) -> Outcome {
 /// directly as the column's check: the two must agree (the same failure, the same
 /// step, energy errors within [`ENGINE_CHECK_MAX`]) or the study fails. Returns the
 /// cells and the largest difference of the checks.
-pub fn run_map(model: &Model, dt0: f64, t_end: f64, progress: &dyn Fn(&str)) -> Result<(Vec<Cell>, f64), Error> {
+pub fn run_map(model: &Model, dt0: f64, t_end: f64, progress: &dyn Fn(&str)) -> Result<(Vec<Cell>, f64), StudyError> {
     use crate::run::convolution::Kernels;
     use crate::run::Engine;
     let at_velocity = |m: &Model, v: f64| {
@@ -84,7 +84,8 @@ pub fn run_map(model: &Model, dt0: f64, t_end: f64, progress: &dyn Fn(&str)) -> 
         }
         .apply(m)
     };
-    let (solved, sys) = crate::run::solved_system(model, true)?;
+    let prepared = crate::run::prepare(model, &RunOptions::default())?;
+    let (solved, sys) = (prepared.model.as_ref(), &prepared.system);
     let mut outcomes: BTreeMap<(usize, usize, usize), Outcome> = BTreeMap::new();
     let mut worst_check = 0.0f64;
     for (s, scheme) in Scheme::ALL.into_iter().enumerate() {
@@ -109,9 +110,9 @@ pub fn run_map(model: &Model, dt0: f64, t_end: f64, progress: &dyn Fn(&str)) -> 
             };
             let steps = conv.steps.expect("set above");
             let hidden = indicatif::ProgressBar::hidden();
-            let (kernels, _) = Kernels::for_run(&solved, &sys, dt, steps, None, &hidden)?;
+            let (kernels, _) = Kernels::for_run(solved, sys, dt, steps, None, &hidden)?;
             for (v, scale) in VELOCITY_SCALES.into_iter().enumerate() {
-                let c = outcome(kernels.run(&at_velocity(&solved, scale)?, &conv, &hidden));
+                let c = outcome(kernels.run(&at_velocity(solved, scale)?, &conv, &hidden));
                 if scale == 1.0 {
                     let direct = outcome(run_model(&at_velocity(model, scale)?, &opts));
                     // Failed or not, and at which step the guard stopped the run.
@@ -129,7 +130,7 @@ pub fn run_map(model: &Model, dt0: f64, t_end: f64, progress: &dyn Fn(&str)) -> 
                         _ => f64::INFINITY,
                     };
                     if step(&c) != step(&direct) || diff.is_nan() || diff > ENGINE_CHECK_MAX {
-                        return Err(Error::Usage(format!(
+                        return Err(StudyError::Input(format!(
                             "stability map, {} at Δt {dt:e} s: the convolution engine gives {c:?}, the direct one \
                              {direct:?}",
                             scheme.name()
@@ -409,7 +410,7 @@ impl HardCase {
 /// implicit schemes (`newmark`, `energy`, `nastran`) over 200 µs: the impact moved
 /// next to the clamped edge (the element in the second row, same column), the
 /// impact velocity ×100, the time step ×64, and a stiff chattering contact (K ×1000).
-pub fn hard_cases(n: usize, progress: &dyn Fn(&str)) -> Result<Vec<HardCase>, Error> {
+pub fn hard_cases(n: usize, progress: &dyn Fn(&str)) -> Result<Vec<HardCase>, StudyError> {
     let centre = crate::model_from_text("plate", &crate::mesh::plate_deck(n)?)?;
     let edge = crate::model_from_text("plate-edge", &plate_deck_next_to_the_edge(n)?)?;
     let dt0 = centre.time.dt;
@@ -479,7 +480,7 @@ pub fn hard_cases(n: usize, progress: &dyn Fn(&str)) -> Result<Vec<HardCase>, Er
 /// The N×N plate deck ([`crate::mesh::plate_deck`]) with its contact (the NOLIN3
 /// and TF grids, output SET 15) moved from the centre element to the one in the
 /// second row of the same column, next to the clamped edge.
-pub fn plate_deck_next_to_the_edge(n: usize) -> Result<String, Error> {
+pub fn plate_deck_next_to_the_edge(n: usize) -> Result<String, StudyError> {
     let deck = crate::mesh::plate_deck(n)?;
     let m = crate::mesh::PlateMesh::new(n)?;
     let centre = m.contact_grids();

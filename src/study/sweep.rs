@@ -13,11 +13,11 @@
 //! I−1 modulo N; [`collect`] merges shards into the `sweep.csv` an unsharded run writes.
 
 use super::in_parallel;
+use super::StudyError;
 use crate::integrate::Scheme;
 use crate::model::{Model, Modify};
 use crate::run::convolution::{engine_difference, CacheUse, Kernels};
-use crate::run::{run_model, solved_system, Column, Engine, RunError, RunOptions, RunResult};
-use crate::Error;
+use crate::run::{prepare, run_model, Column, Engine, RunError, RunOptions, RunResult};
 use indicatif::ProgressBar;
 use std::collections::HashMap;
 use std::path::Path;
@@ -44,6 +44,16 @@ pub enum Param {
 impl Param {
     /// Every parameter, by name.
     pub const ALL: [Param; 4] = [Param::Velocity, Param::Mass, Param::K, Param::Exponent];
+
+    /// Whether the parameter leaves the target (its K, M, constraints and outputs)
+    /// unchanged: the impactor and the contact law are outside it. A sweep runs on
+    /// the convolution engine, whose kernels are the target's computed once, and
+    /// refuses a parameter that changes it.
+    pub fn leaves_target(self) -> bool {
+        match self {
+            Param::Velocity | Param::Mass | Param::K | Param::Exponent => true,
+        }
+    }
 
     /// The name on the command line and in `sweep.csv`.
     pub fn name(self) -> &'static str {
@@ -162,11 +172,11 @@ pub fn points(varies: &[Vary]) -> Vec<Vec<f64>> {
 }
 
 /// The model of one point: the base model with its impactor and contact law changed.
-pub fn point_model(base: &Model, varies: &[Vary], values: &[f64]) -> Result<Model, Error> {
+pub fn point_model(base: &Model, varies: &[Vary], values: &[f64]) -> Result<Model, StudyError> {
     let ct = base
         .contact
         .as_ref()
-        .ok_or_else(|| Error::Usage("a sweep needs a model with a contact".into()))?;
+        .ok_or_else(|| StudyError::Input("a sweep needs a model with a contact".into()))?;
     let v0 = base.v0[ct.impactor.dof];
     let mut m = Modify::default();
     let mut exponent = None;
@@ -379,7 +389,7 @@ fn row(index: usize, values: &[f64], run: &RunResult) -> Vec<f64> {
 }
 
 /// A run that the energy guard stopped still gives its outputs up to the stop.
-fn outputs(run: Result<RunResult, RunError>) -> Result<RunResult, Error> {
+fn outputs(run: Result<RunResult, RunError>) -> Result<RunResult, StudyError> {
     match run {
         Ok(r) => Ok(r),
         Err(RunError::EnergyGuard { partial, .. }) => Ok(*partial),
@@ -398,7 +408,7 @@ fn outputs(run: Result<RunResult, RunError>) -> Result<RunResult, Error> {
 /// solve: on the plate a supernodal solve of k right-hand sides costs about k/2.3
 /// single solves at k = 11, so the pass and two checks in lockstep would take about as
 /// long on one core as the three tasks take on two.
-pub fn sweep(base: &Model, run: &RunOptions, opts: &SweepOptions) -> Result<SweepOutcome, Error> {
+pub fn sweep(base: &Model, run: &RunOptions, opts: &SweepOptions) -> Result<SweepOutcome, StudyError> {
     let t0 = std::time::Instant::now();
     let all = points(&opts.varies);
     let mine: Vec<usize> = (0..all.len())
@@ -411,10 +421,12 @@ pub fn sweep(base: &Model, run: &RunOptions, opts: &SweepOptions) -> Result<Swee
         .filter(|i| mine.contains(i))
         .collect();
     let bar = opts.progress.clone().unwrap_or_else(ProgressBar::hidden);
-    let (model, sys) = solved_system(base, run.skip_inert)?;
-    let model = model.as_ref();
-    let dt = run.dt.unwrap_or(model.time.dt);
-    let steps = run.steps.unwrap_or(model.time.steps);
+    if let Some(v) = opts.varies.iter().find(|v| !v.param.leaves_target()) {
+        return Err(StudyError::Input(format!(
+            "--vary {}: the parameter changes the target, whose kernels the convolution engine computes once",
+            v.param.name()
+        )));
+    }
     let on = |engine| RunOptions {
         scheme: opts.scheme,
         engine,
@@ -422,7 +434,10 @@ pub fn sweep(base: &Model, run: &RunOptions, opts: &SweepOptions) -> Result<Swee
         ..run.clone()
     };
     let (opts_conv, opts_direct) = (on(Engine::Convolution), on(Engine::Direct));
-    crate::run::preflight_solved(model, &opts_conv)?;
+    let prepared = prepare(base, &opts_conv)?;
+    let (model, sys) = (prepared.model.as_ref(), &prepared.system);
+    let dt = run.dt.unwrap_or(model.time.dt);
+    let steps = run.steps.unwrap_or(model.time.steps);
     bar.set_length((mine.len() + checked.len()) as u64);
 
     enum Done {
@@ -435,7 +450,7 @@ pub fn sweep(base: &Model, run: &RunOptions, opts: &SweepOptions) -> Result<Swee
         kernels.get_or_init(|| {
             Kernels::for_run(
                 model,
-                &sys,
+                sys,
                 dt,
                 steps,
                 run.kernel_cache.as_deref(),
@@ -444,7 +459,7 @@ pub fn sweep(base: &Model, run: &RunOptions, opts: &SweepOptions) -> Result<Swee
         })
     };
     let c = checked.len();
-    let done = in_parallel(opts.jobs, 1 + c + mine.len(), |k| -> Result<Done, Error> {
+    let done = in_parallel(opts.jobs, 1 + c + mine.len(), |k| -> Result<Done, StudyError> {
         let t = std::time::Instant::now();
         if k == 0 {
             pass();
@@ -542,8 +557,8 @@ pub fn csv_bytes(header: &[String], rows: &[Vec<f64>]) -> Vec<u8> {
 }
 
 /// Reads a `sweep.csv` back: header and rows (empty fields as NaN).
-pub fn read_csv(path: &Path) -> Result<(Vec<String>, Vec<Vec<f64>>), Error> {
-    let bad = |what: String| Error::Usage(format!("{}: {what}", path.display()));
+pub fn read_csv(path: &Path) -> Result<(Vec<String>, Vec<Vec<f64>>), StudyError> {
+    let bad = |what: String| StudyError::Input(format!("{}: {what}", path.display()));
     let mut r = csv::Reader::from_path(path).map_err(|e| bad(e.to_string()))?;
     let header: Vec<String> = r
         .headers()

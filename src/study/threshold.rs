@@ -20,10 +20,10 @@
 //! between them.
 
 use super::sweep::{point_model, Param, Vary, DIRECT_CHECK_MAX};
+use super::StudyError;
 use crate::model::Model;
 use crate::run::convolution::{engine_difference, Kernels};
-use crate::run::{run_model, solved_system, Engine, RunError, RunOptions, RunResult};
-use crate::Error;
+use crate::run::{prepare, run_model, Engine, RunError, RunOptions, RunResult};
 use indicatif::ProgressBar;
 
 /// Relative width of the final bracket.
@@ -46,10 +46,10 @@ pub enum Until {
 
 impl Until {
     /// Reads `peak_force=F`, `delamination` or `failure_index=L`.
-    pub fn parse(text: &str) -> Result<Until, Error> {
+    pub fn parse(text: &str) -> Result<Until, StudyError> {
         let positive = |what: &str, x: &str| match x.trim().parse::<f64>() {
             Ok(x) if x > 0.0 && x.is_finite() => Ok(x),
-            _ => Err(Error::Usage(format!(
+            _ => Err(StudyError::Input(format!(
                 "--until {text}: the {what} must be a positive number"
             ))),
         };
@@ -57,18 +57,18 @@ impl Until {
             None if text == "delamination" => Ok(Until::Delamination),
             Some(("peak_force", f)) => positive("force", f).map(Until::PeakForce),
             Some(("failure_index", f)) => positive("index", f).map(Until::FailureIndex),
-            _ => Err(Error::Usage(format!(
+            _ => Err(StudyError::Input(format!(
                 "--until {text}: expected peak_force=F, delamination or failure_index=L"
             ))),
         }
     }
 
     /// The quantity of a run the search compares with the target.
-    fn measure(&self, run: &RunResult) -> Result<f64, Error> {
+    fn measure(&self, run: &RunResult) -> Result<f64, StudyError> {
         match self {
             Until::PeakForce(_) | Until::Delamination => Ok(run.summary.contact.peak_force),
             Until::FailureIndex(_) => run.summary.failure.as_ref().map(|f| f.theory.largest).ok_or_else(|| {
-                Error::Usage(
+                StudyError::Input(
                     "--until failure_index needs failure indices: a PCOMP with FT and allowables, and its \
                      elements in the deck's STRESS or STRAIN set"
                         .into(),
@@ -106,17 +106,17 @@ pub struct Threshold {
 }
 
 /// Finds the impact speed at which the run's measure reaches `until`'s target.
-pub fn find_velocity(base: &Model, run: &RunOptions, until: Until, bar: &ProgressBar) -> Result<Threshold, Error> {
+pub fn find_velocity(base: &Model, run: &RunOptions, until: Until, bar: &ProgressBar) -> Result<Threshold, StudyError> {
     let ct = base
         .contact
         .as_ref()
-        .ok_or_else(|| Error::Usage("a threshold search needs a model with a contact".into()))?;
+        .ok_or_else(|| StudyError::Input("a threshold search needs a model with a contact".into()))?;
     let (target_value, target) = match until {
         Until::PeakForce(f) => (f, format!("peak force {f:.6e}")),
         Until::FailureIndex(level) => (level, format!("largest failure index (PCOMP FT) {level}")),
         Until::Delamination => {
             let g = run.interlaminar_toughness.ok_or_else(|| {
-                Error::Usage("--until delamination needs the interface's toughness: --giic G_IIc".into())
+                StudyError::Input("--until delamination needs the interface's toughness: --giic G_IIc".into())
             })?;
             let d = crate::physics::references::plate_bending_stiffness(base)?;
             let onset = crate::damage::delamination_onset(&d, g);
@@ -131,20 +131,19 @@ pub fn find_velocity(base: &Model, run: &RunOptions, until: Until, bar: &Progres
     };
     let v_deck = base.v0[ct.impactor.dof].abs();
     let t0 = std::time::Instant::now();
-    let (model, sys) = solved_system(base, run.skip_inert)?;
-    let model = model.as_ref();
-    let dt = run.dt.unwrap_or(model.time.dt);
-    let steps = run.steps.unwrap_or(model.time.steps);
     let on = |engine| RunOptions {
         engine,
         progress: None,
         ..run.clone()
     };
     let (conv_opts, direct_opts) = (on(Engine::Convolution), on(Engine::Direct));
-    crate::run::preflight_solved(model, &conv_opts)?;
+    let prepared = prepare(base, &conv_opts)?;
+    let (model, sys) = (prepared.model.as_ref(), &prepared.system);
+    let dt = run.dt.unwrap_or(model.time.dt);
+    let steps = run.steps.unwrap_or(model.time.steps);
     let (kernels, _) = Kernels::for_run(
         model,
-        &sys,
+        sys,
         dt,
         steps,
         run.kernel_cache.as_deref(),
@@ -163,7 +162,7 @@ pub fn find_velocity(base: &Model, run: &RunOptions, until: Until, bar: &Progres
         )
     };
     let mut evaluations = 0;
-    let mut peak = |v: f64| -> Result<f64, Error> {
+    let mut peak = |v: f64| -> Result<f64, StudyError> {
         evaluations += 1;
         bar.inc(1);
         until.measure(&guarded(kernels.run(&point(v)?, &conv_opts, &ProgressBar::hidden()))?)
@@ -178,7 +177,7 @@ pub fn find_velocity(base: &Model, run: &RunOptions, until: Until, bar: &Progres
             lo /= 2.0;
             k += 1;
             if k == MAX_BRACKET_STEPS {
-                return Err(Error::Usage(format!(
+                return Err(StudyError::Input(format!(
                     "the measure reaches {target_value:e} even at {lo:e}: no threshold above zero speed"
                 )));
             }
@@ -191,7 +190,7 @@ pub fn find_velocity(base: &Model, run: &RunOptions, until: Until, bar: &Progres
             hi *= 2.0;
             k += 1;
             if k == MAX_BRACKET_STEPS {
-                return Err(Error::Usage(format!(
+                return Err(StudyError::Input(format!(
                     "the measure stays below {target_value:e} up to {hi:e}"
                 )));
             }
@@ -217,7 +216,7 @@ pub fn find_velocity(base: &Model, run: &RunOptions, until: Until, bar: &Progres
         direct_values[k] = until.measure(&direct)?;
     }
     if direct_check > DIRECT_CHECK_MAX || reached(direct_values[0]) || !reached(direct_values[1]) {
-        return Err(Error::Stopped(format!(
+        return Err(StudyError::Unconfirmed(format!(
             "the direct engine does not confirm the threshold bracket [{lo:e}, {hi:e}]: engines differ by \
              {direct_check:e} (at most {DIRECT_CHECK_MAX:e}), direct values {:e} and {:e} against {target_value:e}",
             direct_values[0], direct_values[1]
@@ -239,7 +238,7 @@ pub fn find_velocity(base: &Model, run: &RunOptions, until: Until, bar: &Progres
 }
 
 /// A run stopped by the energy guard still has its peak force.
-fn guarded(run: Result<RunResult, RunError>) -> Result<RunResult, Error> {
+fn guarded(run: Result<RunResult, RunError>) -> Result<RunResult, StudyError> {
     match run {
         Ok(r) => Ok(r),
         Err(RunError::EnergyGuard { partial, .. }) => Ok(*partial),

@@ -40,16 +40,13 @@ pub enum CaseError {
     },
     /// Its deck could not be loaded.
     #[error("{0}")]
-    Load(Box<crate::Error>),
+    Load(#[from] crate::model::LoadError),
+    /// Its generated mesh could not be made.
+    #[error("{0}")]
+    Mesh(#[from] crate::mesh::MeshError),
     /// Its modification could not be made.
     #[error("{0}")]
     Modify(#[from] crate::model::ModifyError),
-}
-
-impl From<crate::Error> for CaseError {
-    fn from(e: crate::Error) -> Self {
-        CaseError::Load(Box::new(e))
-    }
 }
 
 /// One verification case, as written in `verification/<name>.toml`.

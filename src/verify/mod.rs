@@ -286,15 +286,32 @@ pub fn junit(v: &Verdicts) -> Vec<u8> {
     report.to_string().expect("serialisable report").into_bytes()
 }
 
+/// A gold file that could not be written, or its check judged again.
+#[derive(Debug, thiserror::Error)]
+pub enum BlessError {
+    /// The gold file could not be written.
+    #[error("cannot write {path}: {source}")]
+    Write {
+        /// The gold file.
+        path: String,
+        /// What failed.
+        #[source]
+        source: std::io::Error,
+    },
+    /// The check could not be judged again.
+    #[error("{0}")]
+    Check(#[from] CheckError),
+}
+
 /// Writes the gold files of a case's `gold` checks from its run (by hand, never in
 /// CI), then judges those checks again against what was written.
-pub fn bless(o: &mut CaseOutcome) -> Result<Vec<PathBuf>, crate::Error> {
+pub fn bless(o: &mut CaseOutcome) -> Result<Vec<PathBuf>, BlessError> {
     let mut written = Vec::new();
     for spec in &o.case.checks {
         if let CheckSpec::Gold { file, .. } = spec {
             let path = case::rel(&o.case, file);
             let bytes = crate::output::csv_bytes(&o.run.history_header(), o.run.history.iter().cloned());
-            crate::output::write_file_atomically(&path, &bytes).map_err(|source| crate::Error::Io {
+            crate::output::write_file_atomically(&path, &bytes).map_err(|source| BlessError::Write {
                 path: path.display().to_string(),
                 source,
             })?;
