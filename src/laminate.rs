@@ -168,8 +168,8 @@ pub enum LaminateError {
 
 /// The plies of a PCOMP, bottom to top (LAM = SYM mirrored), each from its MAT8 (E1,
 /// E2, NU12, G12; G1Z and G2Z when both are given; the allowables for FT) or its MAT1
-/// (isotropic: the plane-stress matrix of E, NU, G, and G for both transverse shears;
-/// no allowables, so no FT).
+/// (isotropic: the plane-stress matrix of E, NU, G; rigid in transverse shear, as a
+/// PSHELL of that MAT1 without MID3 is; no allowables, so no FT).
 pub fn plies_of(
     p: &crate::deck::cards::Pcomp,
     mat1s: &[crate::deck::cards::Mat1],
@@ -208,7 +208,7 @@ pub fn plies_of(
                 let q = m.e / (1.0 - m.nu * m.nu);
                 Ok(Ply {
                     q: Matrix3::new(q, q * m.nu, 0.0, q * m.nu, q, 0.0, 0.0, 0.0, m.g),
-                    shear: Some((m.g, m.g)),
+                    shear: None,
                     t: ply.t,
                     theta: ply.theta,
                     rho: m.rho,

@@ -118,6 +118,9 @@ pub struct Pshell {
     pub bend_ratio: f64,
     /// Transverse shear material MID3 (field 7); `None` when blank.
     pub mid3: Option<i64>,
+    /// Transverse shear thickness over membrane thickness TS/T (field 8; 0.833333,
+    /// the shear correction factor 5/6, when blank).
+    pub ts_t: f64,
     /// Membrane-bending coupling material MID4 (the continuation's field 4, after Z1 and Z2);
     /// `None` when blank.
     pub mid4: Option<i64>,
@@ -826,12 +829,16 @@ fn card_pshell(r: &mut Reader, b: &mut Bulk) {
         mid2: r.int_opt(3, "MID2"),
         bend_ratio: r.real_or(4, "12I/T**3", 1.0),
         mid3: r.int_opt(5, "MID3"),
+        ts_t: r.real_or(6, "TS/T", 0.833333),
         mid4: r.int_opt(10, "MID4"),
         nsm: r.real_or(7, "NSM", 0.0),
         at: r.at(),
     };
-    r.real_opt(6, "TS/T");
     r.positive(2, "T", p.t);
+    r.positive(6, "TS/T", p.ts_t);
+    if p.mid3.is_some() && p.mid2.is_none() && r.ok {
+        r.fail(5, "MID3", "a transverse shear material needs a bending material (MID2)");
+    }
     r.positive(4, "12I/T**3", p.bend_ratio);
     if r.ok {
         b.pshells.push(p);

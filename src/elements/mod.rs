@@ -15,6 +15,7 @@
 //! kind is a kernel file here and a line there.
 
 pub mod mass;
+pub mod mitc4;
 pub mod quad4;
 pub mod rod;
 pub mod shell;
@@ -179,7 +180,7 @@ pub static KINDS: [Kind; 3] = [
     Kind {
         card: "CQUAD4",
         grids: 4,
-        build: Build::Shell(|x, s| Ok(Box::new(quad4::Quad4::build(x, s)?))),
+        build: Build::Shell(mitc4::cquad4),
     },
     Kind {
         card: "CTRIA3",
@@ -431,6 +432,7 @@ mod tests {
             g_membrane: Some(g),
             g_bending: Some(g * 1.3),
             g_coupling: None,
+            shear: None,
             mass_per_area: 2.7e-5,
         };
         vec![
@@ -469,6 +471,18 @@ mod tests {
                     ..shell.clone()
                 },
             )),
+            // The shear-deformable CQUAD4, with an unsymmetric section.
+            Box::new(mitc4::Mitc4::new(
+                [[0.0, 0.0], [2.0, 0.3], [2.4, 1.7], [0.3, 1.2]],
+                0.0,
+                shell::ShellSection {
+                    g_coupling: Some(Matrix3::new(
+                        3.0e5, 1.0e4, 2.0e4, 1.0e4, -3.0e5, 5.0e3, 2.0e4, 5.0e3, 1.0e4,
+                    )),
+                    shear: Some(nalgebra::Matrix2::new(5.0e4, 3.0e3, 3.0e3, 4.0e4)),
+                    ..shell.clone()
+                },
+            )),
             Box::new(mass::PointMass {
                 x: [0.0; 3],
                 mass: 1e-4,
@@ -485,7 +499,7 @@ mod tests {
     /// it recovers, and each names the deck card it comes from.
     #[test]
     fn every_kernel_books_half_utku_and_recovers_what_it_names() {
-        for (kind, k) in ["CROD", "CQUAD4", "CQUAD4", "CTRIA3", "CTRIA3", "CONM2"]
+        for (kind, k) in ["CROD", "CQUAD4", "CQUAD4", "CTRIA3", "CTRIA3", "CQUAD4", "CONM2"]
             .iter()
             .zip(kernels())
         {

@@ -78,7 +78,7 @@ pub fn area(xy: &Xy) -> f64 {
 }
 
 /// Membrane strain-displacement matrix at (ξ, η), DOFs (u1 v1 … u4 v4).
-fn b_membrane(xy: &Xy, xi: f64, eta: f64) -> (SMatrix<f64, 3, 8>, f64) {
+pub(super) fn b_membrane(xy: &Xy, xi: f64, eta: f64) -> (SMatrix<f64, 3, 8>, f64) {
     let (_, dxi, deta) = bilinear(xi, eta);
     let (j, det) = jacobian(xy, xi, eta);
     let mut b = SMatrix::<f64, 3, 8>::zeros();
@@ -471,6 +471,7 @@ mod tests {
             g_membrane: Some(a_mat / 0.1),
             g_bending: Some(d_mat * 12.0 / 0.1f64.powi(3)),
             g_coupling: Some(b_mat / 0.01),
+            shear: None,
             mass_per_area: 1.0,
         };
         let el = Quad4::new(DISTORTED, 0.0, section);

@@ -15,7 +15,7 @@
 //!   the fibre stresses PSHELL's recovery reports).
 
 use super::{Fibre, Measure, Plane, Recovered};
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::{Matrix2, Matrix3, Vector3};
 
 /// A PSHELL (or a PCOMP's laminate) with its materials resolved.
 #[derive(Debug, Clone, PartialEq)]
@@ -29,6 +29,10 @@ pub struct ShellSection {
     /// Membrane-bending coupling material matrix G(MID4), if any: B = this · T²
     /// (an unsymmetric laminate's, or PSHELL's MID4).
     pub g_coupling: Option<Matrix3<f64>>,
+    /// Transverse shear stiffness Ds (force/length), Q = Ds γ with Q = (Qx, Qy) and
+    /// γ = (γxz, γyz): PSHELL's G(MID3)·(TS/T)·T, or a laminate's; `None`: rigid in
+    /// transverse shear (the thin plate).
+    pub shear: Option<Matrix2<f64>>,
     /// (ρ T + NSM), mass per unit area.
     pub mass_per_area: f64,
 }

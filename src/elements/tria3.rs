@@ -153,8 +153,15 @@ impl Tria3 {
     }
 
     /// The element on three grids' coordinates: refused when they are not in a plane
-    /// z = const or not counter-clockwise (non-positive area).
+    /// z = const or not counter-clockwise (non-positive area), and for a section with
+    /// transverse shear flexibility, which this thin triangle cannot honour.
     pub fn build(points: &[[f64; 3]], section: ShellSection) -> Result<Self, BadShape> {
+        if section.shear.is_some() {
+            return Err(BadShape(
+                "has a property with transverse shear flexibility (PSHELL MID3, or plies with G1Z and G2Z): \
+                 CTRIA3 is a thin plate (DKT) here; mesh it in CQUAD4 (MITC4)",
+            ));
+        }
         let z = points[0][2];
         let xy = super::flat_xy::<3>(points)?;
         if jacobian(&xy).1 <= 0.0 {
@@ -277,6 +284,7 @@ mod tests {
             g_membrane: Some(a / t),
             g_bending: Some(d * 12.0 / t.powi(3)),
             g_coupling: b.map(|b| b / (t * t)),
+            shear: None,
             mass_per_area: 1.0,
         }
     }
@@ -365,7 +373,8 @@ mod tests {
         assert!((&k[0].values - k[0].values.transpose()).norm() <= 1e-14 * k[0].values.norm());
     }
 
-    /// Goal: a triangle numbered clockwise, or off the plane z = const, is refused.
+    /// Goal: a triangle numbered clockwise, or off the plane z = const, or asked for
+    /// transverse shear flexibility, is refused.
     #[test]
     fn clockwise_or_warped_triangles_are_refused() {
         let (a_mat, d_mat) = iso(1.0e7, 0.3, 0.1);
@@ -375,6 +384,11 @@ mod tests {
         let cw = [ccw[0], ccw[2], ccw[1]];
         assert!(Tria3::build(&cw, s.clone()).is_err());
         let warped = [ccw[0], ccw[1], [0.0, 1.0, 0.1]];
-        assert!(Tria3::build(&warped, s).is_err());
+        assert!(Tria3::build(&warped, s.clone()).is_err());
+        let shear = ShellSection {
+            shear: Some(nalgebra::Matrix2::identity()),
+            ..s
+        };
+        assert!(Tria3::build(&ccw, shear).is_err());
     }
 }

@@ -5,7 +5,7 @@ use crate::deck::cards::Connection;
 use crate::deck::case::{OutputSet, Selection};
 use crate::deck::{Deck, Diagnostic};
 use crate::elements::{mass::PointMass, rod::RodSection, BadShape, Build, Family};
-use nalgebra::Matrix3;
+use nalgebra::{Matrix2, Matrix3};
 use std::collections::{BTreeMap, HashMap};
 
 /// Building the model failed: every problem found, each tied to its card.
@@ -978,6 +978,46 @@ fn material_matrix(
     material(cx, mid, used_by, mat1, mat2s, true)
 }
 
+/// PSHELL MID3's transverse shear material, the 2×2 G relating (Qx, Qy)/(TS·T) to
+/// (γxz, γyz): a MAT1's G on the diagonal, or a MAT2's [G11 G12; G12 G22], whose
+/// G13, G23 and G33 must then be blank (Altair OptiStruct Reference Guide, MAT2,
+/// comment 3: a MAT2 referenced by PSHELL MID3 uses G11, G12, G22), positive definite.
+fn transverse_shear_material(
+    cx: &mut Ctx,
+    mid: i64,
+    used_by: &CardRef,
+    mat1: &HashMap<i64, &crate::deck::cards::Mat1>,
+    mat2s: &[crate::deck::cards::Mat2],
+) -> Option<nalgebra::Matrix2<f64>> {
+    if let Some(m) = mat2s.iter().find(|m| m.mid == mid) {
+        if m.g[0][2] != 0.0 || m.g[1][2] != 0.0 || m.g[2][2] != 0.0 {
+            cx.err(m.at.error(format!(
+                "MAT2 {mid} is a transverse shear material (PSHELL MID3): G11, G12 and G22 form its 2×2 matrix, \
+                 and G13, G23, G33 must be blank"
+            )));
+            return None;
+        }
+        let g = nalgebra::Matrix2::new(m.g[0][0], m.g[0][1], m.g[0][1], m.g[1][1]);
+        if g.cholesky().is_none() {
+            cx.err(m.at.error(format!(
+                "MAT2 {mid} (PSHELL MID3) is not positive definite: [G11 G12; G12 G22] gives no shear energy for \
+                 some shear strain"
+            )));
+            return None;
+        }
+        return Some(g);
+    }
+    if let Some(m) = mat1.get(&mid) {
+        if m.g <= 0.0 {
+            cx.err(m.at.error(format!("MAT1 {mid} (PSHELL MID3) has no shear modulus G")));
+            return None;
+        }
+        return Some(nalgebra::Matrix2::identity() * m.g);
+    }
+    cx.err(used_by.error(format!("material {mid} (MAT1 or MAT2), PSHELL MID3, does not exist")));
+    None
+}
+
 /// A MAT2's or MAT1's plane-stress matrix and density; a MAT2 must be positive
 /// definite when `definite` (a coupling material, MID4, need not be).
 fn material(
@@ -1013,11 +1053,6 @@ fn shell_section(
     mat1: &HashMap<i64, &crate::deck::cards::Mat1>,
     mat2s: &[crate::deck::cards::Mat2],
 ) -> Option<ShellSection> {
-    if p.mid3.is_some() {
-        cx.warn(p.at.error(
-            "PSHELL MID3 (transverse shear flexibility) is ignored: the plate element is thin (Kirchhoff, DKQ)",
-        ));
-    }
     let mem = match p.mid1 {
         Some(mid) => Some(material_matrix(cx, mid, &p.at, mat1, mat2s)?),
         None => None,
@@ -1038,6 +1073,10 @@ fn shell_section(
         Some(mid) => Some(material(cx, mid, &p.at, mat1, mat2s, false)?.0),
         None => None,
     };
+    let shear = match p.mid3 {
+        Some(mid) => Some(transverse_shear_material(cx, mid, &p.at, mat1, mat2s)? * (p.ts_t * p.t)),
+        None => None,
+    };
     // NASTRAN takes the shell's density from MID1 (else MID2).
     let rho = mem.or(bend).map(|(_, r)| r).unwrap_or(0.0);
     let section = ShellSection {
@@ -1045,6 +1084,7 @@ fn shell_section(
         g_membrane: mem.map(|(g, _)| g),
         g_bending: bend.map(|(g, _)| g * p.bend_ratio),
         g_coupling: coupling,
+        shear,
         mass_per_area: rho * p.t + p.nsm,
     };
     if !section_is_definite(&section) {
@@ -1111,10 +1151,15 @@ fn laminate_section(
         )));
         return None;
     }
-    if plies.iter().any(|p| p.shear.is_some()) && mat8s.iter().any(|m| m.g1z.is_some() || m.g2z.is_some()) {
+    // Transverse shear: the plies' integral with the shear correction factor 5/6
+    // (first-order shear deformation theory's), reordered from (yz, xz) to (xz, yz).
+    let shear = lam
+        .shear
+        .map(|h| Matrix2::new(h[(1, 1)], h[(0, 1)], h[(1, 0)], h[(0, 0)]) * (5.0 / 6.0));
+    if shear.is_none() {
         cx.warn(p.at.error(format!(
-            "PCOMP {}: the plies' transverse shear moduli (MAT8 G1Z, G2Z) are not used: the plate element is thin \
-             (Kirchhoff, DKQ)",
+            "PCOMP {}: not every ply's MAT8 gives G1Z and G2Z: the laminate is taken as rigid in transverse shear \
+             (a thin plate)",
             p.pid
         )));
     }
@@ -1124,6 +1169,7 @@ fn laminate_section(
             g_membrane: Some(lam.membrane_material()),
             g_bending: Some(lam.bending_material()),
             g_coupling: (!lam.is_uncoupled()).then(|| lam.coupling_material()),
+            shear,
             mass_per_area: lam.mass_per_area + p.nsm,
         },
         std::sync::Arc::new(ply_layers(&plies, axes)),

@@ -705,6 +705,14 @@ fn summarize(model: &Model, run: &RunResult, tripped: Option<GuardTrip>, opts: &
             contact_stiffness: contact.map(|c| c.stiffness),
             contact_exponent: contact.map(|c| c.exponent),
             contact_conservative: contact.map(|c| c.nonconservative.is_empty()),
+            transverse_shear_elements: Some(
+                model
+                    .elements
+                    .iter()
+                    .filter(|e| e.kernel.family().shell().is_some_and(|s| s.shear.is_some()))
+                    .count(),
+            )
+            .filter(|&n| n > 0),
         },
         contact: ContactSummary {
             duration: intervals.first().map(|i| i[1] - i[0]),

@@ -150,6 +150,11 @@ pub struct ModelSummary {
     pub contact_exponent: Option<f64>,
     /// True when the NOLIN3 loads derive from the Hertz potential.
     pub contact_conservative: Option<bool>,
+    /// Shell elements with transverse shear flexibility (the MITC4 plate: a PSHELL
+    /// with MID3, or a PCOMP whose plies give G1Z and G2Z); absent when none has it
+    /// (every shell thin, Kirchhoff).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub transverse_shear_elements: Option<usize>,
 }
 
 /// When the impactor touched the target and how hard.
