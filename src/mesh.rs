@@ -342,6 +342,50 @@ pub fn simply_supported_plate(
     )
 }
 
+/// The simply supported plate of [`simply_supported_plate`] with a transverse shear
+/// stiffness `shear` (K55 in xz, K44 in yz, force/length: PSHELL MID3 = a MAT2 of
+/// G11 = K55/t, G22 = K44/t, TS/T = 1), so the MITC4 plate, on Navier's "hard"
+/// supports: the rotation along each edge held too (R1 on x = 0 and side, R2 on
+/// y = 0 and side), which the closed form assumes and a shear-deformable plate feels
+/// (with the edge rotation free it has boundary layers and a lower frequency).
+pub fn simply_supported_shear_plate(
+    n: usize,
+    side: f64,
+    thickness: f64,
+    g: [f64; 6],
+    rho: f64,
+    shear: [f64; 2],
+) -> Result<crate::model::Model, crate::model::LoadError> {
+    let cards = format!(
+        "PSHELL,1,1,{thickness:?},1,1.0,2,1.0\nMAT2,1,{:?},{:?},{:?},{:?},{:?},{:?},{rho:?}\nMAT2,2,{:?},0.0,,{:?}",
+        g[0],
+        g[1],
+        g[2],
+        g[3],
+        g[4],
+        g[5],
+        shear[0] / thickness,
+        shear[1] / thickness
+    );
+    let mut deck = square_plate_deck(n, side, "3", "126", &cards);
+    let id = |r: usize, c: usize| 1000 * (r + 1) + c + 1;
+    let mut hard = String::new();
+    for r in 0..=n {
+        for c in 0..=n {
+            let comps: String = [(c == 0 || c == n, '4'), (r == 0 || r == n, '5')]
+                .iter()
+                .filter(|(on, _)| *on)
+                .map(|(_, k)| *k)
+                .collect();
+            if !comps.is_empty() {
+                let _ = writeln!(hard, "SPC1,1,{comps},{}", id(r, c));
+            }
+        }
+    }
+    deck = deck.replace("ENDDATA", &format!("{hard}ENDDATA"));
+    crate::model_from_text(&format!("mindlin-plate-{n}x{n}"), &deck)
+}
+
 /// A deck of a square plate side × side on an n×n CQUAD4 mesh (property 1) in the
 /// z = 0 plane, grid `1000(r+1) + c + 1` at row r, column c: `edge` the SPC1
 /// components on the boundary, `ps` the GRDSET PS, `cards` the PSHELL 1 and material

@@ -152,17 +152,60 @@ pub fn plate_impedance(mass_per_area: f64, d11: f64, d22: f64, d12: f64, d66: f6
 /// specially orthotropic Kirchhoff plate (Navier): ω_mn² = π⁴/(ρh)·[D11 (m/a)⁴ +
 /// 2(D12 + 2D66)(m/a)²(n/a)² + D22 (n/a)⁴], over m, n = 1…8, ascending.
 pub fn navier_frequencies(side: f64, mass_per_area: f64, d: [f64; 4], count: usize) -> Vec<f64> {
-    let [d11, d22, d12, d66] = d;
-    let pi2 = std::f64::consts::PI.powi(2);
-    let mut w: Vec<f64> = (1..=8)
-        .flat_map(|m| (1..=8).map(move |n| (m as f64 / side, n as f64 / side)))
-        .map(|(p, q)| {
-            pi2 * ((d11 * p.powi(4) + 2.0 * (d12 + 2.0 * d66) * p * p * q * q + d22 * q.powi(4)) / mass_per_area).sqrt()
-        })
-        .collect();
+    lowest(count, |m, n| {
+        let [d11, d22, d12, d66] = d;
+        let (p, q) = (m / side, n / side);
+        std::f64::consts::PI.powi(2)
+            * ((d11 * p.powi(4) + 2.0 * (d12 + 2.0 * d66) * p * p * q * q + d22 * q.powi(4)) / mass_per_area).sqrt()
+    })
+}
+
+/// The `count` lowest of a frequency over the modes (m, n) = 1..8 each.
+fn lowest(count: usize, omega: impl Fn(f64, f64) -> f64) -> Vec<f64> {
+    let mut w: Vec<f64> = Vec::new();
+    for m in 1..=8 {
+        for n in 1..=8 {
+            w.push(omega(m as f64, n as f64));
+        }
+    }
     w.sort_by(f64::total_cmp);
     w.truncate(count);
     w
+}
+
+/// The `count` lowest natural frequencies (rad/s) of a simply supported square
+/// plate with transverse shear deformation (first-order shear deformation theory,
+/// Reissner-Mindlin), "hard" supports (w = 0 and the rotation along each edge held:
+/// Navier's solution, Reddy, Mechanics of Laminated Composite Plates and Shells,
+/// 2nd ed., §6.2), specially orthotropic D (D11, D22, D12, D66), transverse shear
+/// stiffness (K55 in xz, K44 in yz, shear correction included) and no rotary
+/// inertia (the element's lumped mass has none): for each mode (m, n), α = mπ/a,
+/// β = nπ/a, the rotations condensed out of the 3 × 3 Navier system,
+///   ω² ρt = s11 − [s12 s13] [s22 s23; s23 s33]⁻¹ [s12 s13]ᵀ,
+/// s11 = K55 α² + K44 β², s12 = K55 α, s13 = K44 β, s22 = D11 α² + D66 β² + K55,
+/// s23 = (D12 + D66) α β, s33 = D66 α² + D22 β² + K44. As K → ∞ this is
+/// [`navier_frequencies`]; for an isotropic plate ω² = ω_K²/(1 + D k²/K).
+pub fn mindlin_navier_frequencies(
+    side: f64,
+    mass_per_area: f64,
+    d: [f64; 4],
+    shear: [f64; 2],
+    count: usize,
+) -> Vec<f64> {
+    let [d11, d22, d12, d66] = d;
+    let [k55, k44] = shear;
+    lowest(count, |m, n| {
+        let (a, b) = (m * std::f64::consts::PI / side, n * std::f64::consts::PI / side);
+        let (s11, s12, s13) = (k55 * a * a + k44 * b * b, k55 * a, k44 * b);
+        let (s22, s23, s33) = (
+            d11 * a * a + d66 * b * b + k55,
+            (d12 + d66) * a * b,
+            d66 * a * a + d22 * b * b + k44,
+        );
+        let det = s22 * s33 - s23 * s23;
+        let condensed = s11 - (s12 * (s33 * s12 - s23 * s13) + s13 * (s22 * s13 - s23 * s12)) / det;
+        (condensed / mass_per_area).sqrt()
+    })
 }
 
 /// A simply supported a × a plate, specially orthotropic, thin (Kirchhoff): bending
