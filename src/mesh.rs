@@ -367,7 +367,16 @@ pub fn simply_supported_shear_plate(
         shear[0] / thickness,
         shear[1] / thickness
     );
-    let mut deck = square_plate_deck(n, side, "3", "126", &cards);
+    let deck =
+        square_plate_deck(n, side, "3", "126", &cards).replace("ENDDATA", &format!("{}ENDDATA", hard_supports(n)));
+    crate::model_from_text(&format!("mindlin-plate-{n}x{n}"), &deck)
+}
+
+/// SPC1 cards (set 1) holding the rotation along each edge of [`square_plate_deck`]'s
+/// n×n plate: R1 on the edges x = 0 and side, R2 on y = 0 and side (both at the
+/// corners). With w = 0 there, Navier's "hard" simple support of a shear-deformable
+/// plate.
+pub fn hard_supports(n: usize) -> String {
     let id = |r: usize, c: usize| 1000 * (r + 1) + c + 1;
     let mut hard = String::new();
     for r in 0..=n {
@@ -382,8 +391,7 @@ pub fn simply_supported_shear_plate(
             }
         }
     }
-    deck = deck.replace("ENDDATA", &format!("{hard}ENDDATA"));
-    crate::model_from_text(&format!("mindlin-plate-{n}x{n}"), &deck)
+    hard
 }
 
 /// A deck of a square plate side × side on an n×n CQUAD4 mesh (property 1) in the

@@ -153,22 +153,8 @@ fn simply_supported_orthotropic_plate_natural_frequencies_match_navier() {
 /// free ("soft") has boundary layers and a lower frequency than Navier's series.
 fn mindlin_plate_frequency(n: usize, a: f64, t: f64) -> f64 {
     let cards = format!("PSHELL,1,1,{t:?},1,1.0,1\nMAT1,1,{E:?},,{NU:?},{RHO:?}");
-    let mut deck = impactlab::mesh::square_plate_deck(n, a, "3", "126", &cards);
-    let id = |r: usize, c: usize| 1000 * (r + 1) + c + 1;
-    let mut hard = String::new();
-    for r in 0..=n {
-        for c in 0..=n {
-            let comps: String = [(c == 0 || c == n, '4'), (r == 0 || r == n, '5')]
-                .iter()
-                .filter(|(on, _)| *on)
-                .map(|(_, k)| *k)
-                .collect();
-            if !comps.is_empty() {
-                hard += &format!("SPC1,1,{comps},{}\n", id(r, c));
-            }
-        }
-    }
-    deck = deck.replace("ENDDATA", &format!("{hard}ENDDATA"));
+    let deck = impactlab::mesh::square_plate_deck(n, a, "3", "126", &cards)
+        .replace("ENDDATA", &format!("{}ENDDATA", impactlab::mesh::hard_supports(n)));
     let m = impactlab::model_from_text("mindlin-plate", &deck).unwrap_or_else(|e| panic!("{e}"));
     impactlab::assembly::lowest_frequencies(&m, 1).unwrap()[0]
 }
