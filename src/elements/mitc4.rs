@@ -21,11 +21,13 @@
 //!   inertia (NASTRAN's lumped mass): the rotations carry none, so the implicit
 //!   schemes run it and the explicit one refuses it (the rotations have no mass),
 //!   as for the thin plate.
-//! - Recovery at the centre, as the thin CQUAD4: fibre strains ε⁰ ∓ κ T/2.
+//! - Recovery at the centre, as the thin CQUAD4: fibre strains ε⁰ ∓ κ T/2; with the
+//!   stresses (a STRESS request) also the transverse shear forces (Qx, Qy) = Ds γ at
+//!   the centre, from the tied shear strains (constant-shear exact, O(h) in general).
 
 use super::quad4::{area, lumped_mass, membrane_stiffness, membrane_strain, min_jacobian, Xy};
 use super::shell::ShellSection;
-use super::{BadShape, Cell, Kernel, LocalMatrix, Recovered};
+use super::{BadShape, Cell, Kernel, LocalMatrix, Measure, Recovered, Transverse};
 use nalgebra::{DMatrix, Matrix2, SMatrix, Vector2, Vector3};
 
 const G: f64 = 0.577_350_269_189_625_8;
@@ -229,12 +231,24 @@ impl Kernel for Mitc4 {
         0.5 * (u.transpose() * self.k * u)[0]
     }
     fn recovered(&self, stress: bool) -> Vec<Recovered> {
-        ShellSection::recovered(stress)
+        let mut out = ShellSection::recovered(stress);
+        if stress {
+            // With the stresses (a STRESS request), the transverse shear forces.
+            out.extend([Transverse::Qx, Transverse::Qy].map(|q| Recovered {
+                measure: Measure::ShearForce(q),
+                at: None,
+            }));
+        }
+        out
     }
     fn recover(&self, ue: &[f64], stress: bool) -> Vec<f64> {
         let (um, ub) = parts(ue);
         let kappa: Vector3<f64> = b_bending(&self.xy, 0.0, 0.0).0 * ub;
-        self.section.recover(membrane_strain(&self.xy, &um), kappa, stress)
+        let mut out = self.section.recover(membrane_strain(&self.xy, &um), kappa, stress);
+        if stress {
+            out.extend(self.shear_forces(ue).iter());
+        }
+        out
     }
     fn material_law(&self, strains: &[f64]) -> Option<Vec<f64>> {
         Some(self.section.material_law(strains))
@@ -311,6 +325,39 @@ mod tests {
             assert_relative_eq!(b_shear(&DISTORTED, xi, eta).0 * u, Vector2::new(p, q), epsilon = 1e-15);
             assert!((b_bending(&DISTORTED, xi, eta).0 * u).norm() < 1e-15);
         }
+    }
+
+    /// Goal: the recovered transverse shear forces are the section's Ds times the
+    /// shear strain. Reference: the constant-shear field above, (Qx, Qy) = Ds (p, q),
+    /// named shear_force_E_qx and _qy after the stresses and strains; none without
+    /// a stress request. Tolerance: round-off.
+    #[test]
+    fn mitc4_recovers_the_transverse_shear_forces_of_a_constant_shear_field() {
+        let (p, q) = (3e-3, -2e-3);
+        let (d, ds) = iso(1.0e7, 0.3, 0.1);
+        let ds = ds + Matrix2::new(0.0, 1.0e4, 1.0e4, 0.0);
+        let section = ShellSection {
+            thickness: 0.1,
+            g_membrane: None,
+            g_bending: Some(d * 12.0 / 0.1f64.powi(3)),
+            g_coupling: None,
+            shear: Some(ds),
+            mass_per_area: 1.0,
+        };
+        let el = Mitc4::new(DISTORTED, 0.0, section);
+        let w = nodal(|x, y| p * x + q * y, |_, _| 0.0, |_, _| 0.0);
+        let mut ue = vec![0.0; 24];
+        for k in 0..12 {
+            ue[6 * (k / 3) + 2 + k % 3] = w[k];
+        }
+        let names = el.recovered(true);
+        let values = el.recover(&ue, true);
+        assert_eq!(names.len(), values.len());
+        assert_eq!(names[names.len() - 2].name(7), "shear_force_7_qx");
+        let want = ds * Vector2::new(p, q);
+        assert_relative_eq!(values[values.len() - 2], want[0], max_relative = 1e-12);
+        assert_relative_eq!(values[values.len() - 1], want[1], max_relative = 1e-12);
+        assert_eq!(el.recovered(false).len(), 6);
     }
 
     /// Goal: no spurious zero-energy mode. Reference: a free plate element has exactly

@@ -49,13 +49,24 @@ impl LocalMatrix {
     }
 }
 
-/// Stress or strain.
+/// Stress or strain, or a shear-deformable shell's transverse shear force.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Measure {
     /// Stress (force per area).
     Stress,
     /// Strain (dimensionless).
     Strain,
+    /// A transverse shear force resultant, Qx or Qy (force per length).
+    ShearForce(Transverse),
+}
+
+/// The transverse shear force resultants of a shear-deformable shell.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Transverse {
+    /// Qx, on a face of normal x (with γxz).
+    Qx,
+    /// Qy, on a face of normal y (with γyz).
+    Qy,
 }
 
 /// A shell fibre: Z1 = −T/2 (the struck face of the paper's plate), Z2 = +T/2.
@@ -89,11 +100,14 @@ pub struct Recovered {
 }
 
 impl Recovered {
-    /// The name of the value of element `eid`: `strain_72`, `stress_2525_z1_xx`.
+    /// The name of the value of element `eid`: `strain_72`, `stress_2525_z1_xx`,
+    /// `shear_force_2525_qx`.
     pub fn name(&self, eid: i64) -> String {
         let m = match self.measure {
             Measure::Stress => "stress",
             Measure::Strain => "strain",
+            Measure::ShearForce(Transverse::Qx) => return format!("shear_force_{eid}_qx"),
+            Measure::ShearForce(Transverse::Qy) => return format!("shear_force_{eid}_qy"),
         };
         match self.at {
             None => format!("{m}_{eid}"),
@@ -563,5 +577,10 @@ mod tests {
             at: Some((Fibre::Z1, Plane::Xy)),
         };
         assert_eq!(shell.name(2525), "stress_2525_z1_xy");
+        let q = Recovered {
+            measure: Measure::ShearForce(Transverse::Qy),
+            at: None,
+        };
+        assert_eq!(q.name(2525), "shear_force_2525_qy");
     }
 }

@@ -146,6 +146,7 @@ impl Column {
                 match measure {
                     Measure::Stress => "stress",
                     Measure::Strain => "strain",
+                    Measure::ShearForce(_) => "shear_force",
                 },
                 match face {
                     Face::Bottom => "bot",
@@ -184,6 +185,7 @@ impl Column {
             | Column::Ply { measure, .. } => match measure {
                 Measure::Stress => format!("{f}/{l}^2"),
                 Measure::Strain => "-".into(),
+                Measure::ShearForce(_) => format!("{f}/{l}"),
             },
         }
     }
