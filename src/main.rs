@@ -70,9 +70,10 @@ pub struct SweepArgs {
     pub find: Option<String>,
     /// What the threshold is: `peak_force=F` (the peak contact force reaches F, in the
     /// deck's force unit), `delamination` (it reaches the plate's Davies-Zhang
-    /// threshold F_crit; needs --giic) or `failure_index=L` (the largest ply failure
+    /// threshold F_crit; needs --giic), `failure_index=L` (the largest ply failure
     /// index of the PCOMP's FT theory, over the STRESS/STRAIN set's laminate elements,
-    /// reaches L; 1 is first-ply failure).
+    /// reaches L; 1 is first-ply failure) or `bond_index=L` (the largest interlaminar
+    /// shear over SB there, on a plate flexible in transverse shear).
     #[arg(long, requires = "find")]
     pub until: Option<String>,
     /// The interface's mode II fracture toughness G_IIc in the deck's units

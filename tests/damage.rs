@@ -121,8 +121,12 @@ fn delamination_threshold_in_the_summary_and_as_a_threshold_speed() {
         "--until failure_index needs failure indices: a PCOMP with FT",
     );
     refused(
+        &["sweep", p, "--find", "velocity", "--until", "bond_index=1"],
+        "--until bond_index needs bond indices: a PCOMP with SB and FT",
+    );
+    refused(
         &["sweep", p, "--find", "velocity", "--until", "strain=1"],
-        "expected peak_force=F, delamination or failure_index=L",
+        "expected peak_force=F, delamination, failure_index=L or bond_index=L",
     );
     refused(
         &["sweep", p, "--find", "velocity", "--until", "peak_force=-3"],
@@ -299,4 +303,89 @@ fn first_ply_failure_threshold_is_bracketed_by_the_direct_engine() {
     assert_eq!(t["target_value"].as_f64(), Some(1.0));
     let speed = t["velocity"].as_f64().unwrap();
     assert!(speed > 0.0 && speed < 1470.0, "{t}");
+}
+
+/// Goal: the interlaminar shear stresses and PCOMP's bond index on a plate flexible in
+/// transverse shear. Reference: at gage A (element 3325) the 0°/90° interface of the
+/// cross-ply [0₅/90₅/0₅] (the top of ply 5, z = −t/6) carries the equilibrium
+/// stresses worked by hand from the MAT8 (Q11 = E1/(1 − ν12ν21), Q22 = E2/(…)):
+/// τ1z = Qx·Q11(t²/4 − t²/36)/(2 D11), τ2z = Qy·Q22(…)/(2 D22), D from the three
+/// layers, against the element's own shear force columns; the summary's bond index is
+/// the largest max(|τ1z|, |τ2z|)/SB over every written interface and row, read back
+/// from the history by its headers. The same laminate without G1Z/G2Z (thin) has no
+/// interlaminar columns and no bond index. Model: the cross-ply with transverse shear,
+/// FT = HILL, SB = 8000 psi, 600 steps. Tolerance: 1e-10 of the peak (round-off of
+/// one product).
+#[test]
+fn bond_index_reads_the_equilibrium_interlaminar_shear() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(deck("plate-pcomp-shear.bdf")).unwrap();
+    let mat8 = "MAT8,8,5.735+6,1.2855+6,0.2231,5.7+5,5.7+5,4.59+5,1.8-4";
+    assert!(text.contains(mat8) && text.contains("PCOMP,1,,,,,,,,+P0"));
+    let text = text
+        .replace("PCOMP,1,,,,,,,,+P0", "PCOMP,1,,,8.0+3,HILL,,,,+P0")
+        .replace(mat8, &format!("{mat8},+M1\n+M1,{ALLOWABLES}"));
+    let path = dir.path().join("plate-bond.bdf");
+    std::fs::write(&path, &text).unwrap();
+    std::fs::copy(deck("plate-mesh-49x49.bdf"), dir.path().join("plate-mesh-49x49.bdf")).unwrap();
+    let opts = RunOptions {
+        steps: Some(600),
+        ..Default::default()
+    };
+    let model = impactlab::load_deck(&path, Default::default()).unwrap().0;
+    let run = run_model(&model, &opts).unwrap();
+    let named = |name: &str| {
+        let j = run
+            .history_columns
+            .iter()
+            .position(|c| c.name() == name)
+            .unwrap_or_else(|| panic!("no column {name}"));
+        run.history.iter().map(|r| r[j]).collect::<Vec<f64>>()
+    };
+    let (e1, e2, nu12) = (5.735e6, 1.2855e6, 0.2231);
+    let d = 1.0 - nu12 * nu12 * e2 / e1;
+    let (q11, q22, h) = (e1 / d, e2 / d, 0.15f64);
+    let bending =
+        |face: f64, core: f64| (2.0 * face * (h.powi(3) / 8.0 - h.powi(3) / 216.0) + core * h.powi(3) / 108.0) / 3.0;
+    let lift = h * h / 4.0 - h * h / 36.0;
+    let per = [
+        q11 * lift / (2.0 * bending(q11, q22)),
+        q22 * lift / (2.0 * bending(q22, q11)),
+    ];
+    let forces = [named("shear_force_3325_qx"), named("shear_force_3325_qy")];
+    let stresses = [named("ply_stress_3325_p5_top_1z"), named("ply_stress_3325_p5_top_2z")];
+    let peak = stresses[1].iter().fold(0.0f64, |a, x| a.max(x.abs()));
+    assert!(peak > 100.0, "gage A's interface is loaded: {peak}");
+    for c in 0..2 {
+        for (tau, q) in stresses[c].iter().zip(&forces[c]) {
+            assert!((tau - per[c] * q).abs() <= 1e-10 * peak, "{c}: {tau} vs {}", per[c] * q);
+        }
+    }
+    let mut largest = 0.0f64;
+    for c in run.history_columns.iter().map(|c| c.name()) {
+        if c.ends_with("_1z") || c.ends_with("_2z") {
+            largest = named(&c).iter().fold(largest, |a, x| a.max(x.abs() / 8.0e3));
+        }
+    }
+    let bond = run
+        .summary
+        .failure
+        .as_ref()
+        .and_then(|f| f.bond.clone())
+        .expect("a bond index");
+    assert_eq!(bond.name, "BOND");
+    assert!(
+        (bond.largest - largest).abs() <= 1e-12 * largest,
+        "{} vs {largest}",
+        bond.largest
+    );
+    assert_eq!(bond.face, "top");
+
+    let thin = text.replace(mat8, "MAT8,8,5.735+6,1.2855+6,0.2231,5.7+5,,,1.8-4");
+    std::fs::write(&path, thin).unwrap();
+    let model = impactlab::load_deck(&path, Default::default()).unwrap().0;
+    let run = run_model(&model, &opts).unwrap();
+    assert!(run.history_columns.iter().all(|c| !c.name().ends_with("z")));
+    let failure = run.summary.failure.expect("HILL's indices");
+    assert!(failure.bond.is_none());
 }

@@ -1172,7 +1172,7 @@ fn laminate_section(
             shear,
             mass_per_area: lam.mass_per_area + p.nsm,
         },
-        std::sync::Arc::new(ply_layers(&plies, axes)),
+        std::sync::Arc::new(ply_layers(&plies, axes, p.sb.filter(|_| p.ft.is_some()))),
     ))
 }
 

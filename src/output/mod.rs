@@ -241,7 +241,7 @@ pub fn human_summary(model: &Model, run: &RunResult) -> String {
         );
     }
     if let Some(f) = &s.failure {
-        for i in std::iter::once(&f.theory).chain(&f.max_stress) {
+        for i in std::iter::once(&f.theory).chain(&f.max_stress).chain(&f.bond) {
             out += &format!(
                 "  failure index {} {:.4} at {} (element {}, ply {} {}), first reaches 1 at {}\n",
                 i.name,

@@ -65,6 +65,11 @@ pub enum PlyAxis {
     P22,
     /// In-plane shear.
     P12,
+    /// Interlaminar shear in the 1-z plane (at a ply's top, the bond with the ply
+    /// above).
+    P1z,
+    /// Interlaminar shear in the 2-z plane.
+    P2z,
 }
 
 impl Column {
@@ -89,6 +94,25 @@ impl Column {
             }
         }
         out
+    }
+
+    /// The interlaminar shear stress columns of a laminate element: at the top of each
+    /// ply that has an [`crate::laminate::Interface`] (the bond with the ply above),
+    /// τ1z then τ2z in that ply's axes, from the bottom.
+    pub fn interlaminar(eid: i64, plies: &[crate::laminate::PlyLayer]) -> Vec<Column> {
+        (1..=plies.len() as u16)
+            .zip(plies)
+            .filter(|(_, p)| p.interface.is_some())
+            .flat_map(|(ply, _)| {
+                [PlyAxis::P1z, PlyAxis::P2z].map(|axis| Column::Ply {
+                    eid,
+                    ply,
+                    face: Face::Top,
+                    measure: Measure::Stress,
+                    axis,
+                })
+            })
+            .collect()
     }
 }
 
@@ -156,6 +180,8 @@ impl Column {
                     PlyAxis::P11 => "11",
                     PlyAxis::P22 => "22",
                     PlyAxis::P12 => "12",
+                    PlyAxis::P1z => "1z",
+                    PlyAxis::P2z => "2z",
                 }
             ),
         }

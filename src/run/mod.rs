@@ -358,6 +358,7 @@ pub fn history_columns(m: &Model) -> Vec<Column> {
     }
     for (e, plies) in &m.outputs.plies {
         cols.extend(Column::plies(m.elements[*e].eid, plies.len()));
+        cols.extend(Column::interlaminar(m.elements[*e].eid, plies));
     }
     cols
 }
@@ -435,7 +436,10 @@ pub fn ply_points<'a>(
 /// The ply strains and stresses of a laminate element, in [`Column::plies`] order:
 /// its mid-plane strain and curvature from the fibre strains its kernel recovers at
 /// z = ∓T/2 (ε⁰ = (ε₁ + ε₂)/2, κ = (ε₂ − ε₁)/T), then each ply's
-/// [`crate::laminate::PlyLayer::at`] its bottom and top.
+/// [`crate::laminate::PlyLayer::at`] its bottom and top; then, in
+/// [`Column::interlaminar`] order, the interlaminar shear stresses from the
+/// transverse shear forces the kernel recovers
+/// ([`crate::laminate::Interface::stresses`]).
 fn ply_outputs(e: &crate::elements::Element, plies: &[crate::laminate::PlyLayer], u: &[f64], out: &mut Vec<f64>) {
     use crate::elements::{Fibre, Measure, Plane, Recovered};
     let names = e.kernel.recovered(false);
@@ -464,17 +468,46 @@ fn ply_outputs(e: &crate::elements::Element, plies: &[crate::laminate::PlyLayer]
             out.extend(strain.iter().chain(stress.iter()));
         }
     }
+    if plies.iter().any(|p| p.interface.is_some()) {
+        let q = transverse_shear_forces(e, u);
+        for bond in plies.iter().filter_map(|p| p.interface.as_ref()) {
+            out.extend(bond.stresses(q).iter());
+        }
+    }
+}
+
+/// The transverse shear forces (Qx, Qy) a shell's kernel recovers with its
+/// stresses, in its axes.
+fn transverse_shear_forces(e: &crate::elements::Element, u: &[f64]) -> [f64; 2] {
+    use crate::elements::{Measure, Recovered, Transverse};
+    let names = e.kernel.recovered(true);
+    let values = e.recover(u, true);
+    [Transverse::Qx, Transverse::Qy].map(|t| {
+        let k = names
+            .iter()
+            .position(|r| {
+                *r == Recovered {
+                    measure: Measure::ShearForce(t),
+                    at: None,
+                }
+            })
+            .expect("a laminate element with interfaces recovers its transverse shear forces");
+        values[k]
+    })
 }
 
 /// The plies' failure indices over a run's history: for each written laminate element
 /// whose plies have criteria, every ply's bottom and top at every row, read from the
-/// history's ply strain and stress columns. `None` when no written ply has a criterion.
+/// history's ply strain and stress columns; and the bond index of every interface
+/// with an allowable, from its interlaminar columns. `None` when no written ply has a
+/// criterion.
 fn failure_summary(model: &Model, columns: &[Column], rows: &[Vec<f64>]) -> Option<summary::FailureSummary> {
     use crate::damage::Theory;
     use summary::PlyIndex;
     // Per criterion slot (0: the FT theory, 1: maximum stress): its running result.
     let slot = |t: Theory| usize::from(t == Theory::MaxStress);
     let mut found: [Option<PlyIndex>; 2] = [None, None];
+    let mut bond_found: Option<PlyIndex> = None;
     let mut names: [Vec<&str>; 2] = [Vec::new(), Vec::new()];
     for (e, plies) in &model.outputs.plies {
         let eid = model.elements[*e].eid;
@@ -496,40 +529,65 @@ fn failure_summary(model: &Model, columns: &[Column], rows: &[Vec<f64>]) -> Opti
             for (k, p, face, strain, stress) in ply_points(plies, &row[start..end]) {
                 for c in &p.criteria {
                     let index = c.index(&strain, &stress);
-                    let r = found[slot(c.theory)].get_or_insert_with(|| PlyIndex {
-                        largest: f64::NEG_INFINITY,
-                        ..Default::default()
-                    });
-                    if index > r.largest {
-                        *r = PlyIndex {
-                            largest: index,
-                            time,
-                            element: eid,
-                            ply: k as u16 + 1,
-                            face: match face {
-                                Face::Bottom => "bottom",
-                                Face::Top => "top",
-                            }
-                            .into(),
-                            ..std::mem::take(r)
-                        };
-                    }
-                    if index >= 1.0 && r.first_reaches_one.is_none_or(|t| time < t) {
-                        r.first_reaches_one = Some(time);
-                    }
+                    track(&mut found[slot(c.theory)], index, time, eid, k, face);
+                }
+            }
+        }
+        // The bonds: the element's interlaminar columns, in Column::interlaminar order.
+        let first = Column::interlaminar(eid, plies).into_iter().next();
+        let Some(start) = first.and_then(|f| columns.iter().position(|c| *c == f)) else {
+            continue;
+        };
+        let bonds: Vec<(usize, &crate::laminate::Interface)> = plies
+            .iter()
+            .enumerate()
+            .filter_map(|(k, p)| Some((k, p.interface.as_ref()?)))
+            .collect();
+        for row in rows {
+            for (j, (k, bond)) in bonds.iter().enumerate() {
+                let tau = nalgebra::Vector2::new(row[start + 2 * j], row[start + 2 * j + 1]);
+                if let Some(index) = bond.bond_index(&tau) {
+                    track(&mut bond_found, index, row[0], eid, *k, Face::Top);
                 }
             }
         }
     }
     let [theory, max_stress] = found;
-    let name = |mut r: PlyIndex, n: &[&str]| {
-        r.name = n.join("+");
+    let name = |mut r: PlyIndex, n: &str| {
+        r.name = n.into();
         r
     };
     Some(summary::FailureSummary {
-        theory: name(theory?, &names[0]),
-        max_stress: max_stress.map(|r| name(r, &names[1])),
+        theory: name(theory?, &names[0].join("+")),
+        max_stress: max_stress.map(|r| name(r, &names[1].join("+"))),
+        bond: bond_found.map(|r| name(r, "BOND")),
     })
+}
+
+/// Keeps in `found` the largest of a running failure index and when it first
+/// reached 1: `index` at `time` in ply `k` (from 0) of element `eid`, at `face`.
+fn track(found: &mut Option<summary::PlyIndex>, index: f64, time: f64, eid: i64, k: usize, face: Face) {
+    let r = found.get_or_insert_with(|| summary::PlyIndex {
+        largest: f64::NEG_INFINITY,
+        ..Default::default()
+    });
+    if index > r.largest {
+        *r = summary::PlyIndex {
+            largest: index,
+            time,
+            element: eid,
+            ply: k as u16 + 1,
+            face: match face {
+                Face::Bottom => "bottom",
+                Face::Top => "top",
+            }
+            .into(),
+            ..std::mem::take(r)
+        };
+    }
+    if index >= 1.0 && r.first_reaches_one.is_none_or(|t| time < t) {
+        r.first_reaches_one = Some(time);
+    }
 }
 
 /// The contact quantities of a history row.

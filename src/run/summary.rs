@@ -79,6 +79,11 @@ pub struct FailureSummary {
     pub theory: PlyIndex,
     /// The maximum-stress index, where the allowables are stresses.
     pub max_stress: Option<PlyIndex>,
+    /// The bond index max(|τ1z|, |τ2z|)/SB at the ply interfaces, where the PCOMP
+    /// gives SB and the plate is flexible in transverse shear (`ply`: the ply below
+    /// the bond, `face`: its `top`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bond: Option<PlyIndex>,
 }
 
 /// Where a failure index was largest, and when it first reached 1.
@@ -286,6 +291,7 @@ impl Summary {
             delamination: Some(DelaminationSummary::default()),
             failure: Some(FailureSummary {
                 max_stress: Some(PlyIndex::default()),
+                bond: Some(PlyIndex::default()),
                 ..Default::default()
             }),
             ..Default::default()

@@ -42,10 +42,13 @@ pub enum Until {
     /// The largest failure index of the theory the plies' PCOMP names (FT), over the
     /// written laminate elements, reaches this level.
     FailureIndex(f64),
+    /// The largest bond index max(|τ1z|, |τ2z|)/SB at the written laminate elements'
+    /// ply interfaces reaches this level.
+    BondIndex(f64),
 }
 
 impl Until {
-    /// Reads `peak_force=F`, `delamination` or `failure_index=L`.
+    /// Reads `peak_force=F`, `delamination`, `failure_index=L` or `bond_index=L`.
     pub fn parse(text: &str) -> Result<Until, StudyError> {
         let positive = |what: &str, x: &str| match x.trim().parse::<f64>() {
             Ok(x) if x > 0.0 && x.is_finite() => Ok(x),
@@ -57,8 +60,9 @@ impl Until {
             None if text == "delamination" => Ok(Until::Delamination),
             Some(("peak_force", f)) => positive("force", f).map(Until::PeakForce),
             Some(("failure_index", f)) => positive("index", f).map(Until::FailureIndex),
+            Some(("bond_index", f)) => positive("index", f).map(Until::BondIndex),
             _ => Err(StudyError::Input(format!(
-                "--until {text}: expected peak_force=F, delamination or failure_index=L"
+                "--until {text}: expected peak_force=F, delamination, failure_index=L or bond_index=L"
             ))),
         }
     }
@@ -74,6 +78,19 @@ impl Until {
                         .into(),
                 )
             }),
+            Until::BondIndex(_) => run
+                .summary
+                .failure
+                .as_ref()
+                .and_then(|f| f.bond.as_ref())
+                .map(|b| b.largest)
+                .ok_or_else(|| {
+                    StudyError::Input(
+                        "--until bond_index needs bond indices: a PCOMP with SB and FT whose plies give G1Z and G2Z \
+                         (transverse shear), and its elements in the deck's STRESS or STRAIN set"
+                            .into(),
+                    )
+                }),
         }
     }
 }
@@ -114,6 +131,7 @@ pub fn find_velocity(base: &Model, run: &RunOptions, until: Until, bar: &Progres
     let (target_value, target) = match until {
         Until::PeakForce(f) => (f, format!("peak force {f:.6e}")),
         Until::FailureIndex(level) => (level, format!("largest failure index (PCOMP FT) {level}")),
+        Until::BondIndex(level) => (level, format!("largest bond index (PCOMP SB) {level}")),
         Until::Delamination => {
             let g = run.interlaminar_toughness.ok_or_else(|| {
                 StudyError::Input("--until delamination needs the interface's toughness: --giic G_IIc".into())

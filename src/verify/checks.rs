@@ -796,11 +796,15 @@ fn file_problems(model: &Model, run: &RunResult) -> Vec<String> {
 /// every element whose stresses are written, by its kind's law
 /// ([`crate::elements::Kernel::material_law`]: a rod's σ = E·ε, a shell's
 /// σ(z) = G_m·ε_m + G_b·κz from its two written fibres), a kind that recovers
-/// stresses and answers no law failing the check; a laminate's ply stresses σ = Q·ε in each ply's axes (Q of its MAT8), from
-/// the ply strains written beside them. Value: the largest difference relative to the
-/// peak |stress|; round-off passes (≤ 1e-10), a wrong sign, scale or component fails.
+/// stresses and answers no law failing the check; a laminate's ply stresses σ = Q·ε
+/// in each ply's axes (Q of its MAT8), from the ply strains written beside them; on a
+/// plate flexible in transverse shear, each ply interface's (τ1z, τ2z) as the
+/// equilibrium distribution of the element's written shear forces
+/// ([`crate::laminate::Interface::stresses`]), columns matched by name. Value: the
+/// largest difference relative to the peak |stress|; round-off passes (≤ 1e-10), a
+/// wrong sign, scale or component fails.
 pub fn material_law(case: &Case, model: &Model, run: &RunResult) -> CheckResult {
-    use crate::elements::Measure;
+    use crate::elements::{Measure, Recovered, Transverse};
     let (mut worst, mut peak, mut elements) = (0.0f64, 0.0f64, 0usize);
     let mut at = String::new();
     let mut unanswered = Vec::new();
@@ -873,6 +877,34 @@ pub fn material_law(case: &Case, model: &Model, run: &RunResult) -> CheckResult 
                 let d = (stress - p.q * strain).amax();
                 if d > worst {
                     (worst, at) = (d, format!("element {eid} ply {} at t = {:e}", k + 1, row[0]));
+                }
+            }
+        }
+        // Interlaminar shear: each bond's equilibrium stresses from the element's
+        // written transverse shear forces, matched by the columns' names.
+        let bonds = Column::interlaminar(eid, plies);
+        let forces = [Transverse::Qx, Transverse::Qy].map(|t| {
+            run.column(&Column::Element {
+                eid,
+                value: Recovered {
+                    measure: Measure::ShearForce(t),
+                    at: None,
+                },
+            })
+        });
+        let (Some(qx), Some(qy)) = (forces[0], forces[1]) else {
+            continue;
+        };
+        for (c, bond) in bonds.chunks(2).zip(plies.iter().filter_map(|p| p.interface.as_ref())) {
+            let (Some(j1), Some(j2)) = (run.column(&c[0]), run.column(&c[1])) else {
+                continue;
+            };
+            for row in &run.history {
+                let law = bond.stresses([row[qx], row[qy]]);
+                let d = (row[j1] - law[0]).abs().max((row[j2] - law[1]).abs());
+                peak = peak.max(law.amax());
+                if d > worst {
+                    (worst, at) = (d, format!("element {eid} {} at t = {:e}", c[0].name(), row[0]));
                 }
             }
         }
