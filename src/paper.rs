@@ -11,6 +11,10 @@ pub const PLATE_DECK: &str = include_str!("../reference-data/decks/plate.bdf");
 /// The plate's mesh, `plate-mesh-49x49.bdf`.
 pub const PLATE_MESH: &str = include_str!("../reference-data/decks/plate-mesh-49x49.bdf");
 
+/// The plate as the cross-ply [0₅/90₅/0₅] of MAT8 plies with transverse shear moduli
+/// (PCOMP, G1Z and G2Z: the shear-deformable plate), on [`PLATE_MESH`].
+pub const PLATE_SHEAR_DECK: &str = include_str!("../reference-data/decks/plate-pcomp-shear.bdf");
+
 /// The model of the paper's rod deck.
 pub fn rod_model() -> Result<crate::model::Model, crate::model::LoadError> {
     read(&[("rod.bdf", ROD_DECK)])
@@ -19,6 +23,14 @@ pub fn rod_model() -> Result<crate::model::Model, crate::model::LoadError> {
 /// The model of the paper's plate deck.
 pub fn plate_model() -> Result<crate::model::Model, crate::model::LoadError> {
     read(&[("plate.bdf", PLATE_DECK), ("plate-mesh-49x49.bdf", PLATE_MESH)])
+}
+
+/// The model of [`PLATE_SHEAR_DECK`].
+pub fn plate_shear_model() -> Result<crate::model::Model, crate::model::LoadError> {
+    read(&[
+        ("plate-pcomp-shear.bdf", PLATE_SHEAR_DECK),
+        ("plate-mesh-49x49.bdf", PLATE_MESH),
+    ])
 }
 
 /// Writes the files into a temporary directory and reads the first as a deck, so that
