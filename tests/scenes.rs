@@ -222,3 +222,44 @@ fn a_mesh_too_large_to_number_is_refused_before_it_is_generated() {
     );
     impactlab::model_from_text("big", &deck).unwrap();
 }
+
+/// Goal: transverse shear is an effect a scene asks for. Without
+/// `target.transverse_shear` the plate is thin and the effect is listed as skipped;
+/// with it the deck's PSHELL names a MID3 MAT2 of those moduli, every element is the
+/// shear-deformable plate, the effect is listed as simulated, and the softer plate
+/// lasts longer in contact. A matrix that is not positive definite is refused, naming
+/// the field. Model: the paper's plate scene on a 13 × 13 mesh, G1Z = G2Z = 5.7e5 psi.
+#[test]
+fn plate_scene_asks_for_transverse_shear() {
+    let dir = tempfile::tempdir().unwrap();
+    let thin_text = scene_text("plate.toml")
+        .replace("mesh = 49", "mesh = 13")
+        .replace("gages = [3325, 4125]", "gages = []");
+    let shear_text = thin_text.replace("e33 = 1.4e6", "e33 = 1.4e6\ntransverse_shear = [5.7e5, 0.0, 5.7e5]");
+    let mut contact = Vec::new();
+    for (name, text, on) in [("thin.toml", &thin_text, false), ("shear.toml", &shear_text, true)] {
+        let p = write(dir.path(), name, text);
+        let (s, model, _) = impactlab::scene::load(&p).unwrap();
+        let deck = impactlab::scene::to_deck(&s).unwrap();
+        assert_eq!(deck.contains("PSHELL,1,101,0.15,201,1.0,301"), on, "{deck}");
+        let run = run_model(&model, &impactlab::run::RunOptions::for_scene(&s)).unwrap();
+        let shear_elements = run.summary.model.transverse_shear_elements;
+        assert_eq!(shear_elements, on.then_some(169));
+        let e = impactlab::scene::effects(&s, 0, 0);
+        let listed = if on { &e.simulated } else { &e.skipped };
+        assert!(listed.iter().any(|x| x.name == "transverse shear"), "{e:?}");
+        let [start, end] = run.summary.contact.intervals[0];
+        contact.push(end - start);
+    }
+    assert!(contact[1] > contact[0], "{contact:?}");
+    let p = write(
+        dir.path(),
+        "bad.toml",
+        &thin_text.replace("e33 = 1.4e6", "e33 = 1.4e6\ntransverse_shear = [1.0, 2.0, 1.0]"),
+    );
+    let err = impactlab::scene::load(&p).map(|_| ()).expect_err("refused").to_string();
+    assert!(
+        err.contains("target.transverse_shear") && err.contains("positive definite"),
+        "{err}"
+    );
+}

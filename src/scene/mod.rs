@@ -100,6 +100,11 @@ pub enum Target {
         rho: f64,
         /// Transverse modulus E33, for Eq. 18.
         e33: Option<f64>,
+        /// Transverse shear moduli [G11, G12, G22] (the PSHELL MID3 material a MAT2
+        /// gives, TS/T = 5/6): given, the plate is shear-deformable (MITC4); absent,
+        /// thin (Kirchhoff, DKQ).
+        #[serde(default)]
+        transverse_shear: Option<[f64; 3]>,
         /// Per edge (y = −b/2, x = +a/2, y = +b/2, x = −a/2): "clamped" or "free".
         edges: [String; 4],
     },
@@ -337,8 +342,17 @@ fn validate_target(s: &Scene) -> Result<(), SceneIssue> {
             mesh,
             rho,
             edges,
+            transverse_shear,
             ..
         } => {
+            if let Some([g11, g12, g22]) = transverse_shear {
+                if !(*g11 > 0.0 && *g22 > 0.0 && g11 * g22 > g12 * g12) {
+                    return Err(SceneIssue(format!(
+                        "target.transverse_shear = [{g11}, {g12}, {g22}]: [G11 G12; G12 G22] must be positive \
+                         definite"
+                    )));
+                }
+            }
             pos("target.a", *a)?;
             pos("target.thickness", *thickness)?;
             pos("target.rho", *rho)?;
@@ -533,6 +547,7 @@ fn plate_bulk(w: &mut String, s: &Scene, k: f64, tstep: &str) -> Result<(), Scen
         bending,
         rho,
         edges,
+        transverse_shear,
         ..
     } = &s.target
     else {
@@ -553,9 +568,13 @@ fn plate_bulk(w: &mut String, s: &Scene, k: f64, tstep: &str) -> Result<(), Scen
     let _ = writeln!(w, "CONM2,999999,999,0,{}", format_real(s.impactor.mass));
     let last = n + 1;
     m.write_grids_and_shells(w, *a, crate::mesh::Cells::Quad4);
-    let _ = writeln!(w, "PSHELL,1,101,{},201,1.0", format_real(*thickness));
+    let mid3 = if transverse_shear.is_some() { ",301" } else { "" };
+    let _ = writeln!(w, "PSHELL,1,101,{},201,1.0{mid3}", format_real(*thickness));
     mat2_line(w, 101, membrane, Some(*rho));
     mat2_line(w, 201, bending, None);
+    if let Some([g11, g12, g22]) = transverse_shear {
+        mat2_line(w, 301, &[*g11, *g12, 0.0, *g22, 0.0, 0.0], None);
+    }
     // Edges: y = −b/2 (row 1), x = +a/2 (col last), y = +b/2 (row last), x = −a/2 (col 1).
     let sides: [Vec<usize>; 4] = [
         (1..=last).map(|c| m.grid(1, c)).collect(),
@@ -654,6 +673,18 @@ pub fn effects(s: &Scene, inert_dofs: usize, steps_done: usize) -> EffectReport 
         (Target::Plate { .. }, false) => skip.push(Effect::new("membrane", format!(
             "not asked for; a transverse impact on a plate with no membrane-bending coupling leaves the in-plane DOFs at zero: {inert_dofs} DOFs not solved"))),
         (Target::Rod { .. }, _) => sim.push(Effect::new("axial waves", "the rod's response")),
+    }
+    if let Target::Plate { transverse_shear, .. } = &s.target {
+        match transverse_shear {
+            Some(_) => sim.push(Effect::new(
+                "transverse shear",
+                "target.transverse_shear given: a shear-deformable plate (MITC4, TS/T = 5/6)",
+            )),
+            None => skip.push(Effect::new(
+                "transverse shear",
+                "target.transverse_shear not given: a thin (Kirchhoff) plate, rigid in transverse shear",
+            )),
+        }
     }
     if s.effects.ledger {
         sim.push(Effect::new("energy ledger", "asked for"));
