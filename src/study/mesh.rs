@@ -78,6 +78,11 @@ pub struct MeshRow {
     pub shear_contact_duration_s: Option<f64>,
     /// Its peak contact force.
     pub shear_peak_force_lbf: f64,
+    /// The paper's MAT2 plate with PSHELL MID3 ([`MID3`]), the MITC4 plate: its
+    /// first contact duration.
+    pub mid3_contact_duration_s: Option<f64>,
+    /// Its peak contact force.
+    pub mid3_peak_force_lbf: f64,
     /// Wall-clock seconds of the run.
     pub wall_s: f64,
 }
@@ -125,6 +130,26 @@ MAT8,8,5.735+6,1.2855+6,0.2231,5.7+5,,,1.8-4,+M1
 /// The plies' transverse shear moduli G1Z, G2Z of `reference-data/decks/
 /// plate-pcomp-shear.bdf` (assumed; the deck says how), as MAT8 fields 7-8.
 pub const SHEAR_MODULI: &str = "5.7+5,4.59+5";
+
+/// The paper's plate made shear-deformable: PSHELL MID3 naming a MAT2 of the
+/// cross-ply's through-thickness average transverse shear moduli (∫C̄ dz / t of
+/// [`SHEAR_MODULI`]: G11 (xz) = (10·5.7e5 + 5·4.59e5)/15, G22 (yz) = (10·4.59e5 +
+/// 5·5.7e5)/15 psi), TS/T blank (5/6): the MAT2 twin of the shear laminate.
+pub const MID3: &str = "MAT2,301,5.33+5,0.0,,4.96+5";
+
+/// The paper's plate on an n×n mesh with [`MID3`] on its PSHELL.
+pub fn mid3_model(n: usize) -> Result<crate::model::Model, StudyError> {
+    let text = crate::mesh::plate_deck(n)?;
+    let pshell = "PSHELL,1,101,0.15,201,1.0\n";
+    if !text.contains(pshell) {
+        return Err(StudyError::Input(format!(
+            "the generated {n}×{n} plate deck has no {}",
+            pshell.trim()
+        )));
+    }
+    let text = text.replace(pshell, &format!("PSHELL,1,101,0.15,201,1.0,301\n{MID3}\n"));
+    Ok(crate::model_from_text(&format!("plate-mid3-{n}x{n}"), &text)?)
+}
 
 /// The plate on an n×n mesh as its cross-ply laminate: the generated deck with
 /// [`CROSS_PLY`] for its PSHELL and MAT2 cards (and their continuations); with
@@ -195,6 +220,7 @@ pub fn run(ns: &[usize], opts: &RunOptions) -> Result<(Vec<MeshRow>, Vec<Sample>
         }));
         let laminate = run_model(&laminate_model(n, false)?, opts)?;
         let shear = run_model(&laminate_model(n, true)?, opts)?;
+        let mid3 = run_model(&mid3_model(n)?, opts)?;
         let hill = laminate.summary.failure.as_ref().map(|f| &f.theory);
         let s = &run.summary;
         let sec = secondary_peak(&run);
@@ -227,6 +253,8 @@ pub fn run(ns: &[usize], opts: &RunOptions) -> Result<(Vec<MeshRow>, Vec<Sample>
             laminate_contact_duration_s: laminate.summary.contact.duration,
             shear_contact_duration_s: shear.summary.contact.duration,
             shear_peak_force_lbf: shear.summary.contact.peak_force,
+            mid3_contact_duration_s: mid3.summary.contact.duration,
+            mid3_peak_force_lbf: mid3.summary.contact.peak_force,
             wall_s: run.stats.total_time.as_secs_f64(),
         });
     }
@@ -429,6 +457,25 @@ pub fn readme(rows: &[MeshRow], samples: &[Sample]) -> String {
             r.shear_peak_force_lbf / r.laminate_peak_force_lbf,
         );
     }
+    s += "\nThe paper's own plate (its MAT2 cards, the first table) with and without PSHELL MID3: a MAT2 of the \
+          cross-ply's average transverse shear moduli (G11 5.33e5, G22 4.96e5 psi, TS/T 5/6; assumed as above). \
+          A deck that asks for transverse shear this way gets the same effect as the laminate that gives G1Z, \
+          G2Z.\n\n\
+          | mesh | contact thin [µs] | contact MID3 [µs] | peak thin [lbf] | peak MID3 [lbf] | MID3/thin peak \
+          | MID3 peak / shear laminate's |\n|---|---|---|---|---|---|---|\n";
+    for r in rows {
+        let _ = writeln!(
+            s,
+            "| {0}×{0} | {1} | {2} | {3:.1} | {4:.1} | {5:.3} | {6:.4} |",
+            r.n,
+            e(r.contact_duration_s, 1e6, 2),
+            e(r.mid3_contact_duration_s, 1e6, 2),
+            r.peak_force_lbf,
+            r.mid3_peak_force_lbf,
+            r.mid3_peak_force_lbf / r.peak_force_lbf,
+            r.mid3_peak_force_lbf / r.shear_peak_force_lbf,
+        );
+    }
     let mut ns = meshes(samples);
     ns.reverse();
     if ns.len() > 1 {
@@ -509,5 +556,13 @@ mod tests {
             assert_eq!(lam.dofs, plate_model(9).unwrap().dofs);
             assert_eq!(lam.outputs.failure_fields.len(), 81);
         }
+        // The MAT2 twin: the paper's section with MID3's moduli × 5/6 × T.
+        let (mid3, thin) = (mid3_model(9).unwrap(), plate_model(9).unwrap());
+        let (with, without) = (section(&mid3), section(&thin));
+        let k = with.shear.expect("MID3 gives transverse shear");
+        let t = 0.15 * 0.833333;
+        assert_eq!(k, nalgebra::Matrix2::new(5.33e5 * t, 0.0, 0.0, 4.96e5 * t));
+        assert_eq!(ShellSection { shear: None, ..with }, without);
+        assert_eq!(mid3.dofs, thin.dofs);
     }
 }
