@@ -309,6 +309,18 @@ pub enum CheckSpec {
         /// Largest relative change allowed between the last two meshes.
         max: f64,
     },
+    /// The failure indices the summary reports against the Tsai-Hill index (NASTRAN's
+    /// FT = HILL: X by the sign of σ1, Y by that of σ2) and the bond index
+    /// max(|τ1z|, |τ2z|)/SB, recomputed here from the history's ply stress columns
+    /// (found by name) with the allowables the case states: the largest of each over
+    /// every written ply point and row against `failure.theory` and `failure.bond`.
+    /// Value: the larger relative difference; round-off passes (≤ 1e-12).
+    FailureIndices {
+        /// Xt, Xc, Yt, Yc, S.
+        allowables: [f64; 5],
+        /// The bond allowable SB.
+        sb: f64,
+    },
     /// The case run again on the convolution engine ([`crate::run::Engine`]): the
     /// contact force at every step and every history column within `max` of its peak
     /// (a column below 1e-8 of the peak of the columns in its unit vanishes in exact

@@ -194,10 +194,69 @@ pub fn check(case: &Case, model: &Model, run: &RunResult, spec: &CheckSpec) -> R
             max,
         } => external_history(&cx, file, solver, what, time, columns, *max)?,
         CheckSpec::Superposition { max } => superposition(&cx, *max)?,
+        CheckSpec::FailureIndices { allowables, sb } => failure_indices(&cx, *allowables, *sb),
         CheckSpec::DtConvergence { .. }
         | CheckSpec::MeshConvergence { .. }
         | CheckSpec::ConvergesToReference { .. } => return Ok(None),
     }))
+}
+
+/// [`CheckSpec::FailureIndices`]: the summary's largest Tsai-Hill and bond indices
+/// against the same recomputed from the history's columns by name.
+fn failure_indices(cx: &Cx, allowables: [f64; 5], sb: f64) -> CheckResult {
+    let [xt, xc, yt, yc, s] = allowables;
+    let hill = |s1: f64, s2: f64, t: f64| {
+        let x = if s1 >= 0.0 { xt } else { xc };
+        let y = if s2 >= 0.0 { yt } else { yc };
+        (s1 * s1 - s1 * s2) / (x * x) + (s2 / y).powi(2) + (t / s).powi(2)
+    };
+    let names = cx.run.history_names();
+    let column = |name: &str| names.iter().position(|n| n == name);
+    let (mut largest_hill, mut largest_bond, mut points, mut bonds) = (f64::NAN, f64::NAN, 0usize, 0usize);
+    for (j, name) in names.iter().enumerate() {
+        let Some(stem) = name.strip_prefix("ply_stress_") else {
+            continue;
+        };
+        if let Some(point) = stem.strip_suffix("_11") {
+            let (Some(j2), Some(j12)) = (
+                column(&format!("ply_stress_{point}_22")),
+                column(&format!("ply_stress_{point}_12")),
+            ) else {
+                continue;
+            };
+            points += 1;
+            for row in &cx.run.history {
+                largest_hill = largest_hill.max(hill(row[j], row[j2], row[j12]));
+            }
+        } else if stem.ends_with("_1z") || stem.ends_with("_2z") {
+            bonds += 1;
+            for row in &cx.run.history {
+                largest_bond = largest_bond.max(row[j].abs() / sb);
+            }
+        }
+    }
+    let failure = cx.run.summary.failure.as_ref();
+    let reported = [
+        failure.map(|f| f.theory.largest),
+        failure.and_then(|f| f.bond.as_ref()).map(|b| b.largest),
+    ];
+    let d = |r: Option<f64>, c: f64| r.map_or(f64::INFINITY, |r| (r - c).abs() / c.abs());
+    let (dh, db) = (d(reported[0], largest_hill), d(reported[1], largest_bond));
+    let value = dh.max(db);
+    cx.result(
+        "failure_indices HILL and BOND from the history".into(),
+        value,
+        None,
+        Bound::at_most(1e-12),
+        value <= 1e-12,
+        format!(
+            "{points} ply points: HILL {largest_hill:.6e} (summary {}); {} interface columns: BOND {largest_bond:.6e} \
+             (summary {})",
+            reported[0].map_or("none".into(), |v| format!("{v:.6e}")),
+            bonds,
+            reported[1].map_or("none".into(), |v| format!("{v:.6e}")),
+        ),
+    )
 }
 
 /// The direct run against the same case on the convolution engine.
