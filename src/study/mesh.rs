@@ -139,16 +139,21 @@ pub const MID3: &str = "MAT2,301,5.33+5,0.0,,4.96+5";
 
 /// The paper's plate on an n×n mesh with [`MID3`] on its PSHELL.
 pub fn mid3_model(n: usize) -> Result<crate::model::Model, StudyError> {
-    let text = crate::mesh::plate_deck(n)?;
+    let text = with_mid3(&crate::mesh::plate_deck(n)?)?;
+    Ok(crate::model_from_text(&format!("plate-mid3-{n}x{n}"), &text)?)
+}
+
+/// A generated plate deck ([`crate::mesh::plate_deck`] or a variant of it) made
+/// shear-deformable: its PSHELL names [`MID3`].
+pub fn with_mid3(text: &str) -> Result<String, StudyError> {
     let pshell = "PSHELL,1,101,0.15,201,1.0\n";
     if !text.contains(pshell) {
         return Err(StudyError::Input(format!(
-            "the generated {n}×{n} plate deck has no {}",
+            "the generated plate deck has no {}",
             pshell.trim()
         )));
     }
-    let text = text.replace(pshell, &format!("PSHELL,1,101,0.15,201,1.0,301\n{MID3}\n"));
-    Ok(crate::model_from_text(&format!("plate-mid3-{n}x{n}"), &text)?)
+    Ok(text.replace(pshell, &format!("PSHELL,1,101,0.15,201,1.0,301\n{MID3}\n")))
 }
 
 /// The plate on an n×n mesh as its cross-ply laminate: the generated deck with
