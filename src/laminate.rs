@@ -76,6 +76,17 @@ pub fn strain_rotation(theta: f64) -> Matrix3<f64> {
     )
 }
 
+/// A ply's transverse shear stiffness [C44 C45; C45 C55] (yz, xz) in the laminate's
+/// axes, from its moduli G1Z, G2Z and its angle `theta` degrees (the 2-tensor rotation
+/// of diag(G2Z, G1Z)).
+fn rotated_shear((g1z, g2z): (f64, f64), theta: f64) -> Matrix2<f64> {
+    let (n, m) = theta.to_radians().sin_cos();
+    let c44 = g2z * m * m + g1z * n * n;
+    let c55 = g1z * m * m + g2z * n * n;
+    let c45 = (g1z - g2z) * m * n;
+    Matrix2::new(c44, c45, c45, c55)
+}
+
 /// A ply's stiffness in the laminate's axes: Q̄ = Tᵀ Q T.
 pub fn rotated(q: &Matrix3<f64>, theta: f64) -> Matrix3<f64> {
     let t = strain_rotation(theta);
@@ -322,11 +333,9 @@ fn shear_distributions(plies: &[Ply], material_angle: f64) -> Option<[ShearDistr
     let mut z = -0.5 * thickness;
     let mut layers = Vec::with_capacity(plies.len());
     for p in plies {
-        let (g1z, g2z) = p.shear?;
-        let (n, m) = (p.theta + material_angle).to_radians().sin_cos();
+        let c = rotated_shear(p.shear?, p.theta + material_angle);
         let q = rotated(&p.q, p.theta + material_angle);
-        let (c44, c55) = (g2z * m * m + g1z * n * n, g1z * m * m + g2z * n * n);
-        layers.push((z, z + p.t, q[(0, 0)], q[(1, 1)], c55, c44));
+        layers.push((z, z + p.t, q[(0, 0)], q[(1, 1)], c[(1, 1)], c[(0, 0)]));
         z += p.t;
     }
     let xz = shear_distribution(layers.iter().map(|l| (l.0, l.1, l.2, l.4)));
@@ -370,13 +379,7 @@ impl Laminate {
             b += q * ((top * top - z * z) / 2.0);
             d += q * ((top.powi(3) - z.powi(3)) / 3.0);
             shear = match (shear, p.shear) {
-                (Some(h), Some((g1z, g2z))) => {
-                    let (n, m) = (p.theta + material_angle).to_radians().sin_cos();
-                    let c44 = g2z * m * m + g1z * n * n;
-                    let c55 = g1z * m * m + g2z * n * n;
-                    let c45 = (g1z - g2z) * m * n;
-                    Some(h + Matrix2::new(c44, c45, c45, c55) * p.t)
-                }
+                (Some(h), Some(g)) => Some(h + rotated_shear(g, p.theta + material_angle) * p.t),
                 _ => None,
             };
             mass += p.rho * p.t;

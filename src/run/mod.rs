@@ -441,22 +441,25 @@ pub fn ply_points<'a>(
 /// transverse shear forces the kernel recovers
 /// ([`crate::laminate::Interface::stresses`]).
 fn ply_outputs(e: &crate::elements::Element, plies: &[crate::laminate::PlyLayer], u: &[f64], out: &mut Vec<f64>) {
-    use crate::elements::{Fibre, Measure, Plane, Recovered};
-    let names = e.kernel.recovered(false);
-    let values = e.recover(u, false);
+    use crate::elements::{Fibre, Measure, Plane, Recovered, Transverse};
+    // One recovery: the fibre strains, and with interfaces also the shear forces,
+    // which come with the stresses.
+    let bonded = plies.iter().any(|p| p.interface.is_some());
+    let names = e.kernel.recovered(bonded);
+    let values = e.recover(u, bonded);
+    let value = |r: Recovered| {
+        let k = names
+            .iter()
+            .position(|n| *n == r)
+            .unwrap_or_else(|| panic!("a laminate element recovers {r:?}"));
+        values[k]
+    };
     let fibre = |f: Fibre| {
         nalgebra::Vector3::from_fn(|i, _| {
-            let at = Some((f, [Plane::Xx, Plane::Yy, Plane::Xy][i]));
-            let k = names
-                .iter()
-                .position(|r| {
-                    *r == Recovered {
-                        measure: Measure::Strain,
-                        at,
-                    }
-                })
-                .expect("a laminate element recovers its fibre strains");
-            values[k]
+            value(Recovered {
+                measure: Measure::Strain,
+                at: Some((f, [Plane::Xx, Plane::Yy, Plane::Xy][i])),
+            })
         })
     };
     let (e1, e2) = (fibre(Fibre::Z1), fibre(Fibre::Z2));
@@ -468,32 +471,17 @@ fn ply_outputs(e: &crate::elements::Element, plies: &[crate::laminate::PlyLayer]
             out.extend(strain.iter().chain(stress.iter()));
         }
     }
-    if plies.iter().any(|p| p.interface.is_some()) {
-        let q = transverse_shear_forces(e, u);
+    if bonded {
+        let q = [Transverse::Qx, Transverse::Qy].map(|t| {
+            value(Recovered {
+                measure: Measure::ShearForce(t),
+                at: None,
+            })
+        });
         for bond in plies.iter().filter_map(|p| p.interface.as_ref()) {
             out.extend(bond.stresses(q).iter());
         }
     }
-}
-
-/// The transverse shear forces (Qx, Qy) a shell's kernel recovers with its
-/// stresses, in its axes.
-fn transverse_shear_forces(e: &crate::elements::Element, u: &[f64]) -> [f64; 2] {
-    use crate::elements::{Measure, Recovered, Transverse};
-    let names = e.kernel.recovered(true);
-    let values = e.recover(u, true);
-    [Transverse::Qx, Transverse::Qy].map(|t| {
-        let k = names
-            .iter()
-            .position(|r| {
-                *r == Recovered {
-                    measure: Measure::ShearForce(t),
-                    at: None,
-                }
-            })
-            .expect("a laminate element with interfaces recovers its transverse shear forces");
-        values[k]
-    })
 }
 
 /// The plies' failure indices over a run's history: for each written laminate element
