@@ -26,6 +26,9 @@ pub enum MeshError {
     /// An odd or too small rod element count.
     #[error("the rod mesh needs an even number of elements (at least 2), not {0}")]
     Rod(usize),
+    /// A generated plate deck without the PSHELL a variant replaces.
+    #[error("the generated plate deck has no {0}")]
+    NoPshell(String),
     /// The generated deck's model could not be built.
     #[error("{0}")]
     Load(#[from] crate::model::LoadError),
@@ -171,6 +174,16 @@ pub enum Cells {
     /// Each quadrilateral cut along a diagonal into two CTRIA3 (ids 2q and 2q + 1 for
     /// the quadrilateral q), the diagonals pointing away from the plate centre.
     Tria3,
+}
+
+impl Cells {
+    /// The element card.
+    pub fn card(self) -> &'static str {
+        match self {
+            Cells::Quad4 => "CQUAD4",
+            Cells::Tria3 => "CTRIA3",
+        }
+    }
 }
 
 /// How the plate's four edges are held.
@@ -320,56 +333,84 @@ pub fn plate_model_with(n: usize, cells: Cells) -> Result<crate::model::Model, M
     Ok(crate::model_from_text(&name, &text)?)
 }
 
-/// A simply supported square plate side × side on an n×n CQUAD4 mesh (w = 0 on the
-/// edges, rotations free; in-plane DOFs and drilling fixed by GRDSET PS = 126), with a
-/// bending material G (MAT2, stress/strain: G11, G12, G13, G22, G23, G33), density ρ
-/// and thickness t: the Navier plate of the frequency check, built through the deck
-/// reader.
-pub fn simply_supported_plate(
-    n: usize,
-    side: f64,
-    thickness: f64,
-    g: [f64; 6],
-    rho: f64,
-) -> Result<crate::model::Model, crate::model::LoadError> {
-    let cards = format!(
-        "PSHELL,1,1,{thickness:?},1,1.0\nMAT2,1,{:?},{:?},{:?},{:?},{:?},{:?},{rho:?}",
-        g[0], g[1], g[2], g[3], g[4], g[5]
-    );
-    crate::model_from_text(
-        &format!("navier-plate-{n}x{n}"),
-        &square_plate_deck(n, side, "3", "126", &cards),
-    )
+/// The paper's plate made shear-deformable: PSHELL MID3 naming a MAT2 of the
+/// cross-ply's through-thickness average transverse shear moduli (∫C̄ dz / t of the
+/// plies' G1Z, G2Z in `reference-data/decks/plate-pcomp-shear.bdf`: G11 (xz) =
+/// (10·5.7e5 + 5·4.59e5)/15, G22 (yz) = (10·4.59e5 + 5·5.7e5)/15 psi), TS/T blank
+/// (5/6): the MAT2 twin of the shear laminate.
+pub const MID3: &str = "MAT2,301,5.33+5,0.0,,4.96+5";
+
+/// A generated plate deck ([`plate_deck_with`] or a variant of it) made
+/// shear-deformable: its PSHELL names [`MID3`].
+pub fn with_mid3(text: &str) -> Result<String, MeshError> {
+    let pshell = "PSHELL,1,101,0.15,201,1.0\n";
+    if !text.contains(pshell) {
+        return Err(MeshError::NoPshell(pshell.trim().to_string()));
+    }
+    Ok(text.replace(pshell, &format!("PSHELL,1,101,0.15,201,1.0,301\n{MID3}\n")))
 }
 
-/// The simply supported plate of [`simply_supported_plate`] with a transverse shear
-/// stiffness `shear` (K55 in xz, K44 in yz, force/length: PSHELL MID3 = a MAT2 of
-/// G11 = K55/t, G22 = K44/t, TS/T = 1), so the MITC4 plate, on Navier's "hard"
-/// supports: the rotation along each edge held too (R1 on x = 0 and side, R2 on
-/// y = 0 and side), which the closed form assumes and a shear-deformable plate feels
-/// (with the edge rotation free it has boundary layers and a lower frequency).
-pub fn simply_supported_shear_plate(
+/// The paper's plate on an n×n mesh of `cells`, built from the generated deck; with
+/// `mid3`, its PSHELL names [`MID3`] (the shear-deformable plate).
+pub fn plate_model_mid3(n: usize, cells: Cells) -> Result<crate::model::Model, MeshError> {
+    let text = with_mid3(&plate_deck_with(n, Edges::Clamped, cells)?)?;
+    let cells = match cells {
+        Cells::Quad4 => "",
+        Cells::Tria3 => "-tria3",
+    };
+    Ok(crate::model_from_text(&format!("plate-mid3-{n}x{n}{cells}"), &text)?)
+}
+
+/// A simply supported square plate side × side on an n×n mesh of `cells` (w = 0 on
+/// the edges, rotations free; in-plane DOFs and drilling fixed by GRDSET PS = 126),
+/// with a bending material G (MAT2, stress/strain: G11, G12, G13, G22, G23, G33),
+/// density ρ and thickness t: the Navier plate of the frequency check, built through
+/// the deck reader. With a transverse shear stiffness `shear` (K55 in xz, K44 in yz,
+/// force/length: PSHELL MID3 = a MAT2 of G11 = K55/t, G22 = K44/t, TS/T = 1), the
+/// shear-deformable plate on Navier's "hard" supports: the rotation along each edge
+/// held too (R1 on x = 0 and side, R2 on y = 0 and side), which the closed form
+/// assumes and a shear-deformable plate feels (with the edge rotation free it has
+/// boundary layers and a lower frequency).
+pub fn navier_plate(
     n: usize,
     side: f64,
     thickness: f64,
     g: [f64; 6],
     rho: f64,
-    shear: [f64; 2],
+    shear: Option<[f64; 2]>,
+    cells: Cells,
 ) -> Result<crate::model::Model, crate::model::LoadError> {
-    let cards = format!(
-        "PSHELL,1,1,{thickness:?},1,1.0,2,1.0\nMAT2,1,{:?},{:?},{:?},{:?},{:?},{:?},{rho:?}\nMAT2,2,{:?},0.0,,{:?}",
-        g[0],
-        g[1],
-        g[2],
-        g[3],
-        g[4],
-        g[5],
-        shear[0] / thickness,
-        shear[1] / thickness
+    let material = format!(
+        "MAT2,1,{:?},{:?},{:?},{:?},{:?},{:?},{rho:?}",
+        g[0], g[1], g[2], g[3], g[4], g[5]
     );
-    let deck =
-        square_plate_deck(n, side, "3", "126", &cards).replace("ENDDATA", &format!("{}ENDDATA", hard_supports(n)));
-    crate::model_from_text(&format!("mindlin-plate-{n}x{n}"), &deck)
+    let (name, deck) = match shear {
+        None => (
+            "navier-plate",
+            square_plate_deck(
+                n,
+                side,
+                "3",
+                "126",
+                &format!("PSHELL,1,1,{thickness:?},1,1.0\n{material}"),
+            ),
+        ),
+        Some([k55, k44]) => {
+            let cards = format!(
+                "PSHELL,1,1,{thickness:?},1,1.0,2,1.0\n{material}\nMAT2,2,{:?},0.0,,{:?}",
+                k55 / thickness,
+                k44 / thickness
+            );
+            let deck = square_plate_deck(n, side, "3", "126", &cards)
+                .replace("ENDDATA", &format!("{}ENDDATA", hard_supports(n)));
+            ("mindlin-plate", deck)
+        }
+    };
+    let (deck, cells) = match cells {
+        Cells::Quad4 => (deck, ""),
+        Cells::Tria3 => (in_triangles(&deck), "-tria3"),
+    };
+    crate::model_from_text(&format!("{name}-{n}x{n}{cells}"), &deck)
 }
 
 /// SPC1 cards (set 1) holding the rotation along each edge of [`square_plate_deck`]'s
@@ -425,4 +466,27 @@ pub fn square_plate_deck(n: usize, side: f64, edge: &str, ps: &str, cards: &str)
     }
     let _ = writeln!(d, "GRDSET,,,,,,,{ps}\n{cards}\nENDDATA");
     d
+}
+
+/// A deck of [`square_plate_deck`] with every CQUAD4 cut along its diagonal from its
+/// first grid into two CTRIA3 (ids 2q and 2q + 1 for the quadrilateral q, same
+/// property): the same plate meshed in triangles, all diagonals parallel.
+pub fn in_triangles(deck: &str) -> String {
+    let mut out = String::with_capacity(deck.len() * 2);
+    for line in deck.lines() {
+        match line.strip_prefix("CQUAD4,") {
+            Some(rest) => {
+                let f: Vec<&str> = rest.split(',').collect();
+                let id: usize = f[0].parse().expect("square_plate_deck's element ids are integers");
+                let (p, g) = (f[1], &f[2..6]);
+                let _ = writeln!(out, "CTRIA3,{},{p},{},{},{}", 2 * id, g[0], g[1], g[2]);
+                let _ = writeln!(out, "CTRIA3,{},{p},{},{},{}", 2 * id + 1, g[0], g[2], g[3]);
+            }
+            None => {
+                out.push_str(line);
+                out.push('\n');
+            }
+        }
+    }
+    out
 }

@@ -460,16 +460,19 @@ fn stability_map_on_the_convolution_engine_is_the_direct_map() {
 
 /// Case 13: the same hard cases on the shear-deformable plate (the 9×9 plate with
 /// PSHELL MID3, the MITC4 element): impact next to the clamped edge, velocity ×100,
-/// Δt ×64, K ×1000, for newmark, energy and nastran over 200 µs: every run finite and
+/// Δt ×64 (also on the plate in triangles, the DKMT), K ×1000, for newmark, energy and nastran over 200 µs: every run finite and
 /// complete, `energy` at round-off, the others within the energy guard. The shear
 /// stiffness adds the plate's stiffest modes; the implicit schemes stay stable.
 #[test]
 fn hard_cases_on_the_shear_plate_stay_stable() {
-    use impactlab::study::mesh::with_mid3;
+    use impactlab::mesh::with_mid3;
     use impactlab::study::stability::plate_deck_next_to_the_edge;
     let shear = |text: String| impactlab::model_from_text("shear", &with_mid3(&text).unwrap()).unwrap();
     let centre = shear(impactlab::mesh::plate_deck(9).unwrap());
     let edge = shear(plate_deck_next_to_the_edge(9).unwrap());
+    let triangles = shear(
+        impactlab::mesh::plate_deck_with(9, impactlab::mesh::Edges::Clamped, impactlab::mesh::Cells::Tria3).unwrap(),
+    );
     assert!(centre
         .elements
         .iter()
@@ -478,6 +481,7 @@ fn hard_cases_on_the_shear_plate_stay_stable() {
     let dt0 = centre.time.dt;
     let cases = [
         ("edge", edge, dt0),
+        ("triangles (DKMT), dt x64", triangles, 64.0 * dt0),
         (
             "velocity x100",
             modified(

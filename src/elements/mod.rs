@@ -14,6 +14,7 @@
 //! card of the table alike and the model builder builds it through the table: a new
 //! kind is a kernel file here and a line there.
 
+pub mod dkmt;
 pub mod mass;
 pub mod mitc4;
 pub mod quad4;
@@ -199,7 +200,7 @@ pub static KINDS: [Kind; 3] = [
     Kind {
         card: "CTRIA3",
         grids: 3,
-        build: Build::Shell(|x, s| Ok(Box::new(tria3::Tria3::build(x, s)?))),
+        build: Build::Shell(dkmt::ctria3),
     },
 ];
 

@@ -25,7 +25,7 @@ pub type Xy = [[f64; 2]; 3];
 
 /// The 3-point interior Gauss rule on the reference triangle (ξ, η ≥ 0, ξ + η ≤ 1):
 /// points and weights (summing to the reference area ½); exact for quadratics.
-const GAUSS: [(f64, f64, f64); 3] = [
+pub(super) const GAUSS: [(f64, f64, f64); 3] = [
     (1.0 / 6.0, 1.0 / 6.0, 1.0 / 6.0),
     (2.0 / 3.0, 1.0 / 6.0, 1.0 / 6.0),
     (1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0),
@@ -42,7 +42,7 @@ pub fn jacobian(xy: &Xy) -> ([[f64; 2]; 2], f64) {
 }
 
 /// (∂/∂x, ∂/∂y) from (∂/∂ξ, ∂/∂η).
-fn to_xy(j: &[[f64; 2]; 2], det: f64, d_xi: f64, d_eta: f64) -> (f64, f64) {
+pub(super) fn to_xy(j: &[[f64; 2]; 2], det: f64, d_xi: f64, d_eta: f64) -> (f64, f64) {
     (
         (j[1][1] * d_xi - j[0][1] * d_eta) / det,
         (-j[1][0] * d_xi + j[0][0] * d_eta) / det,
@@ -55,7 +55,7 @@ pub fn area(xy: &Xy) -> f64 {
 }
 
 /// Membrane strain-displacement matrix (constant), DOFs (u1 v1 u2 v2 u3 v3).
-fn b_membrane(xy: &Xy) -> SMatrix<f64, 3, 6> {
+pub(super) fn b_membrane(xy: &Xy) -> SMatrix<f64, 3, 6> {
     let (j, det) = jacobian(xy);
     let mut b = SMatrix::<f64, 3, 6>::zeros();
     for (i, (d_xi, d_eta)) in [(-1.0, -1.0), (1.0, 0.0), (0.0, 1.0)].into_iter().enumerate() {
@@ -153,15 +153,9 @@ impl Tria3 {
     }
 
     /// The element on three grids' coordinates: refused when they are not in a plane
-    /// z = const or not counter-clockwise (non-positive area), and for a section with
-    /// transverse shear flexibility, which this thin triangle cannot honour.
+    /// z = const or not counter-clockwise (non-positive area). A section with
+    /// transverse shear flexibility is the DST's ([`super::dkmt::ctria3`]).
     pub fn build(points: &[[f64; 3]], section: ShellSection) -> Result<Self, BadShape> {
-        if section.shear.is_some() {
-            return Err(BadShape(
-                "has a property with transverse shear flexibility (PSHELL MID3, or plies with G1Z and G2Z): \
-                 CTRIA3 is a thin plate (DKT) here; mesh it in CQUAD4 (MITC4)",
-            ));
-        }
         let z = points[0][2];
         let xy = super::flat_xy::<3>(points)?;
         if jacobian(&xy).1 <= 0.0 {
@@ -373,8 +367,7 @@ mod tests {
         assert!((&k[0].values - k[0].values.transpose()).norm() <= 1e-14 * k[0].values.norm());
     }
 
-    /// Goal: a triangle numbered clockwise, or off the plane z = const, or asked for
-    /// transverse shear flexibility, is refused.
+    /// Goal: a triangle numbered clockwise, or off the plane z = const, is refused.
     #[test]
     fn clockwise_or_warped_triangles_are_refused() {
         let (a_mat, d_mat) = iso(1.0e7, 0.3, 0.1);
@@ -384,11 +377,6 @@ mod tests {
         let cw = [ccw[0], ccw[2], ccw[1]];
         assert!(Tria3::build(&cw, s.clone()).is_err());
         let warped = [ccw[0], ccw[1], [0.0, 1.0, 0.1]];
-        assert!(Tria3::build(&warped, s.clone()).is_err());
-        let shear = ShellSection {
-            shear: Some(nalgebra::Matrix2::identity()),
-            ..s
-        };
-        assert!(Tria3::build(&ccw, shear).is_err());
+        assert!(Tria3::build(&warped, s).is_err());
     }
 }

@@ -78,7 +78,7 @@ pub struct MeshRow {
     pub shear_contact_duration_s: Option<f64>,
     /// Its peak contact force.
     pub shear_peak_force_lbf: f64,
-    /// The paper's MAT2 plate with PSHELL MID3 ([`MID3`]), the MITC4 plate: its
+    /// The paper's MAT2 plate with PSHELL MID3 ([`crate::mesh::MID3`]), the MITC4 plate: its
     /// first contact duration.
     pub mid3_contact_duration_s: Option<f64>,
     /// Its peak contact force.
@@ -130,31 +130,6 @@ MAT8,8,5.735+6,1.2855+6,0.2231,5.7+5,,,1.8-4,+M1
 /// The plies' transverse shear moduli G1Z, G2Z of `reference-data/decks/
 /// plate-pcomp-shear.bdf` (assumed; the deck says how), as MAT8 fields 7-8.
 pub const SHEAR_MODULI: &str = "5.7+5,4.59+5";
-
-/// The paper's plate made shear-deformable: PSHELL MID3 naming a MAT2 of the
-/// cross-ply's through-thickness average transverse shear moduli (∫C̄ dz / t of
-/// [`SHEAR_MODULI`]: G11 (xz) = (10·5.7e5 + 5·4.59e5)/15, G22 (yz) = (10·4.59e5 +
-/// 5·5.7e5)/15 psi), TS/T blank (5/6): the MAT2 twin of the shear laminate.
-pub const MID3: &str = "MAT2,301,5.33+5,0.0,,4.96+5";
-
-/// The paper's plate on an n×n mesh with [`MID3`] on its PSHELL.
-pub fn mid3_model(n: usize) -> Result<crate::model::Model, StudyError> {
-    let text = with_mid3(&crate::mesh::plate_deck(n)?)?;
-    Ok(crate::model_from_text(&format!("plate-mid3-{n}x{n}"), &text)?)
-}
-
-/// A generated plate deck ([`crate::mesh::plate_deck`] or a variant of it) made
-/// shear-deformable: its PSHELL names [`MID3`].
-pub fn with_mid3(text: &str) -> Result<String, StudyError> {
-    let pshell = "PSHELL,1,101,0.15,201,1.0\n";
-    if !text.contains(pshell) {
-        return Err(StudyError::Input(format!(
-            "the generated plate deck has no {}",
-            pshell.trim()
-        )));
-    }
-    Ok(text.replace(pshell, &format!("PSHELL,1,101,0.15,201,1.0,301\n{MID3}\n")))
-}
 
 /// The plate on an n×n mesh as its cross-ply laminate: the generated deck with
 /// [`CROSS_PLY`] for its PSHELL and MAT2 cards (and their continuations); with
@@ -225,7 +200,7 @@ pub fn run(ns: &[usize], opts: &RunOptions) -> Result<(Vec<MeshRow>, Vec<Sample>
         }));
         let laminate = run_model(&laminate_model(n, false)?, opts)?;
         let shear = run_model(&laminate_model(n, true)?, opts)?;
-        let mid3 = run_model(&mid3_model(n)?, opts)?;
+        let mid3 = run_model(&crate::mesh::plate_model_mid3(n, crate::mesh::Cells::Quad4)?, opts)?;
         let hill = laminate.summary.failure.as_ref().map(|f| &f.theory);
         let s = &run.summary;
         let sec = secondary_peak(&run);
@@ -562,7 +537,10 @@ mod tests {
             assert_eq!(lam.outputs.failure_fields.len(), 81);
         }
         // The MAT2 twin: the paper's section with MID3's moduli × 5/6 × T.
-        let (mid3, thin) = (mid3_model(9).unwrap(), plate_model(9).unwrap());
+        let (mid3, thin) = (
+            crate::mesh::plate_model_mid3(9, crate::mesh::Cells::Quad4).unwrap(),
+            plate_model(9).unwrap(),
+        );
         let (with, without) = (section(&mid3), section(&thin));
         let k = with.shear.expect("MID3 gives transverse shear");
         let t = 0.15 * 0.833333;

@@ -65,6 +65,10 @@ pub struct Case {
     /// The generated plate's elements (default CQUAD4).
     #[serde(default)]
     pub plate_cells: crate::mesh::Cells,
+    /// The generated plate's PSHELL names MID3 ([`crate::mesh::MID3`]): the
+    /// shear-deformable plate (default: the paper's thin plate).
+    #[serde(default)]
+    pub plate_mid3: bool,
     /// The scheme (default `newmark`).
     #[serde(default = "default_scheme")]
     pub scheme: Scheme,
@@ -383,6 +387,13 @@ pub fn read_case(path: &Path) -> Result<Case, CaseError> {
             message: "give exactly one of `deck` and `plate_mesh`".into(),
         });
     }
+    if case.deck.is_some() && case.plate_mid3 {
+        return Err(CaseError::Invalid {
+            path: file(),
+            line: None,
+            message: "`plate_mid3` applies to a generated plate (`plate_mesh`), not to a deck".into(),
+        });
+    }
     for spec in &case.checks {
         if let CheckSpec::Summary { key, .. } = spec {
             if let Err(e) = Summary::check_key(key) {
@@ -444,6 +455,7 @@ pub fn rel(case: &Case, p: &Path) -> PathBuf {
 pub fn case_model(case: &Case) -> Result<Model, CaseError> {
     let mut m = match (&case.deck, case.plate_mesh) {
         (Some(d), _) => crate::load_deck(&rel(case, d), Default::default())?.0,
+        (None, Some(n)) if case.plate_mid3 => crate::mesh::plate_model_mid3(n, case.plate_cells)?,
         (None, Some(n)) => crate::mesh::plate_model_with(n, case.plate_cells)?,
         _ => unreachable!("checked by read_case"),
     };
