@@ -119,13 +119,15 @@ impl PlateMesh {
                     Cells::Tria3 => {
                         // The diagonal points away from the centre: SW-NE where the
                         // element centre's x and y have the same sign (the centre
-                        // element included), SE-NW elsewhere.
+                        // element included), SE-NW elsewhere. Each triangle starts
+                        // on its side along x (G1→G2 at 0° or 180°), the material x
+                        // axis a PCOMP's ply angles are measured from.
                         let centre = n.div_ceil(2) as i64;
                         let (dx, dy) = (c as i64 - centre, r as i64 - centre);
                         let (a, b) = if dx * dy >= 0 {
-                            ([g, g + 1, ne], [g, ne, nw])
+                            ([g, g + 1, ne], [ne, nw, g])
                         } else {
-                            ([g, g + 1, nw], [g + 1, ne, nw])
+                            ([g, g + 1, nw], [ne, nw, g + 1])
                         };
                         for (id, t) in [(2 * g, a), (2 * g + 1, b)] {
                             let _ = writeln!(w, "CTRIA3,{id},1,{},{},{}", t[0], t[1], t[2]);
@@ -470,7 +472,8 @@ pub fn square_plate_deck(n: usize, side: f64, edge: &str, ps: &str, cards: &str)
 
 /// A deck of [`square_plate_deck`] with every CQUAD4 cut along its diagonal from its
 /// first grid into two CTRIA3 (ids 2q and 2q + 1 for the quadrilateral q, same
-/// property): the same plate meshed in triangles, all diagonals parallel.
+/// property): the same plate meshed in triangles, all diagonals parallel, each
+/// triangle starting on its side along x (G1→G2 at 0° or 180°).
 pub fn in_triangles(deck: &str) -> String {
     let mut out = String::with_capacity(deck.len() * 2);
     for line in deck.lines() {
@@ -480,7 +483,7 @@ pub fn in_triangles(deck: &str) -> String {
                 let id: usize = f[0].parse().expect("square_plate_deck's element ids are integers");
                 let (p, g) = (f[1], &f[2..6]);
                 let _ = writeln!(out, "CTRIA3,{},{p},{},{},{}", 2 * id, g[0], g[1], g[2]);
-                let _ = writeln!(out, "CTRIA3,{},{p},{},{},{}", 2 * id + 1, g[0], g[2], g[3]);
+                let _ = writeln!(out, "CTRIA3,{},{p},{},{},{}", 2 * id + 1, g[2], g[3], g[0]);
             }
             None => {
                 out.push_str(line);

@@ -317,3 +317,42 @@ fn shear_plate_does_not_lock_as_it_thins() {
         assert!((d1 / d2 / 100.0 - 1.0).abs() < 0.1, "{d1} {d2}");
     }
 }
+
+/// Goal: a PCOMP on the generated triangle meshes is laid up as on the quadrilaterals.
+/// NASTRAN measures ply angles from each element's G1→G2 side, so every generated
+/// triangle starts on its side along x. Model: the paper's 9×9 plate in CTRIA3 with
+/// the cross-ply of `study::mesh::CROSS_PLY` for its PSHELL, and the simply supported
+/// square plate cut by `mesh::in_triangles`. Reference: the same laminate on the
+/// CQUAD4 plate (G1→G2 along x). Assertions: every triangle's G1→G2 side is along
+/// x, and every element's bending matrix equals the quadrilateral's to round-off.
+#[test]
+fn a_laminate_on_the_generated_triangles_is_laid_up_as_on_the_quadrilaterals() {
+    use impactlab::mesh::{plate_deck_with, Edges};
+    let cross_ply = |cells: Cells| {
+        let deck = plate_deck_with(9, Edges::Clamped, cells).unwrap().replace(
+            "PSHELL,1,101,0.15,201,1.0\n",
+            &format!("{}\n", impactlab::study::mesh::CROSS_PLY),
+        );
+        impactlab::model_from_text("cross-ply", &deck).unwrap_or_else(|e| panic!("{e}"))
+    };
+    let bending = |m: &impactlab::model::Model| -> Vec<nalgebra::Matrix3<f64>> {
+        m.elements
+            .iter()
+            .filter_map(|e| e.kernel.family().shell().and_then(|s| s.g_bending))
+            .collect()
+    };
+    let (quads, triangles) = (cross_ply(Cells::Quad4), cross_ply(Cells::Tria3));
+    let reference = bending(&quads)[0];
+    let sections = bending(&triangles);
+    assert_eq!(sections.len(), 2 * 81);
+    for g in &sections {
+        assert!((g - reference).norm() <= 1e-12 * reference.norm(), "{g} vs {reference}");
+    }
+    let navier = impactlab::mesh::navier_plate(4, 1.0, 0.1, [1.0, 0.0, 0.0, 1.0, 0.0, 1.0], 1.0, None, Cells::Tria3);
+    for m in [&triangles, &navier.unwrap()] {
+        for e in m.elements.iter().filter(|e| e.kernel.card() == "CTRIA3") {
+            let p = e.kernel.points();
+            assert!((p[1][1] - p[0][1]).abs() < 1e-12, "element {}: {p:?}", e.eid);
+        }
+    }
+}
