@@ -36,7 +36,7 @@
 
 use super::shell::ShellSection;
 use super::tria3::{area, b_membrane, jacobian, to_xy, Xy, GAUSS};
-use super::{BadShape, Cell, Kernel, LocalMatrix, Measure, Recovered, Transverse};
+use super::{BadShape, Cell, Kernel, LocalMatrix, Recovered};
 use nalgebra::{DMatrix, Matrix2, Matrix3, SMatrix, Vector2, Vector3};
 
 /// The corners (i, j) of sides 1→2, 2→3, 3→1.
@@ -300,14 +300,7 @@ impl Kernel for Dkmt {
         0.5 * (u.transpose() * self.k * u)[0]
     }
     fn recovered(&self, stress: bool) -> Vec<Recovered> {
-        let mut out = ShellSection::recovered(stress);
-        if stress {
-            out.extend([Transverse::Qx, Transverse::Qy].map(|q| Recovered {
-                measure: Measure::ShearForce(q),
-                at: None,
-            }));
-        }
-        out
+        self.section.recovered(stress)
     }
     fn recover(&self, ue: &[f64], stress: bool) -> Vec<f64> {
         let (um, ub) = parts(ue);

@@ -27,7 +27,7 @@
 
 use super::quad4::{area, lumped_mass, membrane_stiffness, membrane_strain, min_jacobian, Xy};
 use super::shell::ShellSection;
-use super::{BadShape, Cell, Kernel, LocalMatrix, Measure, Recovered, Transverse};
+use super::{BadShape, Cell, Kernel, LocalMatrix, Recovered};
 use nalgebra::{DMatrix, Matrix2, SMatrix, Vector2, Vector3};
 
 const G: f64 = 0.577_350_269_189_625_8;
@@ -231,15 +231,7 @@ impl Kernel for Mitc4 {
         0.5 * (u.transpose() * self.k * u)[0]
     }
     fn recovered(&self, stress: bool) -> Vec<Recovered> {
-        let mut out = ShellSection::recovered(stress);
-        if stress {
-            // With the stresses (a STRESS request), the transverse shear forces.
-            out.extend([Transverse::Qx, Transverse::Qy].map(|q| Recovered {
-                measure: Measure::ShearForce(q),
-                at: None,
-            }));
-        }
-        out
+        self.section.recovered(stress)
     }
     fn recover(&self, ue: &[f64], stress: bool) -> Vec<f64> {
         let (um, ub) = parts(ue);

@@ -332,7 +332,7 @@ impl Kernel for Quad4 {
         }
     }
     fn recovered(&self, stress: bool) -> Vec<Recovered> {
-        ShellSection::recovered(stress)
+        self.section.recovered(stress)
     }
     fn recover(&self, ue: &[f64], stress: bool) -> Vec<f64> {
         let (um, ub) = parts(ue);

@@ -14,7 +14,7 @@
 //!   G(MID2) κ z (the coupling of an unsymmetric section acts on resultants, not on
 //!   the fibre stresses PSHELL's recovery reports).
 
-use super::{Fibre, Measure, Plane, Recovered};
+use super::{Fibre, Measure, Plane, Recovered, Transverse};
 use nalgebra::{Matrix2, Matrix3, Vector3};
 
 /// A PSHELL (or a PCOMP's laminate) with its materials resolved.
@@ -53,9 +53,11 @@ impl ShellSection {
         self.g_coupling.map(|g| g * self.thickness.powi(2))
     }
 
-    /// The values a shell recovers, in order: stresses then strains when `stress`,
-    /// strains only otherwise; each at fibre Z1 then Z2, components xx, yy, xy.
-    pub fn recovered(stress: bool) -> Vec<Recovered> {
+    /// The values a shell of this section recovers, in order: stresses then strains
+    /// when `stress`, strains only otherwise; each at fibre Z1 then Z2, components xx,
+    /// yy, xy; with the stresses of a section with transverse shear flexibility, then
+    /// its transverse shear forces Qx, Qy.
+    pub fn recovered(&self, stress: bool) -> Vec<Recovered> {
         let measures: &[Measure] = if stress {
             &[Measure::Stress, Measure::Strain]
         } else {
@@ -72,11 +74,17 @@ impl ShellSection {
                 }
             }
         }
+        if stress && self.shear.is_some() {
+            v.extend([Transverse::Qx, Transverse::Qy].map(|q| Recovered {
+                measure: Measure::ShearForce(q),
+                at: None,
+            }));
+        }
         v
     }
 
-    /// The recovered values (in the order of [`ShellSection::recovered`]) of a
-    /// membrane strain `em` and curvature `kappa`.
+    /// The recovered fibre values (in the order of [`ShellSection::recovered`], before
+    /// any shear forces) of a membrane strain `em` and curvature `kappa`.
     pub fn recover(&self, em: Vector3<f64>, kappa: Vector3<f64>, stress: bool) -> Vec<f64> {
         let h = 0.5 * self.thickness;
         let mut stresses = Vec::new();

@@ -237,7 +237,7 @@ impl Kernel for Tria3 {
         0.5 * (m + b) + c
     }
     fn recovered(&self, stress: bool) -> Vec<Recovered> {
-        ShellSection::recovered(stress)
+        self.section.recovered(stress)
     }
     fn recover(&self, ue: &[f64], stress: bool) -> Vec<f64> {
         let (um, ub) = parts(ue);
