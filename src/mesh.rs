@@ -186,6 +186,23 @@ impl Cells {
             Cells::Tria3 => "CTRIA3",
         }
     }
+
+    /// What a generated model's name gains for these cells: nothing, or `-tria3`.
+    fn suffix(self) -> &'static str {
+        match self {
+            Cells::Quad4 => "",
+            Cells::Tria3 => "-tria3",
+        }
+    }
+
+    /// A [`square_plate_deck`] in these cells: as written, or cut into triangles
+    /// ([`in_triangles`]).
+    pub fn cut(self, deck: String) -> String {
+        match self {
+            Cells::Quad4 => deck,
+            Cells::Tria3 => in_triangles(&deck),
+        }
+    }
 }
 
 /// How the plate's four edges are held.
@@ -328,11 +345,10 @@ pub fn plate_model(n: usize) -> Result<crate::model::Model, MeshError> {
 /// The paper's plate on an n×n mesh of `cells`, built from the generated deck.
 pub fn plate_model_with(n: usize, cells: Cells) -> Result<crate::model::Model, MeshError> {
     let text = plate_deck_with(n, Edges::Clamped, cells)?;
-    let name = match cells {
-        Cells::Quad4 => format!("plate-{n}x{n}"),
-        Cells::Tria3 => format!("plate-{n}x{n}-tria3"),
-    };
-    Ok(crate::model_from_text(&name, &text)?)
+    Ok(crate::model_from_text(
+        &format!("plate-{n}x{n}{}", cells.suffix()),
+        &text,
+    )?)
 }
 
 /// The paper's plate made shear-deformable: PSHELL MID3 naming a MAT2 of the
@@ -352,15 +368,14 @@ pub fn with_mid3(text: &str) -> Result<String, MeshError> {
     Ok(text.replace(pshell, &format!("PSHELL,1,101,0.15,201,1.0,301\n{MID3}\n")))
 }
 
-/// The paper's plate on an n×n mesh of `cells`, built from the generated deck; with
-/// `mid3`, its PSHELL names [`MID3`] (the shear-deformable plate).
+/// The paper's plate on an n×n mesh of `cells`, built from the generated deck with
+/// its PSHELL naming [`MID3`] (the shear-deformable plate).
 pub fn plate_model_mid3(n: usize, cells: Cells) -> Result<crate::model::Model, MeshError> {
     let text = with_mid3(&plate_deck_with(n, Edges::Clamped, cells)?)?;
-    let cells = match cells {
-        Cells::Quad4 => "",
-        Cells::Tria3 => "-tria3",
-    };
-    Ok(crate::model_from_text(&format!("plate-mid3-{n}x{n}{cells}"), &text)?)
+    Ok(crate::model_from_text(
+        &format!("plate-mid3-{n}x{n}{}", cells.suffix()),
+        &text,
+    )?)
 }
 
 /// A simply supported square plate side × side on an n×n mesh of `cells` (w = 0 on
@@ -408,11 +423,7 @@ pub fn navier_plate(
             ("mindlin-plate", deck)
         }
     };
-    let (deck, cells) = match cells {
-        Cells::Quad4 => (deck, ""),
-        Cells::Tria3 => (in_triangles(&deck), "-tria3"),
-    };
-    crate::model_from_text(&format!("{name}-{n}x{n}{cells}"), &deck)
+    crate::model_from_text(&format!("{name}-{n}x{n}{}", cells.suffix()), &cells.cut(deck))
 }
 
 /// SPC1 cards (set 1) holding the rotation along each edge of [`square_plate_deck`]'s

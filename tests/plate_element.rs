@@ -146,8 +146,9 @@ fn simply_supported_orthotropic_plate_natural_frequencies_match_navier() {
 }
 
 /// The lowest natural frequency ω (rad/s) of a simply supported isotropic square plate
-/// a × a, thickness t, on an n × n CQUAD4 mesh whose PSHELL names MID3 (the MAT1's G,
-/// TS/T blank: 0.833333): the shear-deformable MITC4 plate. The supports are Navier's
+/// a × a, thickness t, on an n × n mesh of `cells` whose PSHELL names MID3 (the MAT1's
+/// G, TS/T blank: 0.833333): the shear-deformable plate (MITC4 quadrilaterals, or the
+/// squares cut into DKMT triangles). The supports are Navier's
 /// ("hard" simple support): w = 0 and the rotation along the edge fixed (on x = 0, a
 /// the rotation βy, R1; on y = 0, a, βx, R2). A Mindlin plate with the edge rotation
 /// free ("soft") has boundary layers and a lower frequency than Navier's series.
@@ -155,21 +156,12 @@ fn mindlin_plate_frequency(n: usize, a: f64, t: f64, cells: Cells) -> f64 {
     let cards = format!("PSHELL,1,1,{t:?},1,1.0,1\nMAT1,1,{E:?},,{NU:?},{RHO:?}");
     let deck = impactlab::mesh::square_plate_deck(n, a, "3", "126", &cards)
         .replace("ENDDATA", &format!("{}ENDDATA", impactlab::mesh::hard_supports(n)));
-    let m = impactlab::model_from_text("mindlin-plate", &meshed(&deck, cells)).unwrap_or_else(|e| panic!("{e}"));
+    let m = impactlab::model_from_text("mindlin-plate", &cells.cut(deck)).unwrap_or_else(|e| panic!("{e}"));
     assert!(m.elements.iter().all(|e| e.kernel.card() == cells.card()));
     impactlab::assembly::lowest_frequencies(&m, 1).unwrap()[0]
 }
 
 use impactlab::mesh::Cells;
-
-/// A [`impactlab::mesh::square_plate_deck`] in `cells`: as written, or each square
-/// cut into two CTRIA3.
-fn meshed(deck: &str, cells: Cells) -> String {
-    match cells {
-        Cells::Quad4 => deck.to_string(),
-        Cells::Tria3 => impactlab::mesh::in_triangles(deck),
-    }
-}
 
 const RHO: f64 = 2.5e-4;
 /// PSHELL's TS/T when blank: the shear correction factor.
@@ -259,7 +251,7 @@ fn simply_supported_orthotropic_thick_plate_frequency_matches_mindlin() {
                 );
                 let deck = impactlab::mesh::square_plate_deck(n, a, "3", "126", &cards)
                     .replace("ENDDATA", &format!("{}ENDDATA", impactlab::mesh::hard_supports(n)));
-                let m = impactlab::model_from_text("mindlin-orthotropic", &meshed(&deck, cells))
+                let m = impactlab::model_from_text("mindlin-orthotropic", &cells.cut(deck))
                     .unwrap_or_else(|e| panic!("{e}"));
                 assert!(m
                     .elements

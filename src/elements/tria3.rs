@@ -154,7 +154,7 @@ impl Tria3 {
 
     /// The element on three grids' coordinates: refused when they are not in a plane
     /// z = const or not counter-clockwise (non-positive area). A section with
-    /// transverse shear flexibility is the DST's ([`super::dkmt::ctria3`]).
+    /// transverse shear flexibility is the DKMT's ([`super::dkmt::ctria3`]).
     pub fn build(points: &[[f64; 3]], section: ShellSection) -> Result<Self, BadShape> {
         let z = points[0][2];
         let xy = super::flat_xy::<3>(points)?;

@@ -1000,7 +1000,10 @@ fn navier_frequencies(cx: &Cx, meshes: [usize; 2], modes: usize, max: f64) -> Re
         .ok_or_else(|| CheckError::NoPlate { case: case(), check })?;
     let g = section.g_bending.expect("filtered");
     // The case's element: a mesh of triangles when its shells are CTRIA3.
-    let cells = if shells.iter().all(|e| e.kernel.card() == "CTRIA3") {
+    let cells = if shells
+        .iter()
+        .all(|e| e.kernel.card() == crate::mesh::Cells::Tria3.card())
+    {
         crate::mesh::Cells::Tria3
     } else {
         crate::mesh::Cells::Quad4
