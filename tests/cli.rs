@@ -184,6 +184,36 @@ fn a_failed_run_leaves_the_previous_outputs_whole() {
     assert_eq!(names, ["free.bdf", "rod"], "no staging directories left behind");
 }
 
+/// Goal: a run whose energy is not a finite number from the start (the rod struck at
+/// 1e200 in/s: ½mv² overflows) is stopped by the guard at step 0 with exit 3, and the
+/// message says why the error is NaN rather than leaving "NaN exceeds 5e-2" to be
+/// decoded. The guard's message for a finite error does not carry that sentence.
+#[test]
+fn a_run_whose_energy_overflows_says_so() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(deck("rod.bdf")).unwrap();
+    assert!(text.contains("TIC,1,999,1,0.0,62.1\n"));
+    let bdf = dir.path().join("fast.bdf");
+    std::fs::write(
+        &bdf,
+        text.replace("TIC,1,999,1,0.0,62.1\n", "TIC,1,999,1,0.0,1.0+200\n"),
+    )
+    .unwrap();
+    let out = dir.path().join("fast");
+    let o = impactlab(&[
+        "run",
+        bdf.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--steps",
+        "5",
+    ]);
+    assert_eq!(o.status.code(), Some(3));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("relative energy error NaN at step 0 "), "{err}");
+    assert!(err.contains("the energy itself is not a finite number"), "{err}");
+}
+
 /// Goal: the energy guard (LS-DYNA ENDENG, Radioss /STOP Emax) stops a run whose
 /// energy error exceeds it with exit 3 naming the step, time and error, and writes
 /// the outputs up to there, marked incomplete; `off` lets the same run finish. Model:
@@ -209,6 +239,7 @@ fn the_energy_guard_stops_a_run_and_keeps_its_outputs() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains("energy guard: relative energy error "), "{err}");
     assert!(err.contains(" exceeds 1.000e-6"), "{err}");
+    assert!(!err.contains("not a finite number"), "{err}");
     assert!(err.contains(&out.display().to_string()), "{err}");
     let s: serde_json::Value = serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
     assert_eq!(s["run"]["complete"], false);

@@ -231,7 +231,15 @@ impl std::fmt::Display for GuardTrip {
             f,
             "energy guard: relative energy error {:.3e} at step {} (t = {:.4e}) exceeds {:.3e}",
             self.error, self.step, self.time, self.limit
-        )
+        )?;
+        if self.error.is_nan() {
+            write!(
+                f,
+                " (the energy itself is not a finite number: a velocity, mass or stiffness of the \
+                 deck is too large for double precision, or the state overflowed)"
+            )?;
+        }
+        Ok(())
     }
 }
 
