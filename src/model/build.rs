@@ -1088,27 +1088,44 @@ fn shell_section(
         mass_per_area: rho * p.t + p.nsm,
     };
     if !section_is_definite(&section) {
-        cx.err(p.at.error(
-            "PSHELL: the membrane, bending and coupling stiffnesses [A B; B D] are not positive definite \
-             (MID4 too large against MID1 and MID2)",
-        ));
+        cx.err(p.at.error(if section.g_coupling.is_some() {
+            "the membrane, bending and coupling stiffnesses [A B; B D] are not positive definite (MID4 too \
+             large against MID1 and MID2)"
+                .to_string()
+        } else {
+            format!(
+                "the membrane and bending stiffnesses A = G1·T and D = G2·T³/12 are not positive definite in \
+                 double precision: T = {:e} is too small or too large for them",
+                p.t
+            )
+        }));
         return None;
     }
     Some(section)
 }
 
-/// True when a coupled section's [A B; B D] is positive definite (an uncoupled one's
-/// parts are checked where they are read).
+/// True when a section's stiffness, [A B; B D] (B zero when uncoupled; A or D alone
+/// when the other is absent), is finite and positive definite in double precision.
+/// Its materials are checked where they are read; what this adds is the coupling
+/// (MID4 against MID1 and MID2) and the scaling by the thickness, which can overflow
+/// or underflow (a bending stiffness G·T³/12 of 0 for T = 1e-110).
 fn section_is_definite(s: &ShellSection) -> bool {
-    let (Some(a), Some(b), Some(d)) = (s.a(), s.b(), s.d()) else {
-        return true;
-    };
-    let mut k = nalgebra::Matrix6::zeros();
-    k.fixed_view_mut::<3, 3>(0, 0).copy_from(&a);
-    k.fixed_view_mut::<3, 3>(0, 3).copy_from(&b);
-    k.fixed_view_mut::<3, 3>(3, 0).copy_from(&b.transpose());
-    k.fixed_view_mut::<3, 3>(3, 3).copy_from(&d);
-    k.cholesky().is_some()
+    fn definite<const N: usize>(k: nalgebra::SMatrix<f64, N, N>) -> bool {
+        k.iter().all(|v| v.is_finite()) && k.cholesky().is_some()
+    }
+    match (s.a(), s.d()) {
+        (Some(a), Some(d)) => {
+            let b = s.b().unwrap_or_else(Matrix3::zeros);
+            let mut k = nalgebra::Matrix6::zeros();
+            k.fixed_view_mut::<3, 3>(0, 0).copy_from(&a);
+            k.fixed_view_mut::<3, 3>(0, 3).copy_from(&b);
+            k.fixed_view_mut::<3, 3>(3, 0).copy_from(&b.transpose());
+            k.fixed_view_mut::<3, 3>(3, 3).copy_from(&d);
+            definite(k)
+        }
+        (Some(m), None) | (None, Some(m)) => definite(m),
+        (None, None) => true,
+    }
 }
 
 /// The section of a PCOMP for an element whose material x axis is `axes` degrees
@@ -1163,15 +1180,29 @@ fn laminate_section(
             p.pid
         )));
     }
+    let section = ShellSection {
+        thickness: lam.thickness,
+        g_membrane: Some(lam.membrane_material()),
+        g_bending: Some(lam.bending_material()),
+        g_coupling: (!lam.is_uncoupled()).then(|| lam.coupling_material()),
+        shear,
+        mass_per_area: lam.mass_per_area + p.nsm,
+    };
+    // Plies of positive thickness and positive definite Q make a positive definite
+    // [A B; B D] in exact arithmetic; in double precision, plies thin or soft enough
+    // (or stiff enough) underflow or overflow it.
+    if !section_is_definite(&section) {
+        cx.err(p.at.error(format!(
+            "PCOMP {}: the laminate's stiffness [A B; B D] is not positive definite in double precision \
+             (A11 = {:e}, D11 = {:e}): its plies are too thin, too soft or too stiff for it to be represented",
+            p.pid,
+            lam.a[(0, 0)],
+            lam.d[(0, 0)],
+        )));
+        return None;
+    }
     Some((
-        ShellSection {
-            thickness: lam.thickness,
-            g_membrane: Some(lam.membrane_material()),
-            g_bending: Some(lam.bending_material()),
-            g_coupling: (!lam.is_uncoupled()).then(|| lam.coupling_material()),
-            shear,
-            mass_per_area: lam.mass_per_area + p.nsm,
-        },
+        section,
         std::sync::Arc::new(ply_layers(&plies, axes, p.sb.filter(|_| p.ft.is_some()))),
     ))
 }
