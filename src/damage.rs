@@ -221,7 +221,9 @@ impl Criterion {
     }
 
     /// The failure index of a ply point with `strain` (ε1, ε2, γ12) and `stress` (σ1,
-    /// σ2, τ12) in the ply's axes.
+    /// σ2, τ12) in the ply's axes. The quadratic terms are formed from the ratios of
+    /// stress to allowable (σ1/X · σ1/X, not σ1²/X²), so that an allowable below
+    /// 1e-154 does not underflow X² to 0 and make an unstressed ply's index 0/0.
     pub fn index(&self, strain: &Vector3<f64>, stress: &Vector3<f64>) -> f64 {
         let [xt, xc, yt, yc, s] = self.allow;
         let (s1, s2, t) = (stress[0], stress[1], stress[2]);
@@ -239,20 +241,20 @@ impl Criterion {
             Theory::Hill => {
                 let x = if s1 >= 0.0 { xt } else { xc };
                 let y = if s2 >= 0.0 { yt } else { yc };
-                (s1 * s1 - s1 * s2) / (x * x) + (s2 / y).powi(2) + (t / s).powi(2)
+                (s1 / x) * (s1 / x - s2 / x) + (s2 / y).powi(2) + (t / s).powi(2)
             }
             Theory::Hoffman => {
                 (1.0 / xt - 1.0 / xc) * s1
                     + (1.0 / yt - 1.0 / yc) * s2
-                    + (s1 * s1 - s1 * s2) / (xt * xc)
-                    + s2 * s2 / (yt * yc)
+                    + (s1 / xt) * (s1 / xc - s2 / xc)
+                    + (s2 / yt) * (s2 / yc)
                     + (t / s).powi(2)
             }
             Theory::TsaiWu => {
                 (1.0 / xt - 1.0 / xc) * s1
                     + (1.0 / yt - 1.0 / yc) * s2
-                    + s1 * s1 / (xt * xc)
-                    + s2 * s2 / (yt * yc)
+                    + (s1 / xt) * (s1 / xc)
+                    + (s2 / yt) * (s2 / yc)
                     + (t / s).powi(2)
                     + 2.0 * self.f12 * s1 * s2
             }
@@ -290,6 +292,41 @@ mod tests {
 
     fn stress(s1: f64, s2: f64, t: f64) -> Vector3<f64> {
         Vector3::new(s1, s2, t)
+    }
+
+    /// Goal: an unstressed ply's index is 0 in every theory however small its
+    /// allowables (1e-300: X² underflows to 0, so σ²/X² would be 0/0), a stressed one's
+    /// is never NaN, and scaling stresses and allowables together (by 1e-200, below
+    /// where X² underflows) leaves every index as it was.
+    #[test]
+    fn tiny_allowables_give_zero_at_zero_stress_and_no_nan() {
+        let index = |theory: Theory, allowable: f64, s: Vector3<f64>| {
+            let strength = Strength {
+                allowables: [Some(allowable); 5],
+                f12: Some(0.0),
+                strain: false,
+                moduli: [5.6e6, 1.2e6, 0.6e6],
+            };
+            Criterion::new(theory, Some(&strength))
+                .unwrap()
+                .index(&Vector3::zeros(), &s)
+        };
+        let sigma = stress(0.3, -0.2, 0.1);
+        for theory in [Theory::Hill, Theory::Hoffman, Theory::TsaiWu, Theory::MaxStress] {
+            for allowable in [1.0, 1e-200, 1e-300] {
+                assert_eq!(
+                    index(theory, allowable, Vector3::zeros()),
+                    0.0,
+                    "{theory:?} {allowable:e}"
+                );
+                assert!(!index(theory, allowable, sigma).is_nan(), "{theory:?} {allowable:e}");
+            }
+            let (unit, scaled) = (index(theory, 1.0, sigma), index(theory, 1e-200, sigma * 1e-200));
+            assert!(
+                (scaled - unit).abs() < 1e-15 * unit.abs().max(1.0),
+                "{theory:?}: {scaled} vs {unit}"
+            );
+        }
     }
 
     /// Goal: every theory's index is 1 under a uniaxial stress at each allowable, in

@@ -273,6 +273,42 @@ fn a_theory_without_its_allowables_is_refused() {
     }
 }
 
+/// Goal: allowables so small that the struck plate's stresses cannot be divided by
+/// them in double precision (1e-300 psi: HILL's σ²/X² overflows) end the run with exit
+/// 3 and a message naming the theory, element, ply and stresses, and nothing is
+/// written; the summary never carries a null where it promises a number (what it did
+/// before: `"largest": null`). With the glass/epoxy allowables the same run succeeds.
+#[test]
+fn allowables_too_small_for_double_precision_end_the_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |allowables: &str| {
+        let path = pcomp_with_ft(dir.path(), "HILL", allowables);
+        let out = dir.path().join("out");
+        let o = impactlab(&[
+            "run",
+            path.to_str().unwrap(),
+            "--steps",
+            "20",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        (o, out)
+    };
+    let (o, out) = run(",,,1.0-300,1.0-300,1.0-300,1.0-300,1.0-300");
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(3), "{stderr}");
+    assert!(
+        stderr.contains("the HILL failure index of element ") && stderr.contains(" is inf at t = "),
+        "{stderr}"
+    );
+    assert!(stderr.contains("its MAT8 allowables are too small"), "{stderr}");
+    assert!(!out.exists());
+    let (o, out) = run(ALLOWABLES);
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    let s: serde_json::Value = serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
+    assert!(s["failure"]["theory"]["largest"].as_f64().unwrap().is_finite());
+}
+
 /// Goal: `--until failure_index=1` finds the impact speed of first-ply failure: the
 /// direct engine puts the largest HILL index below 1 at the bracket's low end and at or
 /// above it at its high end, and the paper's speed (index far above 1) is above it.

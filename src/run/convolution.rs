@@ -279,7 +279,7 @@ impl Kernels {
             dofs: model.dofs.clone(),
             snapshots: Vec::new(),
         };
-        run.summary = summarize(model, &run, tripped, opts, Engine::Convolution);
+        run.summary = summarize(model, &run, tripped, opts, Engine::Convolution)?;
         match tripped {
             None => Ok(run),
             Some(trip) => Err(RunError::EnergyGuard {

@@ -51,7 +51,7 @@ pub fn run(model: &Model, sys: &System, opts: &RunOptions) -> Result<RunResult, 
         dofs: model.dofs.clone(),
         snapshots: rec.snapshots,
     };
-    run.summary = summarize(model, &run, rec.tripped, opts, Engine::Direct);
+    run.summary = summarize(model, &run, rec.tripped, opts, Engine::Direct)?;
     match rec.tripped {
         None => Ok(run),
         Some(trip) => Err(RunError::EnergyGuard {

@@ -55,6 +55,16 @@ pub enum Face {
     Top,
 }
 
+impl Face {
+    /// Its name in the summary: `bottom` or `top`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Face::Bottom => "bottom",
+            Face::Top => "top",
+        }
+    }
+}
+
 /// A component in a ply's axes: 1 along the fibres, 2 across, 12 the engineering
 /// shear.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]

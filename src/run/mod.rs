@@ -255,6 +255,10 @@ pub enum RunError {
     /// The run cannot be made as asked (its step, its size): nothing was computed.
     #[error("{0}")]
     Input(String),
+    /// A ply's failure index is not a finite number: the run's stresses cannot be
+    /// divided by its allowables in double precision. Nothing is kept.
+    #[error("{0}")]
+    FailureIndex(String),
     /// The energy guard stopped the run; `partial` holds everything recorded up to
     /// and including the step that tripped it, its summary marked incomplete.
     #[error("{trip}")]
@@ -496,8 +500,14 @@ fn ply_outputs(e: &crate::elements::Element, plies: &[crate::laminate::PlyLayer]
 /// whose plies have criteria, every ply's bottom and top at every row, read from the
 /// history's ply strain and stress columns; and the bond index of every interface
 /// with an allowable, from its interlaminar columns. `None` when no written ply has a
-/// criterion.
-fn failure_summary(model: &Model, columns: &[Column], rows: &[Vec<f64>]) -> Option<summary::FailureSummary> {
+/// criterion. An index that is not a finite number (allowables too small for the
+/// stresses to be divided by them in double precision) is an error: the summary
+/// would otherwise carry a null where it promises a number.
+fn failure_summary(
+    model: &Model,
+    columns: &[Column],
+    rows: &[Vec<f64>],
+) -> Result<Option<summary::FailureSummary>, RunError> {
     use crate::damage::Theory;
     use summary::PlyIndex;
     // Per criterion slot (0: the FT theory, 1: maximum stress): its running result.
@@ -525,6 +535,19 @@ fn failure_summary(model: &Model, columns: &[Column], rows: &[Vec<f64>]) -> Opti
             for (k, p, face, strain, stress) in ply_points(plies, &row[start..end]) {
                 for c in &p.criteria {
                     let index = c.index(&strain, &stress);
+                    if !index.is_finite() {
+                        return Err(RunError::FailureIndex(format!(
+                            "the {} failure index of element {eid}, ply {} {}, is {index} at t = {time:e} (stresses \
+                             σ1 {:e}, σ2 {:e}, τ12 {:e} in the ply's axes): its MAT8 allowables are too small for \
+                             these stresses to be divided by them in double precision",
+                            c.theory.name(),
+                            k + 1,
+                            face.name(),
+                            stress[0],
+                            stress[1],
+                            stress[2]
+                        )));
+                    }
                     track(&mut found[slot(c.theory)], index, time, eid, k, face);
                 }
             }
@@ -543,6 +566,16 @@ fn failure_summary(model: &Model, columns: &[Column], rows: &[Vec<f64>]) -> Opti
             for (j, (k, bond)) in bonds.iter().enumerate() {
                 let tau = nalgebra::Vector2::new(row[start + 2 * j], row[start + 2 * j + 1]);
                 if let Some(index) = bond.bond_index(&tau) {
+                    if !index.is_finite() {
+                        return Err(RunError::FailureIndex(format!(
+                            "the bond index of element {eid} above ply {} is {index} at t = {:e} (τ1z {:e}, τ2z {:e}): \
+                             the PCOMP's SB is too small for these stresses to be divided by it in double precision",
+                            k + 1,
+                            row[0],
+                            tau[0],
+                            tau[1]
+                        )));
+                    }
                     track(&mut bond_found, index, row[0], eid, *k, Face::Top);
                 }
             }
@@ -553,11 +586,11 @@ fn failure_summary(model: &Model, columns: &[Column], rows: &[Vec<f64>]) -> Opti
         r.name = n.into();
         r
     };
-    Some(summary::FailureSummary {
-        theory: name(theory?, &names[0].join("+")),
+    Ok(theory.map(|theory| summary::FailureSummary {
+        theory: name(theory, &names[0].join("+")),
         max_stress: max_stress.map(|r| name(r, &names[1].join("+"))),
         bond: bond_found.map(|r| name(r, "BOND")),
-    })
+    }))
 }
 
 /// Keeps in `found` the largest of a running failure index and when it first
@@ -573,11 +606,7 @@ fn track(found: &mut Option<summary::PlyIndex>, index: f64, time: f64, eid: i64,
             time,
             element: eid,
             ply: k as u16 + 1,
-            face: match face {
-                Face::Bottom => "bottom",
-                Face::Top => "top",
-            }
-            .into(),
+            face: face.name().into(),
             ..std::mem::take(r)
         };
     }
@@ -709,7 +738,13 @@ pub fn contact_intervals(t: &[f64], alpha: &[f64]) -> (Vec<[f64; 2]>, bool) {
 }
 
 /// The summary of a run by `engine`.
-fn summarize(model: &Model, run: &RunResult, tripped: Option<GuardTrip>, opts: &RunOptions, engine: Engine) -> Summary {
+fn summarize(
+    model: &Model,
+    run: &RunResult,
+    tripped: Option<GuardTrip>,
+    opts: &RunOptions,
+    engine: Engine,
+) -> Result<Summary, RunError> {
     let s = &run.series;
     let (intervals, open) = contact_intervals(&s.time, &s.alpha);
     let (kmax, fmax) = s
@@ -744,7 +779,7 @@ fn summarize(model: &Model, run: &RunResult, tripped: Option<GuardTrip>, opts: &
         }
     });
     let contact = model.contact.as_ref();
-    Summary {
+    Ok(Summary {
         schema_version: summary::SCHEMA_VERSION,
         impactlab_version: env!("CARGO_PKG_VERSION").to_string(),
         deck: model.name.clone(),
@@ -819,8 +854,8 @@ fn summarize(model: &Model, run: &RunResult, tripped: Option<GuardTrip>, opts: &
                 onset,
             })
         }),
-        failure: failure_summary(model, &run.history_columns, &run.history),
+        failure: failure_summary(model, &run.history_columns, &run.history)?,
         effects: None,
         contact_stiffness_source: None,
-    }
+    })
 }
