@@ -277,7 +277,9 @@ fn a_theory_without_its_allowables_is_refused() {
 /// them in double precision (1e-300 psi: HILL's σ²/X² overflows) end the run with exit
 /// 3 and a message naming the theory, element, ply and stresses, and nothing is
 /// written; the summary never carries a null where it promises a number (what it did
-/// before: `"largest": null`). With the glass/epoxy allowables the same run succeeds.
+/// before: `"largest": null`). A run the energy guard stops first keeps the guard's
+/// error and its partial outputs, without a failure summary. With the glass/epoxy
+/// allowables the same run succeeds.
 #[test]
 fn allowables_too_small_for_double_precision_end_the_run() {
     let dir = tempfile::tempdir().unwrap();
@@ -294,7 +296,8 @@ fn allowables_too_small_for_double_precision_end_the_run() {
         ]);
         (o, out)
     };
-    let (o, out) = run(",,,1.0-300,1.0-300,1.0-300,1.0-300,1.0-300");
+    let tiny = ",,,1.0-300,1.0-300,1.0-300,1.0-300,1.0-300";
+    let (o, out) = run(tiny);
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(3), "{stderr}");
     assert!(
@@ -303,6 +306,33 @@ fn allowables_too_small_for_double_precision_end_the_run() {
     );
     assert!(stderr.contains("its MAT8 allowables are too small"), "{stderr}");
     assert!(!out.exists());
+    // Stopped by the energy guard (1e-9) at step 1, a history row every step: the
+    // guard's error and its partial outputs stand, the row's index overflowing as well.
+    let path = pcomp_with_ft(dir.path(), "HILL", tiny);
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert!(text.contains("TSTEP, 1,2000, 1.0-7, 10\n"));
+    std::fs::write(
+        &path,
+        text.replace("TSTEP, 1,2000, 1.0-7, 10\n", "TSTEP, 1,2000, 1.0-7, 1\n"),
+    )
+    .unwrap();
+    let guarded = dir.path().join("guarded");
+    let o = impactlab(&[
+        "run",
+        path.to_str().unwrap(),
+        "--steps",
+        "20",
+        "--max-energy-error",
+        "1e-9",
+        "--out",
+        guarded.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(3), "{stderr}");
+    assert!(stderr.contains("energy guard: relative energy error"), "{stderr}");
+    let s: serde_json::Value = serde_json::from_slice(&std::fs::read(guarded.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(s["run"]["complete"], false);
+    assert!(s["failure"].is_null(), "{}", s["failure"]);
     let (o, out) = run(ALLOWABLES);
     assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
     let s: serde_json::Value = serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();

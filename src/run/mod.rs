@@ -854,7 +854,13 @@ fn summarize(
                 onset,
             })
         }),
-        failure: failure_summary(model, &run.history_columns, &run.history)?,
+        // A run the energy guard stopped keeps the guard's error and its outputs so far;
+        // an index its last rows cannot form (they may hold what tripped it) is left
+        // out of that incomplete summary rather than put in the guard's place.
+        failure: match failure_summary(model, &run.history_columns, &run.history) {
+            Err(_) if tripped.is_some() => None,
+            failure => failure?,
+        },
         effects: None,
         contact_stiffness_source: None,
     })
