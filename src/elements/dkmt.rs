@@ -39,7 +39,7 @@
 //!   stresses also (Qx, Qy) = Ds γ at the centroid.
 
 use super::shell::ShellSection;
-use super::tria3::{area, b_membrane, jacobian, to_xy, Xy, GAUSS};
+use super::tria3::{area, b_membrane, flat, jacobian, parts, to_xy, Xy, GAUSS};
 use super::{BadShape, Cell, Kernel, LocalMatrix, Recovered};
 use nalgebra::{DMatrix, Matrix2, Matrix3, SMatrix, Vector2, Vector3};
 
@@ -239,11 +239,7 @@ impl Dkmt {
     /// The element on three grids' coordinates: refused as the thin CTRIA3 refuses
     /// them.
     pub fn build(points: &[[f64; 3]], section: ShellSection) -> Result<Self, BadShape> {
-        let xy = super::flat_xy::<3>(points)?;
-        if jacobian(&xy).1 <= 0.0 {
-            return Err(BadShape("is degenerate or numbered clockwise (non-positive area)"));
-        }
-        Dkmt::new(xy, points[0][2], section)
+        Dkmt::new(flat(points)?, points[0][2], section)
     }
 
     /// Transverse shear forces (Qx, Qy) = Ds γ at the centroid.
@@ -273,12 +269,6 @@ fn dofs() -> Vec<(usize, usize)> {
     membrane.chain(plate).collect()
 }
 
-fn parts(ue: &[f64]) -> (SMatrix<f64, 6, 1>, SMatrix<f64, 9, 1>) {
-    let um = SMatrix::<f64, 6, 1>::from_fn(|k, _| ue[6 * (k / 2) + k % 2]);
-    let ub = SMatrix::<f64, 9, 1>::from_fn(|k, _| ue[6 * (k / 3) + 2 + k % 3]);
-    (um, ub)
-}
-
 impl Kernel for Dkmt {
     fn card(&self) -> &'static str {
         "CTRIA3"
@@ -294,9 +284,7 @@ impl Kernel for Dkmt {
     }
     fn mass(&self) -> Vec<LocalMatrix> {
         let m = self.section.mass_per_area * area(&self.xy) / 3.0;
-        vec![LocalMatrix::diagonal(
-            (0..3).flat_map(|g| (0..3).map(move |c| ((g, c), m))),
-        )]
+        vec![LocalMatrix::translational(&[m; 3])]
     }
     fn strain_energy(&self, ue: &[f64]) -> f64 {
         let (um, ub) = parts(ue);

@@ -25,7 +25,7 @@
 //!   stresses (a STRESS request) also the transverse shear forces (Qx, Qy) = Ds γ at
 //!   the centre, from the tied shear strains (constant-shear exact, O(h) in general).
 
-use super::quad4::{area, lumped_mass, membrane_stiffness, membrane_strain, min_jacobian, Xy};
+use super::quad4::{area, flat, lumped_mass, membrane_stiffness, membrane_strain, parts, Xy};
 use super::shell::ShellSection;
 use super::{BadShape, Cell, Kernel, LocalMatrix, Recovered};
 use nalgebra::{DMatrix, Matrix2, SMatrix, Vector2, Vector3};
@@ -163,13 +163,7 @@ impl Mitc4 {
     /// The element on four grids' coordinates (counter-clockwise): refused as the thin
     /// CQUAD4 refuses them.
     pub fn build(points: &[[f64; 3]], section: ShellSection) -> Result<Self, BadShape> {
-        let xy = super::flat_xy::<4>(points)?;
-        if min_jacobian(&xy) <= 0.0 {
-            return Err(BadShape(
-                "is degenerate, concave or numbered clockwise (non-positive Jacobian)",
-            ));
-        }
-        Ok(Mitc4::new(xy, points[0][2], section))
+        Ok(Mitc4::new(flat(points)?, points[0][2], section))
     }
 
     /// Transverse shear forces (Qx, Qy) = Ds γ at the element centre.
@@ -196,12 +190,6 @@ fn dofs() -> Vec<(usize, usize)> {
     membrane.chain(plate).collect()
 }
 
-fn parts(ue: &[f64]) -> (SMatrix<f64, 8, 1>, SMatrix<f64, 12, 1>) {
-    let um = SMatrix::<f64, 8, 1>::from_fn(|k, _| ue[6 * (k / 2) + k % 2]);
-    let ub = SMatrix::<f64, 12, 1>::from_fn(|k, _| ue[6 * (k / 3) + 2 + k % 3]);
-    (um, ub)
-}
-
 fn local_vector(ue: &[f64]) -> SMatrix<f64, 20, 1> {
     let (um, ub) = parts(ue);
     SMatrix::<f64, 20, 1>::from_fn(|k, _| if k < 8 { um[k] } else { ub[k - 8] })
@@ -222,9 +210,7 @@ impl Kernel for Mitc4 {
     }
     fn mass(&self) -> Vec<LocalMatrix> {
         let m = lumped_mass(&self.xy, self.section.mass_per_area);
-        vec![LocalMatrix::diagonal(
-            (0..4).flat_map(|g| (0..3).map(move |c| ((g, c), m[g]))),
-        )]
+        vec![LocalMatrix::translational(&m)]
     }
     fn strain_energy(&self, ue: &[f64]) -> f64 {
         let u = local_vector(ue);

@@ -48,6 +48,17 @@ impl LocalMatrix {
             values: DMatrix::from_diagonal(&nalgebra::DVector::from_vec(d)),
         }
     }
+
+    /// A lumped mass: `masses[g]` on each of grid g's three translations, none on its
+    /// rotations.
+    pub fn translational(masses: &[f64]) -> Self {
+        LocalMatrix::diagonal(
+            masses
+                .iter()
+                .enumerate()
+                .flat_map(|(g, &m)| (0..3).map(move |c| ((g, c), m))),
+        )
+    }
 }
 
 /// Stress or strain, or a shear-deformable shell's transverse shear force.

@@ -211,13 +211,7 @@ impl Quad4 {
     /// are not in a plane z = const, or the element is degenerate, concave or
     /// numbered clockwise.
     pub fn build(points: &[[f64; 3]], section: ShellSection) -> Result<Self, BadShape> {
-        let xy = super::flat_xy::<4>(points)?;
-        if min_jacobian(&xy) <= 0.0 {
-            return Err(BadShape(
-                "is degenerate, concave or numbered clockwise (non-positive Jacobian)",
-            ));
-        }
-        Ok(Quad4::new(xy, points[0][2], section))
+        Ok(Quad4::new(flat(points)?, points[0][2], section))
     }
 
     /// The element, its stiffness matrices computed once.
@@ -281,7 +275,21 @@ fn local<const N: usize>(at: Vec<(usize, usize)>, k: &SMatrix<f64, N, N>) -> Loc
     }
 }
 
-fn parts(ue: &[f64]) -> (SMatrix<f64, 8, 1>, SMatrix<f64, 12, 1>) {
+/// A quadrilateral's corners in its plane: refused when the grids are not in a plane
+/// z = const, or the element is degenerate, concave or numbered clockwise.
+pub(super) fn flat(points: &[[f64; 3]]) -> Result<Xy, BadShape> {
+    let xy = super::flat_xy::<4>(points)?;
+    if min_jacobian(&xy) <= 0.0 {
+        return Err(BadShape(
+            "is degenerate, concave or numbered clockwise (non-positive Jacobian)",
+        ));
+    }
+    Ok(xy)
+}
+
+/// The local displacements' membrane (u, v per corner) and plate (w, θx, θy per
+/// corner) parts.
+pub(super) fn parts(ue: &[f64]) -> (SMatrix<f64, 8, 1>, SMatrix<f64, 12, 1>) {
     let um = SMatrix::<f64, 8, 1>::from_fn(|k, _| ue[6 * (k / 2) + k % 2]);
     let ub = SMatrix::<f64, 12, 1>::from_fn(|k, _| ue[6 * (k / 3) + 2 + k % 3]);
     (um, ub)
@@ -318,9 +326,7 @@ impl Kernel for Quad4 {
     }
     fn mass(&self) -> Vec<LocalMatrix> {
         let m = lumped_mass(&self.xy, self.section.mass_per_area);
-        vec![LocalMatrix::diagonal(
-            (0..4).flat_map(|g| (0..3).map(move |c| ((g, c), m[g]))),
-        )]
+        vec![LocalMatrix::translational(&m)]
     }
     fn strain_energy(&self, ue: &[f64]) -> f64 {
         let (um, ub) = parts(ue);

@@ -130,9 +130,7 @@ impl Kernel for Rod {
     }
     fn mass(&self) -> Vec<LocalMatrix> {
         let m = lumped_mass(self.x[0], self.x[1], &self.section);
-        vec![LocalMatrix::diagonal(
-            (0..2).flat_map(|g| (0..3).map(move |c| ((g, c), m))),
-        )]
+        vec![LocalMatrix::translational(&[m; 2])]
     }
     fn strain_energy(&self, ue: &[f64]) -> f64 {
         strain_energy(self.x[0], self.x[1], &self.section, end(ue, 0), end(ue, 1))

@@ -156,12 +156,7 @@ impl Tria3 {
     /// z = const or not counter-clockwise (non-positive area). A section with
     /// transverse shear flexibility is the DKMT's ([`super::dkmt::ctria3`]).
     pub fn build(points: &[[f64; 3]], section: ShellSection) -> Result<Self, BadShape> {
-        let z = points[0][2];
-        let xy = super::flat_xy::<3>(points)?;
-        if jacobian(&xy).1 <= 0.0 {
-            return Err(BadShape("is degenerate or numbered clockwise (non-positive area)"));
-        }
-        Ok(Tria3::new(xy, z, section))
+        Ok(Tria3::new(flat(points)?, points[0][2], section))
     }
 
     /// Membrane strain (εx, εy, γxy).
@@ -183,7 +178,19 @@ fn bending_dofs() -> Vec<(usize, usize)> {
     (0..9).map(|k| (k / 3, 2 + k % 3)).collect()
 }
 
-fn parts(ue: &[f64]) -> (SMatrix<f64, 6, 1>, SMatrix<f64, 9, 1>) {
+/// A triangle's corners in its plane: refused when the grids are not in a plane
+/// z = const or not counter-clockwise (non-positive area).
+pub(super) fn flat(points: &[[f64; 3]]) -> Result<Xy, BadShape> {
+    let xy = super::flat_xy::<3>(points)?;
+    if jacobian(&xy).1 <= 0.0 {
+        return Err(BadShape("is degenerate or numbered clockwise (non-positive area)"));
+    }
+    Ok(xy)
+}
+
+/// The local displacements' membrane (u, v per corner) and plate (w, θx, θy per
+/// corner) parts.
+pub(super) fn parts(ue: &[f64]) -> (SMatrix<f64, 6, 1>, SMatrix<f64, 9, 1>) {
     let um = SMatrix::<f64, 6, 1>::from_fn(|k, _| ue[6 * (k / 2) + k % 2]);
     let ub = SMatrix::<f64, 9, 1>::from_fn(|k, _| ue[6 * (k / 3) + 2 + k % 3]);
     (um, ub)
@@ -225,9 +232,7 @@ impl Kernel for Tria3 {
     }
     fn mass(&self) -> Vec<LocalMatrix> {
         let m = self.section.mass_per_area * area(&self.xy) / 3.0;
-        vec![LocalMatrix::diagonal(
-            (0..3).flat_map(|g| (0..3).map(move |c| ((g, c), m))),
-        )]
+        vec![LocalMatrix::translational(&[m; 3])]
     }
     fn strain_energy(&self, ue: &[f64]) -> f64 {
         let (um, ub) = parts(ue);
