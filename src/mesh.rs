@@ -289,7 +289,7 @@ pub fn plate_deck_with(n: usize, edges: Edges, cells: Cells) -> Result<String, M
         "CONM2,200,999,0,8.096-5,0.0,0.0,0.0,,+CON2-2\n+CON2-2,7.459-6,,7.459-6,,,1.423-6"
     );
     m.write_grids_and_shells(w, PLATE_SIDE, cells);
-    let _ = writeln!(w, "PSHELL,1,101,0.15,201,1.0");
+    let _ = writeln!(w, "{PAPER_PSHELL}");
     let _ = writeln!(
         w,
         "MAT2,101,4.3E+06,2.9E+05,-1.7E-03,2.8E+06,-3.4E-02,5.7E+05,1.8E-04,+A101"
@@ -351,6 +351,10 @@ pub fn plate_model_with(n: usize, cells: Cells) -> Result<crate::model::Model, M
     )?)
 }
 
+/// The paper's PSHELL in the generated plate decks: T = 0.15 in, MID1 101 and MID2 201
+/// (its MAT2 cards), 12I/T³ = 1.
+pub const PAPER_PSHELL: &str = "PSHELL,1,101,0.15,201,1.0";
+
 /// The paper's plate made shear-deformable: PSHELL MID3 naming a MAT2 of the
 /// cross-ply's through-thickness average transverse shear moduli (∫C̄ dz / t of the
 /// plies' G1Z, G2Z in `reference-data/decks/plate-pcomp-shear.bdf`: G11 (xz) =
@@ -361,11 +365,11 @@ pub const MID3: &str = "MAT2,301,5.33+5,0.0,,4.96+5";
 /// A generated plate deck ([`plate_deck_with`] or a variant of it) made
 /// shear-deformable: its PSHELL names [`MID3`].
 pub fn with_mid3(text: &str) -> Result<String, MeshError> {
-    let pshell = "PSHELL,1,101,0.15,201,1.0\n";
-    if !text.contains(pshell) {
-        return Err(MeshError::NoPshell(pshell.trim().to_string()));
+    let pshell = format!("{PAPER_PSHELL}\n");
+    if !text.contains(&pshell) {
+        return Err(MeshError::NoPshell(PAPER_PSHELL.to_string()));
     }
-    Ok(text.replace(pshell, &format!("PSHELL,1,101,0.15,201,1.0,301\n{MID3}\n")))
+    Ok(text.replace(&pshell, &format!("{PAPER_PSHELL},301\n{MID3}\n")))
 }
 
 /// The paper's plate on an n×n mesh of `cells`, built from the generated deck with
@@ -401,28 +405,23 @@ pub fn navier_plate(
         "MAT2,1,{:?},{:?},{:?},{:?},{:?},{:?},{rho:?}",
         g[0], g[1], g[2], g[3], g[4], g[5]
     );
-    let (name, deck) = match shear {
+    let (name, cards, supports) = match shear {
         None => (
             "navier-plate",
-            square_plate_deck(
-                n,
-                side,
-                "3",
-                "126",
-                &format!("PSHELL,1,1,{thickness:?},1,1.0\n{material}"),
-            ),
+            format!("PSHELL,1,1,{thickness:?},1,1.0\n{material}"),
+            String::new(),
         ),
-        Some([k55, k44]) => {
-            let cards = format!(
+        Some([k55, k44]) => (
+            "mindlin-plate",
+            format!(
                 "PSHELL,1,1,{thickness:?},1,1.0,2,1.0\n{material}\nMAT2,2,{:?},0.0,,{:?}",
                 k55 / thickness,
                 k44 / thickness
-            );
-            let deck = square_plate_deck(n, side, "3", "126", &cards)
-                .replace("ENDDATA", &format!("{}ENDDATA", hard_supports(n)));
-            ("mindlin-plate", deck)
-        }
+            ),
+            hard_supports(n),
+        ),
     };
+    let deck = square_plate_deck(n, side, "3", "126", &cards).replace("ENDDATA", &format!("{supports}ENDDATA"));
     crate::model_from_text(&format!("{name}-{n}x{n}{}", cells.suffix()), &cells.cut(deck))
 }
 

@@ -324,7 +324,7 @@ fn a_laminate_on_the_generated_triangles_is_laid_up_as_on_the_quadrilaterals() {
     use impactlab::mesh::{plate_deck_with, Edges};
     let cross_ply = |cells: Cells| {
         let deck = plate_deck_with(9, Edges::Clamped, cells).unwrap().replace(
-            "PSHELL,1,101,0.15,201,1.0\n",
+            &format!("{}\n", impactlab::mesh::PAPER_PSHELL),
             &format!("{}\n", impactlab::study::mesh::CROSS_PLY),
         );
         impactlab::model_from_text("cross-ply", &deck).unwrap_or_else(|e| panic!("{e}"))
