@@ -297,7 +297,8 @@ mod tests {
     /// Goal: an unstressed ply's index is 0 in every theory however small its
     /// allowables (1e-300: X² underflows to 0, so σ²/X² would be 0/0), a stressed one's
     /// is never NaN, and scaling stresses and allowables together (by 1e-200, below
-    /// where X² underflows) leaves every index as it was.
+    /// where X² underflows) leaves every index as it was, to 1e-15 relative (the few
+    /// roundings of the ratios; scaling by a power of ten is not exact in binary).
     #[test]
     fn tiny_allowables_give_zero_at_zero_stress_and_no_nan() {
         let index = |theory: Theory, allowable: f64, s: Vector3<f64>| {
