@@ -12,6 +12,8 @@
 //!   cards (pure functions of geometry and section: they use no other module).
 //! - [`deck`]: input: NASTRAN decks to typed cards with source positions (element cards
 //!   by the elements' table).
+//! - [`geometry`]: coordinate systems (CORD1R … CORD2S through RID), each grid's basic
+//!   position and displacement frame, a shell's own frame: where frames are turned.
 //! - [`damage`]: damage onset: the delamination threshold load and the plies' failure
 //!   indices.
 //! - [`laminate`]: classical lamination theory: a PCOMP's plies to A, B, D.
@@ -37,6 +39,7 @@ pub mod numerics;
 pub mod plot;
 pub mod elements;
 pub mod deck;
+pub mod geometry;
 pub mod damage;
 pub mod laminate;
 pub mod model;

@@ -25,6 +25,33 @@ impl CardRef {
             .card(&self.name)
             .quote(&self.source)
     }
+
+    /// An error about one field of this card, pointing at it.
+    pub fn field_error(&self, f: &FieldRef, message: impl Into<String>) -> Diagnostic {
+        let d = Diagnostic::error(Some(f.pos.clone()), message)
+            .card(&self.name)
+            .field(f.number, f.name)
+            .quote(&self.source);
+        if f.token.is_empty() {
+            d
+        } else {
+            d.token(&f.token)
+        }
+    }
+}
+
+/// Where one field of a card was written, for messages raised after reading (a
+/// coordinate system that does not exist, three points on a line).
+#[derive(Debug, Clone)]
+pub struct FieldRef {
+    /// Where the field starts (the card's start when the field is absent).
+    pub pos: Pos,
+    /// NASTRAN field number on its line.
+    pub number: usize,
+    /// The field's name.
+    pub name: &'static str,
+    /// The field as written, trimmed; empty when blank.
+    pub token: String,
 }
 
 /// A set of DOF components 1-6 (bit i-1 for component i); empty for scalar points.
@@ -47,12 +74,19 @@ impl Components {
 pub struct Grid {
     /// Grid id (field 2).
     pub id: i64,
-    /// Coordinate system of the location, CP (field 3; only 0, the basic system).
-    pub cp: i64,
-    /// Location X1, X2, X3 (fields 4-6).
+    /// Coordinate system of the location, CP (field 3); `None` when blank (GRDSET's
+    /// applies), `Some(0)` for the basic system.
+    pub cp: Option<i64>,
+    /// Location X1, X2, X3 (fields 4-6), in system CP's coordinates: x, y, z
+    /// (rectangular), R, θ in degrees, z (cylindrical), R, θ, φ in degrees (spherical).
     pub x: [f64; 3],
-    /// Displacement coordinate system, CD (field 7; only 0).
-    pub cd: i64,
+    /// Displacement coordinate system, CD (field 7); `None` when blank (GRDSET's
+    /// applies). The grid's T1..R3 are along that system's axes at the grid.
+    pub cd: Option<i64>,
+    /// Where CP and CD were written.
+    pub cp_at: FieldRef,
+    /// See `cp_at`.
+    pub cd_at: FieldRef,
     /// Permanent single-point constraints, PS (field 8); `None` when blank (GRDSET applies).
     pub ps: Option<Components>,
     /// The card.
@@ -68,6 +102,57 @@ pub struct GrdSet {
     pub cd: i64,
     /// Default PS.
     pub ps: Components,
+    /// The card, when the deck has one.
+    pub at: Option<CardRef>,
+}
+
+/// The three kinds of coordinate system.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CoordKind {
+    /// x, y, z (CORD1R, CORD2R).
+    Rectangular,
+    /// R, θ (degrees), z (CORD1C, CORD2C).
+    Cylindrical,
+    /// R, θ (degrees from z), φ (degrees about z from x) (CORD1S, CORD2S).
+    Spherical,
+}
+
+/// How a coordinate system's origin and axes are given.
+#[derive(Debug, Clone)]
+pub enum CordDef {
+    /// CORD2R/C/S: origin A, a point B on the z axis, a point C in the xz-plane, in
+    /// the coordinates of system RID (0: basic).
+    Points {
+        /// RID.
+        rid: i64,
+        /// Where RID was written.
+        rid_at: FieldRef,
+        /// A, B, C.
+        abc: [[f64; 3]; 3],
+    },
+    /// CORD1R/C/S: the same three points as grids G1, G2, G3.
+    Grids {
+        /// G1, G2, G3.
+        g: [i64; 3],
+        /// Where each was written.
+        g_at: [FieldRef; 3],
+    },
+}
+
+/// A coordinate system card (CORD1R, CORD1C, CORD1S carry two each).
+#[derive(Debug, Clone)]
+pub struct Cord {
+    /// Its id CID.
+    pub cid: i64,
+    /// Rectangular, cylindrical or spherical.
+    pub kind: CoordKind,
+    /// Its definition.
+    pub def: CordDef,
+    /// Where C (CORD2x) or G3 (CORD1x) was written: the point that, on the line
+    /// through the other two, leaves the axes undefined.
+    pub third_at: FieldRef,
+    /// The card.
+    pub at: CardRef,
 }
 
 /// An element card of [`crate::elements::KINDS`] (CROD, CQUAD4, CTRIA3): the element
@@ -82,8 +167,23 @@ pub struct Connection {
     pub pid: i64,
     /// Grids G1..Gn (fields 4 on; a shell's corners counter-clockwise).
     pub g: Vec<i64>,
+    /// A shell's material orientation (THETA/MCID, after its grids).
+    pub orientation: Orientation,
+    /// Where THETA/MCID was written.
+    pub orientation_at: Option<FieldRef>,
     /// The card.
     pub at: CardRef,
+}
+
+/// A shell's material x axis, as NASTRAN's CQUAD4 and CTRIA3 give it in their
+/// THETA/MCID field: a real is THETA, an integer MCID.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Orientation {
+    /// THETA degrees from the G1→G2 side, counter-clockwise about the element's
+    /// normal (blank: 0.0).
+    Theta(f64),
+    /// The x axis of coordinate system MCID projected onto the element.
+    Mcid(i64),
 }
 
 /// PROD: rod properties.
@@ -361,6 +461,8 @@ pub struct Bulk {
     pub grids: Vec<Grid>,
     /// The GRDSET card, or its defaults.
     pub grdset: GrdSet,
+    /// Coordinate systems (CORD1R/C/S, CORD2R/C/S), in deck order.
+    pub cords: Vec<Cord>,
     /// EPOINT ids (extra points), each with its card.
     pub epoints: Vec<(i64, CardRef)>,
     /// SPOINT ids (scalar points), each with its card.
@@ -422,6 +524,20 @@ impl<'a> Reader<'a> {
 
     fn text(&self, k: usize) -> &'a str {
         self.card.text(k)
+    }
+
+    /// Where data field `k` was written (the card's start when it is absent).
+    fn field_ref(&self, k: usize, name: &'static str) -> FieldRef {
+        let (pos, number) = match self.card.field(k) {
+            Some(f) => (f.pos.clone(), f.number),
+            None => (self.card.pos.clone(), k % 8 + 2),
+        };
+        FieldRef {
+            pos,
+            number,
+            name,
+            token: self.text(k).to_string(),
+        }
     }
 
     fn fail(&mut self, k: usize, name: &str, message: impl Into<String>) {
@@ -652,9 +768,9 @@ impl<'a> Reader<'a> {
 
 /// Cards the reader knows. `PARAM` is accepted and ignored with a warning.
 /// Element cards are those of [`crate::elements::KINDS`] besides these.
-pub const KNOWN_CARDS: [&str; 19] = [
-    "GRID", "GRDSET", "EPOINT", "SPOINT", "PROD", "PSHELL", "PCOMP", "MAT1", "MAT2", "MAT8", "CONM2", "SPC1", "TF",
-    "TSTEP", "NOLIN3", "TIC", "PARAM", "INCLUDE", "ENDDATA",
+pub const KNOWN_CARDS: [&str; 25] = [
+    "GRID", "GRDSET", "CORD1R", "CORD1C", "CORD1S", "CORD2R", "CORD2C", "CORD2S", "EPOINT", "SPOINT", "PROD", "PSHELL",
+    "PCOMP", "MAT1", "MAT2", "MAT8", "CONM2", "SPC1", "TF", "TSTEP", "NOLIN3", "TIC", "PARAM", "INCLUDE", "ENDDATA",
 ];
 
 /// Every card the reader types: the element cards of [`crate::elements::KINDS`], then
@@ -677,6 +793,8 @@ pub fn type_cards(raw: &[RawCard], ids_left: &mut usize, diags: &mut Diagnostics
         match card.name.as_str() {
             "GRID" => card_grid(&mut r, &mut b),
             "GRDSET" => card_grdset(&mut r, &mut b),
+            "CORD1R" | "CORD1C" | "CORD1S" => card_cord1(&mut r, &mut b),
+            "CORD2R" | "CORD2C" | "CORD2S" => card_cord2(&mut r, &mut b),
             "EPOINT" | "SPOINT" => card_points(&mut r, &mut b, card),
             "PROD" => card_prod(&mut r, &mut b),
             "PSHELL" => card_pshell(&mut r, &mut b),
@@ -706,15 +824,24 @@ pub fn type_cards(raw: &[RawCard], ids_left: &mut usize, diags: &mut Diagnostics
 
 /// GRID.
 fn card_grid(r: &mut Reader, b: &mut Bulk) {
+    let cp = r.int_opt(1, "CP");
+    let cd = r.int_opt(5, "CD");
+    for (k, name, v) in [(1, "CP", cp), (5, "CD", cd)] {
+        if v.is_some_and(|v| v < 0) {
+            r.fail(k, name, "must be 0 (basic) or a coordinate system id");
+        }
+    }
     let g = Grid {
         id: r.id(0, "ID"),
-        cp: r.int_or(1, "CP", 0),
+        cp,
         x: [
             r.real_or(2, "X1", 0.0),
             r.real_or(3, "X2", 0.0),
             r.real_or(4, "X3", 0.0),
         ],
-        cd: r.int_or(5, "CD", 0),
+        cd,
+        cp_at: r.field_ref(1, "CP"),
+        cd_at: r.field_ref(5, "CD"),
         ps: if r.text(6).is_empty() {
             None
         } else {
@@ -734,8 +861,85 @@ fn card_grdset(r: &mut Reader, b: &mut Bulk) {
         cp: r.int_or(1, "CP", 0),
         cd: r.int_or(5, "CD", 0),
         ps: r.components(6, "PS"),
+        at: Some(r.at()),
     };
+    for (k, name, v) in [(1, "CP", b.grdset.cp), (5, "CD", b.grdset.cd)] {
+        if v < 0 {
+            r.fail(k, name, "must be 0 (basic) or a coordinate system id");
+        }
+    }
     r.extra_fields(8);
+}
+
+/// The kind of a CORDnx card from its last letter.
+fn coord_kind(name: &str) -> CoordKind {
+    match name.as_bytes().last() {
+        Some(b'C') => CoordKind::Cylindrical,
+        Some(b'S') => CoordKind::Spherical,
+        _ => CoordKind::Rectangular,
+    }
+}
+
+/// CORD1R, CORD1C, CORD1S: CIDA G1A G2A G3A CIDB G1B G2B G3B, one or two systems,
+/// each from three distinct grids.
+fn card_cord1(r: &mut Reader, b: &mut Bulk) {
+    let kind = coord_kind(&r.card.name);
+    for (half, names) in [(0, ["CIDA", "G1A", "G2A", "G3A"]), (4, ["CIDB", "G1B", "G2B", "G3B"])] {
+        if half == 4 && (4..8).all(|k| r.text(k).is_empty()) {
+            break;
+        }
+        let cid = r.id(half, names[0]);
+        let g = [1, 2, 3].map(|i| r.id(half + i, names[i]));
+        if r.ok && (g[0] == g[1] || g[1] == g[2] || g[0] == g[2]) {
+            r.fail(half + 1, names[1], "G1, G2 and G3 must be three distinct grids");
+        }
+        let g_at = [1, 2, 3].map(|i| r.field_ref(half + i, names[i]));
+        if r.ok {
+            b.cords.push(Cord {
+                cid,
+                kind,
+                third_at: g_at[2].clone(),
+                def: CordDef::Grids { g, g_at },
+                at: r.at(),
+            });
+        }
+    }
+    r.extra_fields(8);
+}
+
+/// CORD2R, CORD2C, CORD2S: CID RID A1 A2 A3 B1 B2 B3 / C1 C2 C3.
+fn card_cord2(r: &mut Reader, b: &mut Bulk) {
+    let kind = coord_kind(&r.card.name);
+    let cid = r.id(0, "CID");
+    let rid = r.int_or(1, "RID", 0);
+    if rid < 0 {
+        r.fail(1, "RID", "must be 0 (basic) or a coordinate system id");
+    }
+    if r.ok && rid == cid {
+        r.fail(1, "RID", format!("system {cid} cannot be defined in itself"));
+    }
+    const NAMES: [&str; 9] = ["A1", "A2", "A3", "B1", "B2", "B3", "C1", "C2", "C3"];
+    let mut v = [0.0; 9];
+    for (i, name) in NAMES.iter().enumerate() {
+        // A1..B3 are fields 4-9 of the first line, C1..C3 fields 2-4 of the second.
+        let k = if i < 6 { 2 + i } else { 8 + i - 6 };
+        v[i] = r.real_or(k, name, 0.0);
+    }
+    r.extra_fields(11);
+    let c = Cord {
+        cid,
+        kind,
+        def: CordDef::Points {
+            rid,
+            rid_at: r.field_ref(1, "RID"),
+            abc: [[v[0], v[1], v[2]], [v[3], v[4], v[5]], [v[6], v[7], v[8]]],
+        },
+        third_at: r.field_ref(8, "C1"),
+        at: r.at(),
+    };
+    if r.ok {
+        b.cords.push(c);
+    }
 }
 
 /// EPOINT or SPOINT.
@@ -753,33 +957,41 @@ fn card_points(r: &mut Reader, b: &mut Bulk, card: &RawCard) {
 }
 
 /// An element card of the kinds' table: EID, PID (blank: EID), G1..Gn; a shell's
-/// THETA/MCID and ZOFFS after its grids must be blank or zero.
+/// THETA/MCID after its grids (a real: THETA in degrees, an integer: MCID), and its
+/// ZOFFS, which must be blank or zero.
 fn card_element(r: &mut Reader, b: &mut Bulk, kind: &'static crate::elements::Kind) {
     let n = kind.grids;
-    let c = Connection {
+    let shell = matches!(kind.build, crate::elements::Build::Shell(_));
+    let mut c = Connection {
         kind,
         eid: r.id(0, "EID"),
         pid: r.int_or(1, "PID", 0),
         g: (0..n).map(|k| r.id(2 + k, &format!("G{}", k + 1))).collect(),
+        orientation: Orientation::Theta(0.0),
+        orientation_at: shell.then(|| r.field_ref(2 + n, "THETA/MCID")),
         at: r.at(),
     };
     let pid = if r.text(1).is_empty() { c.eid } else { c.pid };
-    let shell = matches!(kind.build, crate::elements::Build::Shell(_));
     if shell {
-        let theta = r.real_or(2 + n, "THETA/MCID", 0.0);
-        if theta != 0.0 {
-            r.fail(
-                2 + n,
-                "THETA/MCID",
-                "a material orientation is not supported (must be blank or 0.0)",
-            );
-        }
+        let t = r.text(2 + n);
+        c.orientation = match parse_real(t) {
+            _ if t.is_empty() => Orientation::Theta(0.0),
+            Some(RealToken::Integer(_)) => {
+                let mcid = r.int(2 + n, "THETA/MCID");
+                if mcid < 0 {
+                    r.fail(2 + n, "THETA/MCID", "MCID must be 0 (basic) or a coordinate system id");
+                }
+                Orientation::Mcid(mcid)
+            }
+            _ => Orientation::Theta(r.real_or(2 + n, "THETA/MCID", 0.0)),
+        };
         let zoffs = r.real_or(3 + n, "ZOFFS", 0.0);
         if zoffs != 0.0 {
             r.fail(
                 3 + n,
                 "ZOFFS",
-                "an offset plate is not supported (must be blank or 0.0)",
+                "an offset shell (its reference plane off its grids) is not supported yet: it comes with \
+                 the beams and offsets of stiffened panels; leave ZOFFS blank or 0.0",
             );
         }
     }

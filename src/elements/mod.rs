@@ -15,6 +15,7 @@
 //! kind is a kernel file here and a line there.
 
 pub mod dkmt;
+pub mod drill;
 pub mod mass;
 pub mod mitc4;
 pub mod quad4;
@@ -22,9 +23,10 @@ pub mod rod;
 pub mod shell;
 pub mod tria3;
 
-use nalgebra::DMatrix;
+use nalgebra::{DMatrix, Matrix3, Matrix6};
 use std::any::Any;
 use std::fmt;
+use std::sync::Arc;
 
 /// The most grids an element has (CQUAD4).
 pub const MAX_GRIDS: usize = 4;
@@ -292,6 +294,9 @@ pub enum Family<'a> {
         /// Its mass.
         mass: f64,
     },
+    /// A support the model adds (a grid's drilling spring, [`drill::Drill`]): no
+    /// mass, no recovered values, not drawn.
+    Support,
 }
 
 impl<'a> Family<'a> {
@@ -327,6 +332,48 @@ impl<K: Kernel + Clone> BoxedKernel for K {
     }
 }
 
+/// Where an element stands when its kernel's own axes are not its grids'
+/// displacement frames: a shell out of the basic XY plane (its kernel works in the
+/// element's plane), or any element on a grid whose CD is not the basic system.
+///
+/// For each grid, `turn` takes the grid's T1..R3 (in its displacement frame) to the
+/// kernel's six local DOFs at that corner:
+/// `[u; θ]_local = [Rᵀ  −Rᵀ[d]×; 0  Rᵀ] · blockdiag(T, T) · [u; θ]_grid`, R the
+/// element's axes and T the grid's frame (both as columns of basic components), d the
+/// rigid offset from the grid to the kernel's corner (a warped quadrilateral's corner
+/// projected onto its mean plane; zero otherwise). Stiffness and mass turn as
+/// `Λᵀ K Λ`, displacements as `Λ u`: strain energy and recovered values are the
+/// kernel's own of the turned displacements.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Placement {
+    /// Grid DOFs → local DOFs, one 6×6 matrix per grid.
+    pub turn: Vec<Matrix6<f64>>,
+    /// The grids' basic positions.
+    pub points: Vec<[f64; 3]>,
+}
+
+impl Placement {
+    /// The turn of one grid: element axes `r` (columns, basic), the grid's frame `t`
+    /// (columns, basic) and the offset `d` (basic) from the grid to the corner.
+    pub fn turn_of(r: &Matrix3<f64>, t: &Matrix3<f64>, d: [f64; 3]) -> Matrix6<f64> {
+        let rt = r.transpose() * t;
+        let d = nalgebra::Vector3::from(d);
+        let mut m = Matrix6::zeros();
+        m.fixed_view_mut::<3, 3>(0, 0).copy_from(&rt);
+        m.fixed_view_mut::<3, 3>(3, 3).copy_from(&rt);
+        if d != nalgebra::Vector3::zeros() {
+            m.fixed_view_mut::<3, 3>(0, 3)
+                .copy_from(&(-(r.transpose() * d.cross_matrix() * t)));
+        }
+        m
+    }
+
+    /// True when grid `g`'s turn has no offset: its translations only rotate.
+    fn rotates_only(&self, g: usize) -> bool {
+        self.turn[g].fixed_view::<3, 3>(0, 3).iter().all(|&v| v == 0.0)
+    }
+}
+
 /// An element of the model: its kernel, id, grids and the solved DOF index of T1..R3
 /// at each grid (`None` where constrained or not solved).
 #[derive(Debug)]
@@ -339,6 +386,10 @@ pub struct Element {
     pub dofs: Vec<[Option<usize>; 6]>,
     /// What the element computes.
     pub kernel: Box<dyn BoxedKernel>,
+    /// How its kernel's local DOFs are formed from its grids'; `None` when they are
+    /// the same (a shell in the basic XY plane, numbered counter-clockwise about +z,
+    /// on grids displaced in the basic system; any rod or mass on such grids).
+    pub placement: Option<Arc<Placement>>,
 }
 
 impl Clone for Element {
@@ -348,6 +399,7 @@ impl Clone for Element {
             grids: self.grids.clone(),
             dofs: self.dofs.clone(),
             kernel: self.kernel.clone_box(),
+            placement: self.placement.clone(),
         }
     }
 }
@@ -367,6 +419,22 @@ impl Element {
             grids,
             dofs,
             kernel,
+            placement: None,
+        }
+    }
+
+    /// The element placed (see [`Placement`]).
+    pub fn placed(mut self, placement: Placement) -> Self {
+        debug_assert_eq!(placement.turn.len(), self.grids.len());
+        self.placement = Some(Arc::new(placement));
+        self
+    }
+
+    /// The basic coordinates of the element's grids, in its grid order.
+    pub fn points(&self) -> Vec<[f64; 3]> {
+        match &self.placement {
+            Some(p) => p.points.clone(),
+            None => self.kernel.points(),
         }
     }
 
@@ -380,7 +448,8 @@ impl Element {
         self.kernel.as_any_mut().downcast_mut()
     }
 
-    /// The element's local displacements (6 per grid; 0 where not solved).
+    /// The element's local displacements (6 per grid; 0 where not solved), turned to
+    /// its kernel's axes when it is placed.
     fn gather(&self, u: &[f64]) -> ([f64; 6 * MAX_GRIDS], usize) {
         let mut ue = [0.0; 6 * MAX_GRIDS];
         for (g, d) in self.dofs.iter().enumerate() {
@@ -390,18 +459,83 @@ impl Element {
                 }
             }
         }
+        if let Some(p) = &self.placement {
+            for (g, t) in p.turn.iter().enumerate() {
+                let ug = nalgebra::Vector6::from_column_slice(&ue[6 * g..6 * g + 6]);
+                ue[6 * g..6 * g + 6].copy_from_slice((t * ug).as_slice());
+            }
+        }
         (ue, 6 * self.dofs.len())
     }
 
     /// Adds the element's stiffness and mass to global triplet lists (solved DOFs
     /// only; exact zeros skipped).
     pub fn scatter(&self, k: &mut Vec<(usize, usize, f64)>, m: &mut Vec<(usize, usize, f64)>) {
-        for l in self.kernel.stiffness() {
+        for l in self.stiffness() {
             self.scatter_one(&l, k);
         }
-        for l in self.kernel.mass() {
+        for l in self.mass() {
             self.scatter_one(&l, m);
         }
+    }
+
+    /// The element's stiffness matrices over its grids' DOFs.
+    pub fn stiffness(&self) -> Vec<LocalMatrix> {
+        self.turned(self.kernel.stiffness())
+    }
+
+    /// The element's mass matrices over its grids' DOFs.
+    pub fn mass(&self) -> Vec<LocalMatrix> {
+        self.turned(self.kernel.mass())
+    }
+
+    /// The kernel's matrices as they act on the grids' DOFs: unchanged when the element
+    /// is not placed, `Λᵀ K Λ` over all of its grids' DOFs when it is. A grid's block
+    /// that is m·I on its translations alone (a lumped mass) is kept exactly m·I when
+    /// its turn only rotates: RᵀmIR = mI, which round-off would otherwise smear onto
+    /// the other translations.
+    fn turned(&self, local: Vec<LocalMatrix>) -> Vec<LocalMatrix> {
+        let Some(p) = &self.placement else { return local };
+        let n = 6 * self.grids.len();
+        let at: Vec<(usize, usize)> = (0..n).map(|k| (k / 6, k % 6)).collect();
+        let mut lambda = DMatrix::zeros(n, n);
+        for (g, t) in p.turn.iter().enumerate() {
+            lambda.view_mut((6 * g, 6 * g), (6, 6)).copy_from(t);
+        }
+        local
+            .into_iter()
+            .map(|l| {
+                let mut full = DMatrix::zeros(n, n);
+                for (a, &(ga, ca)) in l.at.iter().enumerate() {
+                    for (b, &(gb, cb)) in l.at.iter().enumerate() {
+                        full[(6 * ga + ca, 6 * gb + cb)] += l.values[(a, b)];
+                    }
+                }
+                let mut values = lambda.transpose() * &full * &lambda;
+                for g in 0..self.grids.len() {
+                    let r = 6 * g;
+                    let m = full[(r, r)];
+                    let isotropic = (0..n).all(|j| {
+                        (0..6).all(|c| {
+                            let v = full[(r + c, j)];
+                            if j == r + c && c < 3 {
+                                v == m
+                            } else {
+                                v == 0.0
+                            }
+                        })
+                    });
+                    if isotropic && p.rotates_only(g) {
+                        values.view_mut((r, 0), (6, n)).fill(0.0);
+                        values.view_mut((0, r), (n, 6)).fill(0.0);
+                        for c in 0..3 {
+                            values[(r + c, r + c)] = m;
+                        }
+                    }
+                }
+                LocalMatrix { at: at.clone(), values }
+            })
+            .collect()
     }
 
     fn scatter_one(&self, l: &LocalMatrix, out: &mut Vec<(usize, usize, f64)>) {

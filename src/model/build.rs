@@ -2,10 +2,12 @@
 
 use super::*;
 use crate::deck::cards::Connection;
+use crate::deck::cards::Orientation;
 use crate::deck::case::{OutputSet, Selection};
 use crate::deck::{Deck, Diagnostic};
-use crate::elements::{mass::PointMass, rod::RodSection, BadShape, Build, Family};
-use nalgebra::{Matrix2, Matrix3};
+use crate::elements::{drill::Drill, mass::PointMass, rod::RodSection, BadShape, Build, Family, Placement};
+use crate::geometry::{FrameError, Geometry};
+use nalgebra::{Matrix2, Matrix3, Vector3};
 use std::collections::{BTreeMap, HashMap};
 
 /// Building the model failed: every problem found, each tied to its card.
@@ -180,11 +182,15 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
     let mut cx = Ctx::default();
     let case = &deck.case;
     let sel = select_cards(&mut cx, deck);
+    let (geo, geo_errors) = crate::geometry::resolve(&deck.bulk);
+    for d in geo_errors {
+        cx.err(d);
+    }
     let constrained = constrained_grids(&mut cx, deck, &sel);
     let tf_of = transfer_functions(&mut cx, &sel, deck);
     let num = number_dofs(deck, &constrained, &tf_of);
     let dependent = dependent_points(&mut cx, &tf_of, &num);
-    let elements = build_elements(&mut cx, deck, &num);
+    let elements = build_elements(&mut cx, deck, &num, &geo);
     let time = time_control(&sel);
     let (u0, v0) = initial_conditions(&mut cx, &sel, &dependent, &num);
     let refs = ContactRefs {
@@ -291,18 +297,11 @@ fn transfer_functions<'d>(cx: &mut Ctx, sel: &Selected<'d>, deck: &Deck) -> BTre
     tf_of
 }
 
-/// The grids (basic coordinate system only) and their constrained components (PS,
-/// GRDSET and the selected SPC1s).
+/// The grids and their constrained components (PS, GRDSET and the selected SPC1s),
+/// each in the grid's displacement frame.
 fn constrained_grids(cx: &mut Ctx, deck: &Deck, sel: &Selected) -> HashMap<i64, u8> {
     let b = &deck.bulk;
     let spcs = &sel.spcs;
-    for g in &b.grids {
-        let cp = if g.cp != 0 { g.cp } else { b.grdset.cp };
-        let cd = if g.cd != 0 { g.cd } else { b.grdset.cd };
-        if cp != 0 || cd != 0 {
-            cx.err(g.at.error("only the basic coordinate system is supported (CP and CD blank or 0)"));
-        }
-    }
     let scalar = scalar_points(deck);
     let mut constrained: HashMap<i64, u8> = HashMap::new();
     for g in &b.grids {
@@ -397,21 +396,94 @@ fn dependent_points(cx: &mut Ctx, tf_of: &BTreeMap<i64, &crate::deck::cards::Tf>
     }
 }
 
-/// The element cards and CONM2s with their materials and sections resolved.
-fn build_elements(cx: &mut Ctx, deck: &Deck, num: &Numbering) -> Elements {
+/// The element cards and CONM2s with their materials and sections resolved, then
+/// the drilling supports their grids need.
+fn build_elements(cx: &mut Ctx, deck: &Deck, num: &Numbering, geo: &Geometry) -> Elements {
     let mut out = Elements {
         list: Vec::new(),
         on_element: HashMap::new(),
         plies: HashMap::new(),
     };
-    connected(cx, deck, num, &mut out);
-    point_masses(cx, deck, num, &mut out);
+    connected(cx, deck, num, geo, &mut out);
+    point_masses(cx, deck, num, geo, &mut out);
+    drilling_supports(num, geo, &mut out);
     out
 }
 
+/// A placement for an element whose kernel works in the basic axes (a rod, a mass, a
+/// shell in the basic XY plane), needed only when one of its grids is displaced in
+/// another frame.
+fn frames_only(grids: &[i64], geo: &Geometry, points: &[[f64; 3]]) -> Option<Placement> {
+    grids.iter().any(|g| geo.frames.contains_key(g)).then(|| Placement {
+        turn: grids
+            .iter()
+            .map(|&g| Placement::turn_of(&Matrix3::identity(), &geo.frame(g), [0.0; 3]))
+            .collect(),
+        points: points.to_vec(),
+    })
+}
+
+/// True when a shell's corners lie in one plane z = const of the basic system (within
+/// 1e-9 relative) and run counter-clockwise about +z: its kernel then works in the
+/// basic axes themselves, as it always has for the paper's plate.
+fn in_basic_xy(points: &[[f64; 3]]) -> bool {
+    let z = points[0][2];
+    if points.iter().any(|p| (p[2] - z).abs() > 1e-9 * (1.0 + z.abs())) {
+        return false;
+    }
+    let n = points.len();
+    let twice_area: f64 = (0..n)
+        .map(|i| {
+            let (a, b) = (points[i], points[(i + 1) % n]);
+            a[0] * b[1] - b[0] * a[1]
+        })
+        .sum();
+    twice_area > 0.0
+}
+
+/// Every grid that a shell out of the basic XY plane touches, whose rotations some
+/// direction of no shell stiffens, gets a [`Drill`] spring along that direction.
+fn drilling_supports(num: &Numbering, geo: &Geometry, out: &mut Elements) {
+    let mut placed: std::collections::BTreeSet<i64> = std::collections::BTreeSet::new();
+    for e in out
+        .list
+        .iter()
+        .filter(|e| e.kernel.family().shell().is_some() && e.placement.is_some())
+    {
+        placed.extend(e.grids.iter().copied());
+    }
+    if placed.is_empty() {
+        return;
+    }
+    let mut blocks: BTreeMap<i64, Matrix3<f64>> = placed.iter().map(|&g| (g, Matrix3::zeros())).collect();
+    for e in out.list.iter().filter(|e| e.kernel.family().shell().is_some()) {
+        if !e.grids.iter().any(|g| placed.contains(g)) {
+            continue;
+        }
+        for l in e.stiffness() {
+            for (a, &(ga, ca)) in l.at.iter().enumerate() {
+                for (b, &(gb, cb)) in l.at.iter().enumerate() {
+                    if ga == gb && ca >= 3 && cb >= 3 {
+                        if let Some(k) = blocks.get_mut(&e.grids[ga]) {
+                            k[(ca - 3, cb - 3)] += l.values[(a, b)];
+                        }
+                    }
+                }
+            }
+        }
+    }
+    for (g, k) in blocks {
+        let x = geo.positions.get(&g).copied().unwrap_or_default();
+        if let Some(d) = Drill::for_rotations(x, &k) {
+            out.list.push(Element::new(0, vec![g], vec![num.grid_dofs(g)], d));
+        }
+    }
+}
+
 /// The element cards of [`crate::elements::KINDS`], kind by kind in the table's
-/// order and each in deck order, with their properties and materials resolved.
-fn connected(cx: &mut Ctx, deck: &Deck, num: &Numbering, out: &mut Elements) {
+/// order and each in deck order, with their properties and materials resolved and
+/// their frames (see [`Placement`]).
+fn connected(cx: &mut Ctx, deck: &Deck, num: &Numbering, geo: &Geometry, out: &mut Elements) {
     let b = &deck.bulk;
     let mut props = Properties::new(cx, b);
     for kind in &crate::elements::KINDS {
@@ -419,9 +491,11 @@ fn connected(cx: &mut Ctx, deck: &Deck, num: &Numbering, out: &mut Elements) {
             let mut ok = true;
             let mut xyz = Vec::with_capacity(c.g.len());
             for g in &c.g {
-                match num.grids.get(g) {
-                    Some(gr) => xyz.push(gr.x),
-                    None => {
+                match (num.grids.get(g), geo.positions.get(g)) {
+                    (Some(_), Some(x)) => xyz.push(*x),
+                    // A grid whose position did not resolve: its error is reported.
+                    (Some(_), None) => ok = false,
+                    (None, _) => {
                         cx.err(c.at.error(format!(
                             "{} {} references grid {g}, which does not exist",
                             kind.card, c.eid
@@ -431,24 +505,25 @@ fn connected(cx: &mut Ctx, deck: &Deck, num: &Numbering, out: &mut Elements) {
                 }
             }
             let mut plies = None;
-            let kernel = match kind.build {
+            let (kernel, placement) = match kind.build {
                 Build::Rod(build) => {
                     let Some(section) = props.rod(cx, c) else { continue };
                     if !ok {
                         continue;
                     }
-                    build(&xyz, section)
+                    (build(&xyz, section), frames_only(&c.g, geo, &xyz))
                 }
                 Build::Shell(build) => {
-                    // A laminate's stiffness in the basic axes depends on the element's
-                    // material x axis: the G1→G2 side, this many degrees counter-clockwise
-                    // from basic x.
-                    let axes = ok.then(|| (xyz[1][1] - xyz[0][1]).atan2(xyz[1][0] - xyz[0][0]).to_degrees());
-                    let (Some((section, layers)), true) = (props.shell(cx, c, axes), ok) else {
+                    let Some(placed) = ok.then(|| place_shell(cx, c, &xyz, geo)).flatten() else {
+                        // The section is still resolved, so that its errors are reported.
+                        props.shell(cx, c, None);
+                        continue;
+                    };
+                    let Some((section, layers)) = props.shell(cx, c, Some(placed.material_angle)) else {
                         continue;
                     };
                     plies = layers;
-                    build(&xyz, section)
+                    (build(&placed.corners, section), placed.placement)
                 }
             };
             let kernel = match kernel {
@@ -465,9 +540,110 @@ fn connected(cx: &mut Ctx, deck: &Deck, num: &Numbering, out: &mut Elements) {
             if let Some(layers) = plies {
                 out.plies.insert(out.list.len(), layers);
             }
-            out.list.push(Element::boxed(c.eid, c.g.clone(), dofs, kernel));
+            let e = Element::boxed(c.eid, c.g.clone(), dofs, kernel);
+            out.list.push(match placement {
+                Some(p) => e.placed(p),
+                None => e,
+            });
         }
     }
+}
+
+/// Where a shell's kernel works and how its material axes lie.
+struct PlacedShell {
+    /// The corners as its kernel takes them.
+    corners: Vec<[f64; 3]>,
+    /// How its kernel's DOFs come from its grids' (`None`: they are the same).
+    placement: Option<Placement>,
+    /// The material x axis, degrees counter-clockwise from the kernel's x axis.
+    material_angle: f64,
+}
+
+/// A shell's frame and material axis: in the basic XY plane (counter-clockwise about
+/// +z) its kernel works in the basic axes, as for the paper's plate; anywhere else in
+/// its own frame ([`crate::geometry::shell_frame`]). The material x axis is the G1→G2
+/// side turned by THETA, or the x axis of system MCID projected onto the element.
+fn place_shell(cx: &mut Ctx, c: &Connection, xyz: &[[f64; 3]], geo: &Geometry) -> Option<PlacedShell> {
+    let (frame, corners, placement) = if in_basic_xy(xyz) {
+        (Matrix3::identity(), xyz.to_vec(), frames_only(&c.g, geo, xyz))
+    } else {
+        let f = match crate::geometry::shell_frame(xyz) {
+            Ok(f) => f,
+            Err(FrameError::Degenerate) => {
+                cx.err(c.at.error(format!(
+                    "{} {} is degenerate: its corners lie on one line or coincide",
+                    c.kind.card, c.eid
+                )));
+                return None;
+            }
+            Err(FrameError::Warped(w)) => {
+                cx.err(c.at.error(format!(
+                    "{} {} is warped: its corners stand {w:.3} of its half mean diagonal off its mean plane, \
+                     beyond the {} a flat element projected onto that plane is taken to stand for",
+                    c.kind.card,
+                    c.eid,
+                    crate::geometry::MAX_WARP
+                )));
+                return None;
+            }
+        };
+        let turn =
+            c.g.iter()
+                .zip(&f.offsets)
+                .map(|(&g, &d)| Placement::turn_of(&f.axes, &geo.frame(g), d))
+                .collect();
+        let placement = Placement {
+            turn,
+            points: xyz.to_vec(),
+        };
+        (f.axes, f.local, Some(placement))
+    };
+    let side = Vector3::from(corners[1]) - Vector3::from(corners[0]);
+    let g1g2 = if frame == Matrix3::identity() {
+        side.y.atan2(side.x).to_degrees()
+    } else {
+        0.0
+    };
+    let material_angle = match c.orientation {
+        Orientation::Theta(theta) => g1g2 + theta,
+        Orientation::Mcid(mcid) => {
+            let at = c
+                .orientation_at
+                .as_ref()
+                .expect("a shell's card keeps its THETA/MCID field");
+            let Some(sys) = geo.systems.get(&mcid) else {
+                cx.err(c.at.field_error(
+                    at,
+                    format!(
+                        "{} {}: MCID = {mcid} names a coordinate system that no CORD card defines",
+                        c.kind.card, c.eid
+                    ),
+                ));
+                return None;
+            };
+            let centroid = xyz.iter().map(|&p| Vector3::from(p)).sum::<Vector3<f64>>() / xyz.len() as f64;
+            let x_axis = sys.frame_at(&centroid).map(|f| f.column(0).into_owned());
+            match x_axis.and_then(|x| crate::geometry::angle_in_plane(&frame, &x)) {
+                Some(a) => a,
+                None => {
+                    cx.err(c.at.field_error(
+                        at,
+                        format!(
+                            "{} {}: the x axis of system {mcid} at the element is along its normal (or undefined \
+                             there), so its projection gives no material axis",
+                            c.kind.card, c.eid
+                        ),
+                    ));
+                    return None;
+                }
+            }
+        }
+    };
+    Some(PlacedShell {
+        corners,
+        placement,
+        material_angle,
+    })
 }
 
 /// The property and material cards, resolved once per property (a laminate once per
@@ -526,8 +702,8 @@ impl<'d> Properties<'d> {
     }
 
     /// A shell's PSHELL or PCOMP with its materials, and a laminate's plies; `axes`
-    /// the material x axis (degrees from basic x), `None` when the element's grids
-    /// are not all known (a laminate is then not resolved).
+    /// the material x axis (degrees from the element kernel's x axis), `None` when the
+    /// element's grids are not all known (a laminate is then not resolved).
     fn shell(&mut self, cx: &mut Ctx, c: &Connection, axes: Option<f64>) -> Option<(ShellSection, Option<PlyStack>)> {
         let b = self.bulk;
         match (self.shells.get(&c.pid), self.pcomp.get(&c.pid)) {
@@ -540,42 +716,82 @@ impl<'d> Properties<'d> {
                     .clone();
                 lam.map(|(section, layers)| (section, Some(layers)))
             }
-            (Some(s), _) => s.clone().map(|s| (s, None)),
-            (None, _) => {
-                let s = match self.pshell.get(&c.pid) {
-                    Some(p) => shell_section(cx, p, &self.mat1, &b.mat2s),
+            (cached, _) => {
+                let s = match cached {
+                    Some(s) => s.clone(),
                     None => {
-                        cx.err(c.at.error(format!(
-                            "{} {} references property {} (PSHELL or PCOMP), which does not exist",
-                            c.kind.card, c.eid, c.pid
-                        )));
-                        None
+                        let s = match self.pshell.get(&c.pid) {
+                            Some(p) => shell_section(cx, p, &self.mat1, &b.mat2s),
+                            None => {
+                                cx.err(c.at.error(format!(
+                                    "{} {} references property {} (PSHELL or PCOMP), which does not exist",
+                                    c.kind.card, c.eid, c.pid
+                                )));
+                                None
+                            }
+                        };
+                        self.shells.insert(c.pid, s.clone());
+                        s
                     }
                 };
-                self.shells.insert(c.pid, s.clone());
-                s.map(|s| (s, None))
+                let anisotropic = self.pshell.get(&c.pid).is_some_and(|p| {
+                    [p.mid1, p.mid2, p.mid3, p.mid4]
+                        .iter()
+                        .flatten()
+                        .any(|mid| b.mat2s.iter().any(|m| m.mid == *mid))
+                });
+                match (s, axes) {
+                    (Some(s), Some(angle)) if anisotropic => Some((turned_section(&s, angle), None)),
+                    (s, _) => s.map(|s| (s, None)),
+                }
             }
         }
     }
 }
 
-/// CONM2s.
-fn point_masses(cx: &mut Ctx, deck: &Deck, num: &Numbering, out: &mut Elements) {
+/// A PSHELL's section, its MAT2 materials given in the material axes, in the
+/// element's axes when the material x axis is `angle` degrees from the element's x:
+/// G = Tᵀ G_material T with T [`crate::laminate::strain_rotation`], and the transverse
+/// shear's 2×2 turned as a tensor. A half turn leaves a plane material as it is, so
+/// an angle of a whole number of half turns returns the section unchanged (exactly,
+/// as the paper's plate has it on every element).
+fn turned_section(s: &ShellSection, angle: f64) -> ShellSection {
+    if angle.rem_euclid(180.0) == 0.0 {
+        return s.clone();
+    }
+    let turn = |g: Option<Matrix3<f64>>| g.map(|g| crate::laminate::rotated(&g, angle));
+    let (sn, cs) = angle.to_radians().sin_cos();
+    // (γxz, γyz) in material axes = R (γxz, γyz) in element axes.
+    let r = Matrix2::new(cs, sn, -sn, cs);
+    ShellSection {
+        g_membrane: turn(s.g_membrane),
+        g_bending: turn(s.g_bending),
+        g_coupling: turn(s.g_coupling),
+        shear: s.shear.map(|h| r.transpose() * h * r),
+        ..s.clone()
+    }
+}
+
+/// CONM2s, located where their grids are in the basic system (their mass and
+/// inertia are in the basic system, CID 0) and turned to their grids' frames.
+fn point_masses(cx: &mut Ctx, deck: &Deck, num: &Numbering, geo: &Geometry, out: &mut Elements) {
     let b = &deck.bulk;
-    let grids = &num.grids;
-    let grid_dofs = |g: i64| num.grid_dofs(g);
-    let elements = &mut out.list;
     for m in &b.conm2s {
-        if !grids.contains_key(&m.g) {
+        if !num.grids.contains_key(&m.g) {
             cx.err(m.at.error(format!("CONM2 {} references grid {}, which does not exist", m.eid, m.g)));
             continue;
         }
+        let Some(&x) = geo.positions.get(&m.g) else { continue };
         let point = PointMass {
-            x: grids[&m.g].x,
+            x,
             mass: m.mass,
             inertia: m.inertia,
         };
-        elements.push(Element::new(m.eid, vec![m.g], vec![grid_dofs(m.g)], point));
+        let e = Element::new(m.eid, vec![m.g], vec![num.grid_dofs(m.g)], point);
+        out.list.push(match frames_only(&[m.g], geo, &[x]) {
+            Some(p) => e.placed(p),
+            None => e,
+        });
     }
 }
 
@@ -751,10 +967,14 @@ fn build_contact(
         })
         .sum::<f64>();
     if mass <= 0.0 {
-        cx.err(
-            imp.at
-                .error(format!("the impactor grid {} has no CONM2 mass", imp.label.point)),
-        );
+        // After other errors the mass may be missing only because its grid is (an
+        // unresolved location): that error says why.
+        if !prior_errors {
+            cx.err(
+                imp.at
+                    .error(format!("the impactor grid {} has no CONM2 mass", imp.label.point)),
+            );
+        }
         return None;
     }
     let stiffness = impactor_stiffness(cx, imp, &driver, driver_label, prior_errors)?;

@@ -215,7 +215,7 @@ impl<'m> Mesh<'m> {
         };
         for e in model.elements.iter() {
             let Some(cell) = e.kernel.cell() else { continue };
-            for (g, x) in e.grids.iter().zip(e.kernel.points()) {
+            for (g, x) in e.grids.iter().zip(e.points()) {
                 let p = *m.index.entry(*g).or_insert_with(|| {
                     m.points.extend_from_slice(&x);
                     m.grids.push(*g);

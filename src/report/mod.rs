@@ -398,7 +398,7 @@ fn rod_strain(f: &Fig, tr: &analytic::Trace, lc: f64) -> Result<Vec<PathBuf>, Re
             let Family::Rod { .. } = e.kernel.family() else {
                 return None;
             };
-            let x = e.kernel.points();
+            let x = e.points();
             let xc = 0.5 * (x[0][0] + x[1][0]);
             run.column_values(&Column::rod_strain(e.eid)).map(|v| (e.eid, xc, v))
         })
@@ -415,7 +415,7 @@ fn rod_strain(f: &Fig, tr: &analytic::Trace, lc: f64) -> Result<Vec<PathBuf>, Re
             .iter()
             .find_map(|e| match e.kernel.family() {
                 Family::Rod { .. } => {
-                    let x = e.kernel.points();
+                    let x = e.points();
                     Some(x[0][0].min(x[1][0]))
                 }
                 _ => None,
@@ -636,7 +636,7 @@ fn plate_displacement(f: &Fig) -> Result<Vec<PathBuf>, ReportError> {
                 e.grids
                     .iter()
                     .copied()
-                    .zip(e.kernel.points().into_iter().map(|p| (p[0], p[1]))),
+                    .zip(e.points().into_iter().map(|p| (p[0], p[1]))),
             )
         })
         .flatten()
@@ -652,7 +652,7 @@ fn plate_displacement(f: &Fig) -> Result<Vec<PathBuf>, ReportError> {
                 .iter()
                 .filter_map(|e| {
                     e.kernel.family().shell()?;
-                    let points = e.kernel.points();
+                    let points = e.points();
                     let xy: [(f64, f64); 4] = std::array::from_fn(|k| (points[k][0], points[k][1]));
                     let v: f64 = e
                         .grids

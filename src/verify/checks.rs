@@ -1008,7 +1008,7 @@ fn navier_frequencies(cx: &Cx, meshes: [usize; 2], modes: usize, max: f64) -> Re
     } else {
         crate::mesh::Cells::Quad4
     };
-    let xs = shells.iter().flat_map(|e| e.kernel.points().into_iter().map(|p| p[0]));
+    let xs = shells.iter().flat_map(|e| e.points().into_iter().map(|p| p[0]));
     let side = xs.clone().fold(f64::NEG_INFINITY, f64::max) - xs.fold(f64::INFINITY, f64::min);
     let t = section.thickness;
     let d = |x: f64| x * t.powi(3) / 12.0;
