@@ -49,8 +49,9 @@
 //!   (1/Yt − 1/Yc)σ2 + σ1²/(Xt Xc) + σ2²/(Yt Yc) − σ1σ2/(Xt Xc) + τ12²/S².
 //! - TSAI (Tsai-Wu, J. Compos. Mater. 5 (1971) 58-80): FI = F1σ1 + F2σ2 + F11σ1² +
 //!   F22σ2² + F66τ12² + 2F12σ1σ2, F1 = 1/Xt − 1/Xc, F11 = 1/(Xt Xc), F2 and F22
-//!   likewise from Y, F66 = 1/S², F12 the MAT8's (no default: a TSAI ply without it is
-//!   an input error).
+//!   likewise from Y, F66 = 1/S², F12 the MAT8's; a blank F12 is 0, as NASTRAN-95's
+//!   Tsai-Wu index takes it (then the index has no σ1σ2 term), and the model builder
+//!   says so in a warning.
 //! - STRN (maximum strain): FI = max(ε1/Xt or −ε1/Xc, ε2/Yt or −ε2/Yc, |γ12|/S) with
 //!   strain allowables (MAT8 STRN = 1.0); stress allowables are turned into strain
 //!   allowables by the ply's moduli (Xt/E1, …, S/G12), the strain a uniaxial stress at
@@ -211,10 +212,7 @@ impl Criterion {
             return Err(StrengthError::StrainAllowables(theory.name()));
         }
         let f12 = match theory {
-            Theory::TsaiWu => s.f12.ok_or(StrengthError::Missing {
-                theory: theory.name(),
-                field: "F12",
-            })?,
+            Theory::TsaiWu => s.f12.unwrap_or(0.0),
             _ => 0.0,
         };
         Ok(Criterion { theory, allow, f12 })
@@ -395,8 +393,9 @@ mod tests {
         assert!(c < 0.0 && t > 0.0, "{c} {t}");
     }
 
-    /// Goal: missing allowables are named, never read as zero: a blank Yc for HILL, a
-    /// blank F12 for TSAI, strain allowables for a stress theory, a ply with no MAT8;
+    /// Goal: missing allowables are named, never read as zero: a blank Yc for HILL,
+    /// strain allowables for a stress theory, a ply with no MAT8 (a blank F12 for TSAI
+    /// is NASTRAN's 0, the index then Tsai-Wu's without its interaction term);
     /// strain allowables serve STRN as given, with no maximum-stress index beside it.
     #[test]
     fn missing_allowables_are_errors_that_name_the_field() {
@@ -407,8 +406,12 @@ mod tests {
         let mut s = strength();
         s.f12 = None;
         assert!(Criterion::new(Theory::Hoffman, Some(&s)).is_ok());
-        let e = Criterion::new(Theory::TsaiWu, Some(&s)).unwrap_err();
-        assert!(e.to_string().contains("F12"), "{e}");
+        let blank = Criterion::new(Theory::TsaiWu, Some(&s)).unwrap();
+        s.f12 = Some(0.0);
+        let zero = Criterion::new(Theory::TsaiWu, Some(&s)).unwrap();
+        assert_eq!(blank, zero);
+        s.f12 = Some(-1e-10);
+        assert_ne!(Criterion::new(Theory::TsaiWu, Some(&s)).unwrap(), zero);
         let mut s = strength();
         s.strain = true;
         s.allowables = [0.02, 0.015, 0.004, 0.012, 0.018].map(Some);

@@ -234,7 +234,8 @@ fn failure_indices_are_the_theory_on_the_written_ply_stresses() {
 
 /// Goal: a failure theory whose allowables are missing is an input error (exit 2) that
 /// names the PCOMP, the ply, its material and the missing field: HILL without Yc,
-/// TSAI without F12, HOFF over strain allowables (STRN = 1.0); nothing is written.
+/// HOFF over strain allowables (STRN = 1.0); nothing is written. TSAI without F12 runs,
+/// with NASTRAN's F12 = 0 and a warning that says so.
 #[test]
 fn a_theory_without_its_allowables_is_refused() {
     let dir = tempfile::tempdir().unwrap();
@@ -244,7 +245,6 @@ fn a_theory_without_its_allowables_is_refused() {
             ",,,1.54+5,8.85+4,4.5+3,,1.04+4",
             "FT = HILL needs the allowable Yc, which is blank",
         ),
-        ("TSAI", ALLOWABLES, "FT = TSAI needs the allowable F12, which is blank"),
         (
             "HOFF",
             ",,,0.02,0.015,0.004,0.012,0.018,+M2\n+M2,,,1.0",
@@ -271,6 +271,39 @@ fn a_theory_without_its_allowables_is_refused() {
         );
         assert!(!out.exists(), "{ft}");
     }
+}
+
+/// Goal: a TSAI laminate whose MAT8 leaves F12 blank runs with NASTRAN's F12 = 0 and
+/// says so: exit 0, a warning naming the PCOMP, and the same history, ply indices
+/// included, as the deck with F12 = 0.0 written out.
+#[test]
+fn tsai_with_a_blank_f12_runs_as_with_f12_zero() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut histories = Vec::new();
+    for (name, cont) in [
+        ("blank", ALLOWABLES.to_string()),
+        ("zero", format!("{ALLOWABLES},+M2\n+M2,,0.0")),
+    ] {
+        let sub = dir.path().join(name);
+        std::fs::create_dir_all(&sub).unwrap();
+        let path = pcomp_with_ft(&sub, "TSAI", &cont);
+        let out = sub.join("out");
+        let o = impactlab(&[
+            "run",
+            path.to_str().unwrap(),
+            "--steps",
+            "40",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(0), "{name}: {stderr}");
+        let warned = stderr.contains("FT = TSAI with a ply whose MAT8 leaves F12 blank: F12 = 0 there");
+        assert_eq!(warned, name == "blank", "{name}: {stderr}");
+        histories.push(std::fs::read_to_string(out.join("history.csv")).unwrap());
+    }
+    assert!(histories[0].contains("ply_"), "ply columns written");
+    assert_eq!(histories[0], histories[1]);
 }
 
 /// Goal: allowables so small that the struck plate's stresses cannot be divided by

@@ -1400,6 +1400,16 @@ fn laminate_section(
             p.pid
         )));
     }
+    let blank_f12 = p
+        .stack()
+        .iter()
+        .any(|ply| mat8s.iter().any(|m| m.mid == ply.mid && m.f12.is_none()));
+    if p.ft.as_deref() == Some("TSAI") && blank_f12 {
+        cx.warn(p.at.error(format!(
+            "PCOMP {}: FT = TSAI with a ply whose MAT8 leaves F12 blank: F12 = 0 there, as NASTRAN takes it",
+            p.pid
+        )));
+    }
     let section = ShellSection {
         thickness: lam.thickness,
         g_membrane: Some(lam.membrane_material()),
