@@ -37,6 +37,11 @@ pub enum Command {
         #[command(subcommand)]
         what: StudyKind,
     },
+    /// Will impactlab take this deck? Build its structure alone (no impactor needed)
+    /// and report grids, elements, DOFs, mass, centre of gravity and inertia, the
+    /// coordinate systems and every card it does not take (exit 0 when it takes the
+    /// deck, 2 when not).
+    Check(CheckArgs),
     /// Run verification cases and gate on their checks (exit 1 if any fails).
     Verify(VerifyArgs),
     /// Run cases and write their reports (figures, ledger, verdicts) and an index.
@@ -198,6 +203,22 @@ pub enum MeshKind {
         #[arg(long)]
         out: Option<PathBuf>,
     },
+    /// The paper's plate wrapped onto a cylinder of radius R (its 6 in × 6 in as arc
+    /// and width, clamped, struck at the centre): a curved panel, N×N (N odd).
+    Panel {
+        /// Elements along each side.
+        #[arg(long)]
+        n: usize,
+        /// The cylinder's radius, in the deck's length unit (in).
+        #[arg(long)]
+        radius: f64,
+        /// The shell elements: `quad4` or `tria3`.
+        #[arg(long, default_value = "quad4", value_parser = cells_parser())]
+        cells: impactlab::mesh::Cells,
+        /// Where to write the deck [default: stdout].
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
 }
 
 #[derive(clap::Args)]
@@ -269,6 +290,16 @@ pub struct SceneArgs {
     /// Time the scene with and without each optional effect (median of 3 runs).
     #[arg(long)]
     pub costs: bool,
+}
+
+#[derive(clap::Args)]
+pub struct CheckArgs {
+    /// The deck (.bdf): any solution sequence; loads, output requests and cards that
+    /// do not change the structure are listed as ignored.
+    pub deck: PathBuf,
+    /// Print the report as JSON.
+    #[arg(long)]
+    pub json: bool,
 }
 
 #[derive(clap::Args)]
@@ -393,6 +424,7 @@ fn main() -> ExitCode {
         Command::Scene(a) => cli::scene(a),
         Command::Mesh { what } => cli::mesh(what),
         Command::Study { what } => cli::study(what),
+        Command::Check(a) => cli::check(a),
         Command::Verify(a) => cli::verify(a),
         Command::Report(a) => cli::report(a),
         Command::Audit(a) => cli::audit(a),

@@ -26,12 +26,33 @@ pub enum MeshError {
     /// An odd or too small rod element count.
     #[error("the rod mesh needs an even number of elements (at least 2), not {0}")]
     Rod(usize),
+    /// A panel radius that is not a positive number, or too small for the plate's
+    /// 6 in to wrap less than half way round.
+    #[error(
+        "the panel radius must be a number above 6/π in (the plate's 6 in wrapped less than half way round), not {0}"
+    )]
+    Radius(f64),
     /// A generated plate deck without the PSHELL a variant replaces.
     #[error("the generated plate deck has no {0}")]
     NoPshell(String),
     /// The generated deck's model could not be built.
     #[error("{0}")]
     Load(#[from] crate::model::LoadError),
+}
+
+/// What a generated square is laid on.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Surface {
+    /// The plane z = 0.
+    Flat,
+    /// A cylinder of this radius whose axis is parallel to y through (0, 0, radius):
+    /// the square's x is wrapped onto it as arc length, the centre stays at the
+    /// origin with its normal along z, and the edges curve away from z < 0, where the
+    /// impactor comes from (x = R sin(s/R), z = R(1 − cos(s/R))).
+    Cylinder {
+        /// The radius.
+        radius: f64,
+    },
 }
 
 /// An N×N plate mesh: grid id = base·row + col (rows and columns from 1).
@@ -96,16 +117,32 @@ impl PlateMesh {
     /// GRID cards of a square plate of the given side (z = 0) and its shell cards
     /// (PSHELL 1): see [`Cells`] for their ids.
     pub fn write_grids_and_shells(&self, w: &mut String, side: f64, cells: Cells) {
+        self.write_surface(w, side, Surface::Flat, cells);
+    }
+
+    /// GRID cards of a square of the given side laid on `surface` and its shell cards
+    /// (PSHELL 1): see [`Cells`] for their ids.
+    pub fn write_surface(&self, w: &mut String, side: f64, surface: Surface, cells: Cells) {
         let (n, base) = (self.n, self.base);
         for r in 1..=n + 1 {
             for c in 1..=n + 1 {
-                let _ = writeln!(
-                    w,
-                    "GRID,{},,{},{},0.0",
-                    self.grid(r, c),
-                    format_real(self.coord(c, side)),
-                    format_real(self.coord(r, side))
-                );
+                let (x, y) = (self.coord(c, side), self.coord(r, side));
+                let g = self.grid(r, c);
+                match surface {
+                    Surface::Flat => {
+                        let _ = writeln!(w, "GRID,{g},,{},{},0.0", format_real(x), format_real(y));
+                    }
+                    Surface::Cylinder { radius } => {
+                        let phi = x / radius;
+                        let _ = writeln!(
+                            w,
+                            "GRID,{g},,{},{},{}",
+                            format_real(radius * phi.sin()),
+                            format_real(y),
+                            format_real(radius * (1.0 - phi.cos()))
+                        );
+                    }
+                }
             }
         }
         for r in 1..=n {
@@ -233,6 +270,24 @@ pub fn plate_deck(n: usize) -> Result<String, MeshError> {
 /// The paper's plate deck on an N×N mesh with its edges held as `edges` says, meshed
 /// in `cells`.
 pub fn plate_deck_with(n: usize, edges: Edges, cells: Cells) -> Result<String, MeshError> {
+    surface_deck(n, edges, cells, Surface::Flat)
+}
+
+/// The paper's plate wrapped onto a cylinder of radius `radius` ([`Surface::Cylinder`])
+/// on an N×N mesh: its 6 in × 6 in as arc length and width, clamped, struck at the
+/// centre along z by the paper's impactor with the paper's contact. The panel's
+/// grids leave R3 free (no GRDSET PS 6): on a curved panel it is no shell's drilling
+/// rotation, and the grids whose rotations some direction does not stiffen get
+/// their drilling supports from the model.
+pub fn panel_deck(n: usize, radius: f64, cells: Cells) -> Result<String, MeshError> {
+    if !(radius.is_finite() && radius > PLATE_SIDE / std::f64::consts::PI) {
+        return Err(MeshError::Radius(radius));
+    }
+    surface_deck(n, Edges::Clamped, cells, Surface::Cylinder { radius })
+}
+
+/// The paper's plate deck laid on `surface`.
+fn surface_deck(n: usize, edges: Edges, cells: Cells, surface: Surface) -> Result<String, MeshError> {
     let m = PlateMesh::new(n)?;
     let (e, base) = (m.centre_element(), m.base);
     let contact = m.contact_grids();
@@ -248,9 +303,13 @@ pub fn plate_deck_with(n: usize, edges: Edges, cells: Cells) -> Result<String, M
         Cells::Quad4 => ("", "CQUAD4 id = lower-left grid"),
         Cells::Tria3 => (" --cells tria3", "CTRIA3 ids = 2*(lower-left grid) + 0, 1"),
     };
+    let command = match surface {
+        Surface::Flat => format!("plate --n {n}{option}"),
+        Surface::Cylinder { radius } => format!("panel --n {n} --radius {}{option}", format_real(radius)),
+    };
     let _ = writeln!(
         w,
-        "$ generated by `impactlab mesh plate --n {n}{option}`. Grid id = {base}*row + col,"
+        "$ generated by `impactlab mesh {command}`. Grid id = {base}*row + col,"
     );
     let _ = writeln!(
         w,
@@ -266,6 +325,14 @@ pub fn plate_deck_with(n: usize, edges: Edges, cells: Cells) -> Result<String, M
             .join(",")
     };
     let (e, ga, gb) = (list(e), list(ga), list(gb));
+    if let Surface::Cylinder { radius } = surface {
+        let _ = writeln!(
+            w,
+            "$ Wrapped onto a cylinder of radius R = {}, axis along y through (0, 0, R):",
+            format_real(radius)
+        );
+        let _ = writeln!(w, "$ x = R sin(s/R), z = R(1 - cos(s/R)) for the flat x = s.");
+    }
     let _ = writeln!(w, "$ Gages A and B: elements {ga} and {gb}. Units: in, lbf, s");
     if edges == Edges::SimplySupported {
         let _ = writeln!(w, "$ Edges simply supported (translations fixed), not clamped.");
@@ -288,7 +355,7 @@ pub fn plate_deck_with(n: usize, edges: Edges, cells: Cells) -> Result<String, M
         w,
         "CONM2,200,999,0,8.096-5,0.0,0.0,0.0,,+CON2-2\n+CON2-2,7.459-6,,7.459-6,,,1.423-6"
     );
-    m.write_grids_and_shells(w, PLATE_SIDE, cells);
+    m.write_surface(w, PLATE_SIDE, surface, cells);
     let _ = writeln!(w, "{PAPER_PSHELL}");
     let _ = writeln!(
         w,
@@ -302,7 +369,11 @@ pub fn plate_deck_with(n: usize, edges: Edges, cells: Cells) -> Result<String, M
     for r in 2..last {
         let _ = writeln!(w, "SPC1,1,{c},{},{}", m.grid(r, 1), m.grid(r, last));
     }
-    let _ = writeln!(w, "SPC1,1,12456,999\nGRDSET,,,,,,,6\nTSTEP,1,2000,1.0-7,10");
+    let _ = writeln!(w, "SPC1,1,12456,999");
+    if surface == Surface::Flat {
+        let _ = writeln!(w, "GRDSET,,,,,,,6");
+    }
+    let _ = writeln!(w, "TSTEP,1,2000,1.0-7,10");
     for g in contact {
         let _ = writeln!(w, "NOLIN3,5,{g},3,+1.945+5,{ep},0,1.5");
     }

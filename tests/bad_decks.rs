@@ -137,13 +137,18 @@ fn fuzz_crash_inputs_no_longer_crash() {
         let Ok(text) = std::str::from_utf8(&bytes) else {
             continue;
         };
-        for allow_unknown in [false, true] {
+        for (allow_unknown, structure) in [(false, false), (true, false), (false, true)] {
             let opts = ReadOptions {
                 allow_unknown,
+                structure,
                 limits: Limits::untrusted(),
             };
             if let Ok(deck) = parse_deck_str("fuzz.bdf", text, opts) {
-                let _ = impactlab::model::build_model(&deck);
+                if structure {
+                    let _ = impactlab::model::check::check(&deck);
+                } else {
+                    let _ = impactlab::model::build_model(&deck);
+                }
             }
         }
         n += 1;

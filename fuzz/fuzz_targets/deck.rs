@@ -1,8 +1,9 @@
 //! The deck reader and model builder never panic, whatever the bytes: every input
 //! ends in a model or in diagnostics. Read with the untrusted limits (1 000 cards,
 //! no INCLUDE), so one input costs at most what a small deck costs. The first byte's
-//! low bit chooses whether unknown cards are errors or warnings, so each input is
-//! read once and both paths are explored.
+//! low bits choose whether unknown cards are errors or warnings, and whether the deck
+//! is read for its structure alone and checked (`impactlab check`), so every path is
+//! explored.
 #![no_main]
 
 use impactlab::deck::{parse_deck_str, Limits, ReadOptions};
@@ -10,11 +11,18 @@ use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
     let Ok(text) = std::str::from_utf8(data) else { return };
+    // The first byte's low bits: unknown cards allowed; read for the structure alone
+    // (`impactlab check`).
     let opts = ReadOptions {
         allow_unknown: data.first().is_some_and(|b| b & 1 == 1),
+        structure: data.first().is_some_and(|b| b & 2 == 2),
         limits: Limits::untrusted(),
     };
     if let Ok(deck) = parse_deck_str("fuzz.bdf", text, opts) {
-        let _ = impactlab::model::build_model(&deck);
+        if opts.structure {
+            let _ = impactlab::model::check::check(&deck);
+        } else {
+            let _ = impactlab::model::build_model(&deck);
+        }
     }
 });

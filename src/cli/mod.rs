@@ -5,8 +5,8 @@
 pub mod error;
 
 use crate::{
-    AuditArgs, AuditFormat, BenchArgs, CollectArgs, MeshKind, ReportArgs, RunArgs, SceneArgs, StudyKind, SweepArgs,
-    VerifyArgs,
+    AuditArgs, AuditFormat, BenchArgs, CheckArgs, CollectArgs, MeshKind, ReportArgs, RunArgs, SceneArgs, StudyKind,
+    SweepArgs, VerifyArgs,
 };
 use error::Error;
 use impactlab::run::RunOptions;
@@ -391,10 +391,111 @@ pub fn scene(a: SceneArgs) -> Result<u8, Error> {
     Ok(0)
 }
 
-/// `impactlab mesh plate`: a generated deck.
+/// `impactlab check DECK`: the deck's structure, counted and weighed, and every card
+/// impactlab does not take; exit 0 when it takes the deck, 2 when not.
+pub fn check(a: CheckArgs) -> Result<u8, Error> {
+    let read = deck::ReadOptions {
+        structure: true,
+        ..Default::default()
+    };
+    let d = deck::read_deck(&a.deck, read)?;
+    let r = impactlab::model::check::check(&d);
+    if a.json {
+        say(&serde_json::to_string_pretty(&r).expect("the report serialises"));
+    } else {
+        say(&check_text(&r));
+    }
+    Ok(if r.takes { 0 } else { 2 })
+}
+
+/// The check report as text.
+fn check_text(r: &impactlab::model::check::CheckReport) -> String {
+    use std::fmt::Write as _;
+    let mut s = String::new();
+    let sol = r.solution.as_deref().map(|v| format!(" (SOL {v})")).unwrap_or_default();
+    let _ = writeln!(s, "{}{sol}", r.deck);
+    let _ = writeln!(s, "  grids           {}", r.grids);
+    let kinds: Vec<String> = r.elements.iter().map(|(k, n)| format!("{k} {n}")).collect();
+    let _ = writeln!(
+        s,
+        "  elements        {}",
+        if kinds.is_empty() {
+            "none".into()
+        } else {
+            kinds.join(", ")
+        }
+    );
+    let _ = writeln!(
+        s,
+        "  DOFs            {} free, {} constrained; {} scalar points",
+        r.free_dofs, r.constrained_dofs, r.scalar_points
+    );
+    if let Some(w) = &r.weight {
+        let _ = writeln!(
+            s,
+            "  mass            {:.6e} (x), {:.6e} (y), {:.6e} (z)",
+            w.mass[0], w.mass[1], w.mass[2]
+        );
+        if let Some(c) = w.centre {
+            let _ = writeln!(s, "  centre of mass  ({:.6e}, {:.6e}, {:.6e}) basic", c[0], c[1], c[2]);
+        }
+        for (i, row) in w.inertia.iter().enumerate() {
+            let head = if i == 0 {
+                "  inertia at cg  "
+            } else {
+                "                 "
+            };
+            let _ = writeln!(s, "{head} [{:.6e}, {:.6e}, {:.6e}]", row[0], row[1], row[2]);
+        }
+        let p = w.principal;
+        let _ = writeln!(s, "  principal       {:.6e}, {:.6e}, {:.6e}", p[0], p[1], p[2]);
+    }
+    for c in &r.systems {
+        let _ = writeln!(
+            s,
+            "  system {}        {} ({}): {} grids located in it, {} displaced in it",
+            c.cid, c.card, c.kind, c.located, c.displaced
+        );
+    }
+    for (what, list) in [("not supported", &r.unsupported), ("ignored", &r.ignored)] {
+        for c in list {
+            let _ = writeln!(
+                s,
+                "  {what:<15} {} ×{} (first at {}: {})",
+                c.card,
+                c.count,
+                c.first_at,
+                c.first_line.trim()
+            );
+        }
+    }
+    for w in &r.warnings {
+        let _ = writeln!(s, "{w}");
+    }
+    for e in &r.errors {
+        let _ = writeln!(s, "{e}");
+    }
+    let verdict = match (r.errors.is_empty(), r.unsupported.is_empty()) {
+        (true, true) => "impactlab takes this deck".to_string(),
+        (true, false) => format!(
+            "impactlab does not take this deck: {} kind(s) of card that would change its structure are not supported",
+            r.unsupported.len()
+        ),
+        (false, _) => format!("the structure does not build: {} error(s)", r.errors.len()),
+    };
+    let _ = writeln!(s, "{verdict}");
+    s
+}
+
+/// `impactlab mesh plate|panel`: a generated deck.
 pub fn mesh(what: MeshKind) -> Result<u8, Error> {
-    let MeshKind::Plate { n, cells, out } = what;
-    let text = impactlab::mesh::plate_deck_with(n, impactlab::mesh::Edges::Clamped, cells)?;
+    let (text, out) = match what {
+        MeshKind::Plate { n, cells, out } => (
+            impactlab::mesh::plate_deck_with(n, impactlab::mesh::Edges::Clamped, cells)?,
+            out,
+        ),
+        MeshKind::Panel { n, radius, cells, out } => (impactlab::mesh::panel_deck(n, radius, cells)?, out),
+    };
     match out {
         Some(p) => output::write_file_atomically(&p, text.as_bytes()).map_err(io_error(&p))?,
         None => say(&text),

@@ -48,6 +48,23 @@ impl RawCard {
     pub fn text(&self, k: usize) -> &str {
         self.fields.get(k).map(|f| f.text.as_str()).unwrap_or("")
     }
+
+    /// The card in free-field format: its name and eight data fields a line, each
+    /// further line a continuation (first field blank), every field's text as read.
+    pub fn free_field(&self) -> String {
+        let mut out = self.name.clone();
+        for (i, chunk) in self.fields.chunks(8).enumerate() {
+            if i > 0 {
+                out.push('\n');
+            }
+            for f in chunk {
+                out.push(',');
+                out.push_str(&f.text);
+            }
+        }
+        out.push('\n');
+        out
+    }
 }
 
 /// A physical line cut into its NASTRAN fields.

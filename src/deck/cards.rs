@@ -373,6 +373,17 @@ pub struct Spc1 {
     pub at: CardRef,
 }
 
+/// SPCADD: a constraint set that is the union of others.
+#[derive(Debug, Clone)]
+pub struct SpcAdd {
+    /// Its set id (field 2).
+    pub sid: i64,
+    /// The sets it joins (fields 3 on).
+    pub sets: Vec<i64>,
+    /// The card.
+    pub at: CardRef,
+}
+
 /// One term of a TF card's continuation: a coefficient polynomial on an input DOF.
 #[derive(Debug, Clone)]
 pub struct TfTerm {
@@ -483,8 +494,10 @@ pub struct Bulk {
     pub pcomps: Vec<Pcomp>,
     /// CONM2 cards.
     pub conm2s: Vec<Conm2>,
-    /// SPC1 cards.
+    /// SPC1 cards, and each grid of an SPC card as one.
     pub spc1s: Vec<Spc1>,
+    /// SPCADD cards.
+    pub spcadds: Vec<SpcAdd>,
     /// TF cards.
     pub tfs: Vec<Tf>,
     /// TSTEP cards.
@@ -785,7 +798,7 @@ pub fn supported() -> Vec<&'static str> {
 
 /// Types all raw cards. Unknown card names are collected and returned. `ids_left` is
 /// what remains of [`super::Limits::max_listed_ids`].
-pub fn type_cards(raw: &[RawCard], ids_left: &mut usize, diags: &mut Diagnostics) -> (Bulk, Vec<(String, Pos)>) {
+pub fn type_cards(raw: &[RawCard], ids_left: &mut usize, diags: &mut Diagnostics) -> (Bulk, Vec<super::UnknownCard>) {
     let mut b = Bulk::default();
     let mut unknown = Vec::new();
     for card in raw {
@@ -804,6 +817,8 @@ pub fn type_cards(raw: &[RawCard], ids_left: &mut usize, diags: &mut Diagnostics
             "PCOMP" => card_pcomp(&mut r, &mut b),
             "CONM2" => card_conm2(&mut r, &mut b),
             "SPC1" => card_spc1(&mut r, &mut b),
+            "SPC" => card_spc(&mut r, &mut b),
+            "SPCADD" => card_spcadd(&mut r, &mut b),
             "TF" => card_tf(&mut r, &mut b, card),
             "TSTEP" => card_tstep(&mut r, &mut b, card),
             "NOLIN3" => card_nolin3(&mut r, &mut b),
@@ -815,7 +830,11 @@ pub fn type_cards(raw: &[RawCard], ids_left: &mut usize, diags: &mut Diagnostics
             ),
             name => match crate::elements::kind(name) {
                 Some(kind) => card_element(&mut r, &mut b, kind),
-                None => unknown.push((card.name.clone(), card.pos.clone())),
+                None => unknown.push(super::UnknownCard {
+                    name: card.name.clone(),
+                    pos: card.pos.clone(),
+                    line: card.source.lines().next().unwrap_or("").to_string(),
+                }),
             },
         }
     }
@@ -1359,6 +1378,58 @@ fn card_spc1(r: &mut Reader, b: &mut Bulk) {
     }
     if r.ok {
         b.spc1s.push(s);
+    }
+}
+
+/// SPC: SID G1 C1 D1 G2 C2 D2, each grid's components held at zero (an SPC1 each);
+/// an enforced displacement D ≠ 0 is not supported.
+fn card_spc(r: &mut Reader, b: &mut Bulk) {
+    let sid = r.id(0, "SID");
+    let mut out = Vec::new();
+    for (k, names) in [(1, ["G1", "C1", "D1"]), (4, ["G2", "C2", "D2"])] {
+        if k == 4 && (4..7).all(|i| r.text(i).is_empty()) {
+            break;
+        }
+        let g = r.id(k, names[0]);
+        let c = r.components(k + 1, names[1]);
+        if r.ok && c.0 == 0 {
+            r.fail(k + 1, names[1], "names no component");
+        }
+        if r.real_or(k + 2, names[2], 0.0) != 0.0 {
+            r.fail(
+                k + 2,
+                names[2],
+                "an enforced displacement is not supported: an SPC here holds its components at zero",
+            );
+        }
+        out.push(Spc1 {
+            sid,
+            c,
+            grids: vec![g],
+            at: r.at(),
+        });
+    }
+    r.extra_fields(7);
+    if r.ok {
+        b.spc1s.extend(out);
+    }
+}
+
+/// SPCADD: SID S1 S2 …: the union of constraint sets.
+fn card_spcadd(r: &mut Reader, b: &mut Bulk) {
+    let a = SpcAdd {
+        sid: r.id(0, "SID"),
+        sets: r.id_list(1, "S"),
+        at: r.at(),
+    };
+    if r.ok && a.sets.is_empty() {
+        r.fail(1, "S1", "SPCADD joins no set");
+    }
+    if r.ok && a.sets.contains(&a.sid) {
+        r.fail(1, "S1", format!("SPCADD {} cannot join itself", a.sid));
+    }
+    if r.ok {
+        b.spcadds.push(a);
     }
 }
 

@@ -10,8 +10,10 @@ use std::collections::BTreeMap;
 pub struct Executive {
     /// ID statement's text.
     pub id: Option<String>,
-    /// Solution sequence (SOL).
+    /// Solution sequence (SOL), a direct transient one.
     pub sol: Option<u32>,
+    /// The SOL statement's solution as written (`101`, `SESTATIC`).
+    pub solution: Option<String>,
     /// TIME statement's text.
     pub time_limit: Option<String>,
 }
@@ -84,8 +86,9 @@ pub struct CaseControl {
     pub outputs: BTreeMap<String, OutputRequest>,
 }
 
-/// Reads executive control (ID, SOL, TIME) from its lines.
-pub fn parse_executive(lines: &[SrcLine], diags: &mut Diagnostics) -> Executive {
+/// Reads executive control (ID, SOL, TIME) from its lines; for a deck read for its
+/// structure alone (`structure`), any SOL, or none, is accepted.
+pub fn parse_executive(lines: &[SrcLine], structure: bool, diags: &mut Diagnostics) -> Executive {
     let mut e = Executive::default();
     for l in lines {
         let t = l.text.trim();
@@ -97,6 +100,10 @@ pub fn parse_executive(lines: &[SrcLine], diags: &mut Diagnostics) -> Executive 
             "TIME" => e.time_limit = Some(rest.to_string()),
             "SOL" => {
                 let word = rest.split([' ', ',']).next().unwrap_or("");
+                e.solution = Some(word.to_string());
+                if structure {
+                    continue;
+                }
                 match parse_int(word) {
                     Some(n) if DIRECT_TRANSIENT_SOLS.contains(&(n as u32)) => e.sol = Some(n as u32),
                     Some(n) => diags.push(
@@ -133,7 +140,7 @@ pub fn parse_executive(lines: &[SrcLine], diags: &mut Diagnostics) -> Executive 
             ),
         }
     }
-    if e.sol.is_none() && !diags.has_errors() {
+    if e.sol.is_none() && !structure && !diags.has_errors() {
         diags.push(Diagnostic::error(
             lines.first().map(|l| l.pos(1)),
             "executive control has no SOL statement (direct transient: SOL 9, 27, 109 or 129)",
@@ -198,8 +205,9 @@ const IGNORED: [&str; 8] = [
 ];
 
 /// Reads case control from its lines; findings go to `diags`; `ids_left` is what
-/// remains of [`super::Limits::max_listed_ids`].
-pub fn parse_case(lines: &[SrcLine], ids_left: &mut usize, diags: &mut Diagnostics) -> CaseControl {
+/// remains of [`super::Limits::max_listed_ids`]. A deck read for its structure alone
+/// (`structure`) may have SUBCASEs: their SPC selections are read as the deck's.
+pub fn parse_case(lines: &[SrcLine], structure: bool, ids_left: &mut usize, diags: &mut Diagnostics) -> CaseControl {
     let mut cc = CaseControl::default();
     let mut i = 0;
     while i < lines.len() {
@@ -233,6 +241,7 @@ pub fn parse_case(lines: &[SrcLine], ids_left: &mut usize, diags: &mut Diagnosti
             }
             [k] if SELECTORS.contains(k) => selector(&mut cc, k, &rhs, pos, &l.text, diags),
             [k] if OUTPUTS.contains(k) => output_request(&mut cc, k, &rhs, pos, &l.text, diags),
+            ["SUBCASE"] | ["SUBCASE", ..] if structure => {}
             ["SUBCASE"] | ["SUBCASE", ..] => diags.push(
                 Diagnostic::error(Some(pos), "SUBCASE is not supported: one transient case per deck")
                     .card("SUBCASE")

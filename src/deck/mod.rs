@@ -106,6 +106,24 @@ pub struct Deck {
     pub sha256: String,
     /// Warnings found while reading.
     pub warnings: Vec<Diagnostic>,
+    /// The cards of kinds the reader does not know, in deck order (kept when the
+    /// deck is read with [`ReadOptions::structure`] or `allow_unknown`).
+    pub unknown: Vec<UnknownCard>,
+    /// Every bulk data card as read (replication and INCLUDE expanded), for a deck
+    /// read with [`ReadOptions::structure`]: a scene that strikes the deck writes its
+    /// structural cards back ([`bulk::RawCard::free_field`]). Empty otherwise.
+    pub cards: Vec<bulk::RawCard>,
+}
+
+/// A card of a kind the reader does not know.
+#[derive(Debug, Clone, PartialEq)]
+pub struct UnknownCard {
+    /// Its name.
+    pub name: String,
+    /// Where it starts.
+    pub pos: Pos,
+    /// Its first line as written.
+    pub line: String,
 }
 
 /// Reading a deck failed: every error found, and the warnings.
@@ -142,6 +160,10 @@ impl std::error::Error for DeckError {}
 pub struct ReadOptions {
     /// Unknown cards become warnings instead of errors.
     pub allow_unknown: bool,
+    /// The deck is read for its structure alone (`impactlab check`): any solution
+    /// sequence, SUBCASEs and unknown cards are accepted, the unknown cards kept in
+    /// [`Deck::unknown`] without a diagnostic each.
+    pub structure: bool,
     /// What one deck may ask of the reader.
     pub limits: Limits,
 }
@@ -231,9 +253,9 @@ fn finish(
     opts: ReadOptions,
     mut diags: Diagnostics,
 ) -> Result<Deck, DeckError> {
-    let executive = case::parse_executive(&sections.executive, &mut diags);
+    let executive = case::parse_executive(&sections.executive, opts.structure, &mut diags);
     let mut ids_left = opts.limits.max_listed_ids;
-    let mut case = case::parse_case(&sections.case, &mut ids_left, &mut diags);
+    let mut case = case::parse_case(&sections.case, opts.structure, &mut ids_left, &mut diags);
     case.at = sections
         .case
         .last()
@@ -246,7 +268,9 @@ fn finish(
         });
     let raw = bulk::assemble(&sections.bulk, opts.limits, &mut diags);
     let (bulk, unknown) = cards::type_cards(&raw, &mut ids_left, &mut diags);
-    report_unknown(&unknown, opts, &mut diags);
+    if !opts.structure {
+        report_unknown(&unknown, opts, &mut diags);
+    }
     check_duplicates(&bulk, &mut diags);
     let units = sections
         .units
@@ -257,6 +281,7 @@ fn finish(
             diagnostics: diags.items,
         });
     }
+    let cards = if opts.structure { raw } else { Vec::new() };
     Ok(Deck {
         name,
         executive,
@@ -265,18 +290,20 @@ fn finish(
         units,
         sha256: sections.sha256,
         warnings: diags.items,
+        unknown,
+        cards,
     })
 }
 
-fn report_unknown(unknown: &[(String, Pos)], opts: ReadOptions, diags: &mut Diagnostics) {
+fn report_unknown(unknown: &[UnknownCard], opts: ReadOptions, diags: &mut Diagnostics) {
     if unknown.is_empty() {
         return;
     }
-    let mut names: Vec<&str> = unknown.iter().map(|(n, _)| n.as_str()).collect();
+    let mut names: Vec<&str> = unknown.iter().map(|u| u.name.as_str()).collect();
     names.sort();
     names.dedup();
     let list = names.join(", ");
-    for (n, pos) in unknown {
+    for UnknownCard { name: n, pos, .. } in unknown {
         let msg = format!(
             "unknown card (this deck has {} unknown card type(s): {list}); supported: {}",
             names.len(),

@@ -478,6 +478,102 @@ pub fn angle_in_plane(frame: &Matrix3<f64>, dir: &Vector3<f64>) -> Option<f64> {
     (x.hypot(y) > 1e-6 * dir.norm()).then(|| y.atan2(x).to_degrees())
 }
 
+/// Where a point lies on a flat shell: the shape functions of its corners there, its
+/// distance from the shell's plane, and how far outside the element it is.
+#[derive(Debug, Clone, PartialEq)]
+pub struct OnShell {
+    /// The corners' shape functions at the point's projection (bilinear for a
+    /// quadrilateral, linear for a triangle): they sum to 1.
+    pub weights: Vec<f64>,
+    /// The point's distance from the element's (mean) plane.
+    pub height: f64,
+    /// How far the projection is outside the element, in its parametric
+    /// coordinates: 0 inside, else the largest amount a shape function falls below
+    /// 0 (a quadrilateral's ξ or η beyond ±1 by that much, half of it).
+    pub outside: f64,
+    /// The element's normal (basic), as [`shell_frame`] gives it.
+    pub normal: [f64; 3],
+    /// The element's size: its longest side.
+    pub size: f64,
+}
+
+/// Where point `p` (basic) lies on the flat shell with corners `points`: projected
+/// onto the element's plane, its parametric coordinates found (a triangle's by the
+/// linear map; a quadrilateral's by Newton's method on the bilinear map, converged to
+/// 1e-14), and the shape functions there. `None` for a degenerate element or a
+/// projection Newton's method does not resolve (far outside a distorted quadrilateral).
+pub fn on_shell(points: &[[f64; 3]], p: [f64; 3]) -> Option<OnShell> {
+    let unwarped: Vec<[f64; 3]> = points.to_vec();
+    let f = match shell_frame(&unwarped) {
+        Ok(f) => f,
+        Err(FrameError::Warped(_)) | Err(FrameError::Degenerate) => return None,
+    };
+    let centroid = points.iter().map(|&q| Vector3::from(q)).sum::<Vector3<f64>>() / points.len() as f64;
+    let r = Vector3::from(p) - centroid;
+    let (x, y, height) = (
+        r.dot(&f.axes.column(0)),
+        r.dot(&f.axes.column(1)),
+        r.dot(&f.axes.column(2)),
+    );
+    let xy: Vec<[f64; 2]> = f.local.iter().map(|q| [q[0], q[1]]).collect();
+    let size = (0..points.len())
+        .map(|i| (Vector3::from(points[(i + 1) % points.len()]) - Vector3::from(points[i])).norm())
+        .fold(0.0, f64::max);
+    let weights = if xy.len() == 3 {
+        let (a, b, c) = (xy[0], xy[1], xy[2]);
+        let det = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
+        let l1 = ((b[0] - x) * (c[1] - y) - (c[0] - x) * (b[1] - y)) / det;
+        let l2 = ((c[0] - x) * (a[1] - y) - (a[0] - x) * (c[1] - y)) / det;
+        vec![l1, l2, 1.0 - l1 - l2]
+    } else {
+        let corner = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
+        let (mut xi, mut eta) = (0.0f64, 0.0f64);
+        let mut converged = false;
+        for _ in 0..50 {
+            let (mut fx, mut fy) = (-x, -y);
+            let mut j = [[0.0; 2]; 2];
+            for (k, &(a, b)) in corner.iter().enumerate() {
+                let n = 0.25 * (1.0 + a * xi) * (1.0 + b * eta);
+                fx += n * xy[k][0];
+                fy += n * xy[k][1];
+                let (dxi, deta) = (0.25 * a * (1.0 + b * eta), 0.25 * b * (1.0 + a * xi));
+                j[0][0] += dxi * xy[k][0];
+                j[0][1] += deta * xy[k][0];
+                j[1][0] += dxi * xy[k][1];
+                j[1][1] += deta * xy[k][1];
+            }
+            let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+            if det.abs() <= f64::MIN_POSITIVE {
+                return None;
+            }
+            let dxi = (j[1][1] * fx - j[0][1] * fy) / det;
+            let deta = (-j[1][0] * fx + j[0][0] * fy) / det;
+            xi -= dxi;
+            eta -= deta;
+            if dxi.abs().max(deta.abs()) < 1e-14 {
+                converged = true;
+                break;
+            }
+        }
+        if !converged || !xi.is_finite() || !eta.is_finite() {
+            return None;
+        }
+        corner
+            .iter()
+            .map(|&(a, b)| 0.25 * (1.0 + a * xi) * (1.0 + b * eta))
+            .collect()
+    };
+    let outside = weights.iter().fold(0.0f64, |m, &w| m.max(-w));
+    let n = f.axes.column(2);
+    Some(OnShell {
+        weights,
+        height: height.abs(),
+        outside,
+        normal: [n.x, n.y, n.z],
+        size,
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -536,6 +632,35 @@ mod tests {
         assert_relative_eq!(v(f.offsets[1][0], f.offsets[1][1], f.offsets[1][2]), v(0.0, 0.0, h));
         let too = [[0.0, 0.0, 0.1], [1.0, 0.0, -0.1], [1.0, 1.0, 0.1], [0.0, 1.0, -0.1]];
         assert!(matches!(shell_frame(&too), Err(FrameError::Warped(w)) if w > MAX_WARP));
+    }
+
+    /// Goal: a point's shape functions on a shell. Reference: the centre of a turned
+    /// square has ¼ at each corner; the point (0.25, 0.75) of the unit square has the
+    /// bilinear weights (0.1875, 0.0625, 0.1875, 0.5625); a triangle's centroid ⅓ each;
+    /// a point off the plane by h reports h, one beyond an edge how far. Tolerance:
+    /// round-off.
+    #[test]
+    fn a_point_on_a_shell_has_its_shape_functions() {
+        let r = nalgebra::Rotation3::from_euler_angles(0.4, -1.2, 2.5).into_inner();
+        let sq = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+        let turned: Vec<[f64; 3]> = sq.iter().map(|&q| (r * Vector3::from(q)).into()).collect();
+        let at = |x: f64, y: f64, z: f64| -> [f64; 3] { (r * v(x, y, z)).into() };
+        let o = on_shell(&turned, at(0.5, 0.5, 0.3)).unwrap();
+        assert!(o.weights.iter().all(|w| (w - 0.25).abs() < 1e-14), "{:?}", o.weights);
+        assert!((o.height - 0.3).abs() < 1e-14 && o.outside == 0.0);
+        let o = on_shell(&turned, at(0.25, 0.75, 0.0)).unwrap();
+        for (w, e) in o.weights.iter().zip([0.1875, 0.0625, 0.1875, 0.5625]) {
+            assert!((w - e).abs() < 1e-14, "{:?}", o.weights);
+        }
+        let o = on_shell(&turned, at(1.5, 0.5, 0.0)).unwrap();
+        assert!((o.outside - 0.25).abs() < 1e-14, "{}", o.outside);
+        let tri = [[0.0, 0.0, 1.0], [3.0, 0.0, 1.0], [0.0, 3.0, 1.0]];
+        let o = on_shell(&tri, [1.0, 1.0, 1.0]).unwrap();
+        assert!(
+            o.weights.iter().all(|w| (w - 1.0 / 3.0).abs() < 1e-14),
+            "{:?}",
+            o.weights
+        );
     }
 
     /// Goal: cylindrical and spherical locations and frames. Reference: the basic

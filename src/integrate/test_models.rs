@@ -91,6 +91,7 @@ fn one_dof(mass: f64, spring: f64, v0: f64, hertz: Option<f64>) -> Model {
         rod: None,
         inert_dofs: 0,
         time_card: None,
+        frames: Default::default(),
     }
 }
 

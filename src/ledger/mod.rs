@@ -17,7 +17,8 @@
 //!   remainder of the NOLIN3 loads), accumulated with the scheme's own step load;
 //! - error = (U_t − U_0 − W_ext)/U_0;
 //! - energy ratio = U_t/(U_0 + W_ext), as LS-DYNA's GLSTAT prints it (1 when balanced);
-//! - momentum: Σ (Mv)_i over the DOFs of the impact direction.
+//! - momentum: Σ (Mv)_i over the DOFs of the impact direction (each weighted by
+//!   the cosine of its axis with it where grids are displaced in other frames).
 
 use crate::assembly::System;
 use crate::integrate::StepState;
@@ -89,7 +90,7 @@ pub struct Ledger<'a> {
     model: &'a Model,
     sys: &'a System,
     target: Vec<bool>,
-    direction: Vec<bool>,
+    direction: Vec<f64>,
     mv: Vec<f64>,
     u_prev: Vec<f64>,
     eq16: Eq16Elements,
@@ -101,16 +102,11 @@ impl<'a> Ledger<'a> {
     /// A ledger for a model and its assembled system.
     pub fn new(model: &'a Model, sys: &'a System) -> Self {
         let n = model.n();
-        let comp = model
-            .contact
-            .as_ref()
-            .map(|c| model.dofs[c.impactor.dof].comp)
-            .unwrap_or(1);
         Ledger {
             model,
             sys,
             target: model.target_mask(),
-            direction: model.dofs.iter().map(|d| d.comp == comp).collect(),
+            direction: model.momentum_weights(),
             mv: vec![0.0; n],
             u_prev: model.u0.clone(),
             eq16: Eq16Elements::new(model),
@@ -134,8 +130,11 @@ impl<'a> Ledger<'a> {
             } else {
                 ke_i += k;
             }
-            if self.direction[i] {
+            let w = self.direction[i];
+            if w == 1.0 {
                 p += self.mv[i];
+            } else if w != 0.0 {
+                p += w * self.mv[i];
             }
             if let Some(f) = s.internal_force {
                 uf += s.u[i] * f[i];
@@ -225,19 +224,31 @@ pub fn strain_energy(model: &Model, u: &[f64]) -> f64 {
 /// What the paper's Eq. 16 sums over, computed once per model: each element's mass,
 /// the weight 1/corners of a corner in the mean velocity, and where its solved corner
 /// translations end in `dofs`, which holds each element's x DOFs, then its y, then
-/// its z, each in corner order.
+/// its z, each in corner order. Where grids are displaced in frames other than the
+/// basic system, `turned` instead holds each element's corners with their frames, and
+/// the mean is taken of their basic velocities.
 struct Eq16Elements {
     elements: Vec<(f64, f64, [usize; 3])>,
     dofs: Vec<u32>,
+    turned: Vec<(f64, Vec<Corner>)>,
 }
+
+/// An element corner's solved translations and their frame (axes in basic, columns).
+type Corner = ([Option<usize>; 3], nalgebra::Matrix3<f64>);
 
 impl Eq16Elements {
     fn new(model: &Model) -> Self {
         let mut elements = Vec::new();
         let mut dofs = Vec::new();
+        let mut turned = Vec::new();
         for e in model.elements.iter() {
             let Some(mass) = e.kernel.eq16_mass() else { continue };
             let corners = e.translations();
+            if !model.frames.is_empty() {
+                let axes = |g: &i64| model.frames.get(g).map_or_else(nalgebra::Matrix3::identity, |f| f.axes);
+                turned.push((mass, corners.into_iter().zip(e.grids.iter().map(axes)).collect()));
+                continue;
+            }
             let ends = std::array::from_fn(|k| {
                 dofs.extend(
                     corners
@@ -249,7 +260,7 @@ impl Eq16Elements {
             });
             elements.push((mass, 1.0 / corners.len() as f64, ends));
         }
-        Eq16Elements { elements, dofs }
+        Eq16Elements { elements, dofs, turned }
     }
 
     /// The paper's Eq. 16: element mass times the square of the mean nodal velocity.
@@ -265,6 +276,13 @@ impl Eq16Elements {
                 mean
             });
             ke += 0.5 * mass * (x * x + y * y + z * z);
+        }
+        for (mass, corners) in &self.turned {
+            let mean = corners.iter().fold(nalgebra::Vector3::zeros(), |acc, (d, axes)| {
+                let local = nalgebra::Vector3::from_fn(|k, _| d[k].map_or(0.0, |i| v[i]));
+                acc + axes * local
+            }) / corners.len() as f64;
+            ke += 0.5 * mass * mean.norm_squared();
         }
         ke
     }

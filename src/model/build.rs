@@ -221,6 +221,22 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
         rod,
         inert_dofs: 0,
         time_card: sel.tsteps.first().map(|t| format!("TSTEP {} at {}", t.sid, t.at.pos)),
+        frames: std::sync::Arc::new(
+            deck.bulk
+                .grids
+                .iter()
+                .filter_map(|g| {
+                    let axes = geo.frames.get(&g.id)?;
+                    Some((
+                        g.id,
+                        GridFrame {
+                            cd: crate::geometry::grid_systems(g, &deck.bulk).1,
+                            axes: *axes,
+                        },
+                    ))
+                })
+                .collect(),
+        ),
     };
     let errors = cx.diags.iter().any(|d| d.is_error());
     if errors {
@@ -230,11 +246,75 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
     }
 }
 
+/// A deck's structure alone, as `impactlab check` builds it: no time stepping, no
+/// impactor and no contact are asked for.
+#[derive(Debug, Clone)]
+pub struct Structure {
+    /// The grids, with their basic positions and displacement frames, and the
+    /// coordinate systems.
+    pub geometry: Geometry,
+    /// The elements, CONM2 masses and drilling supports, as a run builds them.
+    pub elements: Vec<Element>,
+    /// The grid DOFs left free by PS, GRDSET and the selected SPC1/SPC cards.
+    pub free_dofs: usize,
+    /// The grid DOFs they constrain.
+    pub constrained_dofs: usize,
+    /// Scalar points (EPOINT, SPOINT).
+    pub scalar_points: usize,
+}
+
+impl Structure {
+    /// Its mass, centre of gravity and inertia (see [`super::mass_properties`]).
+    pub fn mass_properties(&self) -> super::MassProperties {
+        let g = &self.geometry;
+        super::mass_properties(
+            &self.elements,
+            |id| g.positions.get(&id).copied().unwrap_or_default(),
+            |id| g.frame(id),
+        )
+    }
+}
+
+/// Builds a deck's structure alone (see [`Structure`]): its coordinate systems and
+/// grids, constraints (the case control's SPC, through SPCADD), elements with their
+/// properties and materials, and masses, collecting every error as [`build_model`]
+/// does. TSTEP, TF, NOLIN3 and TIC cards are read but not used.
+pub fn build_structure(deck: &Deck) -> Result<(Structure, Vec<Diagnostic>), ModelError> {
+    let mut cx = Ctx::default();
+    let (geometry, geo_errors) = crate::geometry::resolve(&deck.bulk);
+    for d in geo_errors {
+        cx.err(d);
+    }
+    let sel = Selected {
+        spcs: select_spcs(&mut cx, deck),
+        tfs: Vec::new(),
+        nolins: Vec::new(),
+        tics: Vec::new(),
+        tsteps: Vec::new(),
+    };
+    let constrained = constrained_grids(&mut cx, deck, &sel);
+    let num = number_dofs(deck, &constrained, &BTreeMap::new());
+    let elements = build_elements(&mut cx, deck, &num, &geometry);
+    let grid_dofs = num.dofs.iter().filter(|d| d.comp != 0).count();
+    let structure = Structure {
+        geometry,
+        elements: elements.list,
+        free_dofs: grid_dofs,
+        constrained_dofs: 6 * num.grids.len() - grid_dofs,
+        scalar_points: num.scalar.len(),
+    };
+    if cx.diags.iter().any(|d| d.is_error()) {
+        Err(ModelError { diagnostics: cx.diags })
+    } else {
+        Ok((structure, cx.diags))
+    }
+}
+
 /// The SPC1, TF, NOLIN3, TIC and TSTEP cards the case control selects.
 fn select_cards<'d>(cx: &mut Ctx, deck: &'d Deck) -> Selected<'d> {
     let (b, case) = (&deck.bulk, &deck.case);
     let sel = Selected {
-        spcs: cx.select("SPC1", "SPC", &case.spc, &b.spc1s, |c| c.sid, |c| &c.at),
+        spcs: select_spcs(cx, deck),
         tfs: cx.select("TF", "TFL", &case.tfl, &b.tfs, |c| c.sid, |c| &c.at),
         nolins: cx.select("NOLIN3", "NONLINEAR", &case.nonlinear, &b.nolin3s, |c| c.sid, |c| &c.at),
         tics: cx.select("TIC", "IC", &case.ic, &b.tics, |c| c.sid, |c| &c.at),
@@ -247,6 +327,43 @@ fn select_cards<'d>(cx: &mut Ctx, deck: &'d Deck) -> Selected<'d> {
         ));
     }
     sel
+}
+
+/// The SPC1 (and SPC) cards the case control's SPC selects: those of its set, or of
+/// every set an SPCADD of that id joins (an SPCADD naming an SPCADD, or a set no card
+/// has, is an error).
+fn select_spcs<'d>(cx: &mut Ctx, deck: &'d Deck) -> Vec<&'d crate::deck::cards::Spc1> {
+    let (b, case) = (&deck.bulk, &deck.case);
+    let Some(add) = case.spc.as_ref().and_then(|s| b.spcadds.iter().find(|a| a.sid == s.id)) else {
+        return cx.select("SPC1", "SPC", &case.spc, &b.spc1s, |c| c.sid, |c| &c.at);
+    };
+    for &set in &add.sets {
+        if b.spcadds.iter().any(|a| a.sid == set) {
+            cx.err(add.at.error(format!(
+                "SPCADD {} joins set {set}, itself an SPCADD: join SPC1/SPC sets only",
+                add.sid
+            )));
+        } else if !b.spc1s.iter().any(|c| c.sid == set) {
+            cx.err(add.at.error(format!(
+                "SPCADD {} joins set {set}, which no SPC1 or SPC card has",
+                add.sid
+            )));
+        }
+    }
+    let chosen: Vec<_> = b.spc1s.iter().filter(|c| add.sets.contains(&c.sid)).collect();
+    let ignored = b.spc1s.len() - chosen.len();
+    if ignored > 0 {
+        let first = b
+            .spc1s
+            .iter()
+            .find(|c| !add.sets.contains(&c.sid))
+            .expect("one is ignored");
+        cx.warn(first.at.error(format!(
+            "{ignored} SPC1 card(s) not selected (case control selects SPC = {}, SPCADD of sets {:?}); ignored",
+            add.sid, add.sets
+        )));
+    }
+    chosen
 }
 
 /// The scalar points of the deck (EPOINT, SPOINT).

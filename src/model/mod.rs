@@ -7,10 +7,13 @@
 //! a linear functional of the solved DOFs, not as an unknown.
 
 mod build;
+pub mod check;
 mod modify;
+mod weight;
 
-pub use build::{build_model, ModelError};
+pub use build::{build_model, build_structure, ModelError, Structure};
 pub use modify::{Modify, ModifyError};
+pub use weight::{mass_properties, MassProperties};
 
 /// Loading a model from a deck failed: the deck's or the model builder's problems,
 /// or (for an embedded deck) the files it is read from could not be written.
@@ -273,6 +276,19 @@ pub struct Model {
     /// Where the time stepping comes from (`TSTEP 7 at rod.bdf:55:1`), for messages;
     /// `None` for a model not read from a deck.
     pub time_card: Option<String>,
+    /// The displacement frame of each grid whose CD is not the basic system (a grid
+    /// absent here is displaced along basic x, y, z).
+    pub frames: std::sync::Arc<std::collections::BTreeMap<i64, GridFrame>>,
+}
+
+/// A grid's displacement frame other than the basic system.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GridFrame {
+    /// Its coordinate system, the grid's CD.
+    pub cd: i64,
+    /// The frame's axes at the grid (T1/R1, T2/R2, T3/R3), in basic components, as
+    /// columns.
+    pub axes: nalgebra::Matrix3<f64>,
 }
 
 impl Model {
@@ -292,6 +308,35 @@ impl Model {
             Source::Dof(i) => u[i],
             Source::Dependent(j) => apply(&self.dependent[j].functional, u),
             Source::Inert => 0.0,
+        }
+    }
+
+    /// The weight of each solved DOF's (Mv) in the momentum along the impact
+    /// direction (the axis of the impactor's DOF; T1 without a contact): when every
+    /// grid is displaced in the basic system, 1 on the DOFs of that component and 0
+    /// elsewhere; with grids in other frames, the cosine between each translation's
+    /// axis and the impact direction.
+    pub fn momentum_weights(&self) -> Vec<f64> {
+        let imp = match &self.contact {
+            Some(c) => self.dofs[c.impactor.dof],
+            None => DofLabel { point: 0, comp: 1 },
+        };
+        let axis = |d: &DofLabel| -> Option<nalgebra::Vector3<f64>> {
+            let k = (1..=3).contains(&d.comp).then(|| d.comp as usize - 1)?;
+            Some(match self.frames.get(&d.point) {
+                Some(f) => f.axes.column(k).into_owned(),
+                None => nalgebra::Vector3::ith(k, 1.0),
+            })
+        };
+        match axis(&imp) {
+            Some(dir) if !self.frames.is_empty() => {
+                self.dofs.iter().map(|d| axis(d).map_or(0.0, |a| a.dot(&dir))).collect()
+            }
+            _ => self
+                .dofs
+                .iter()
+                .map(|d| if d.comp == imp.comp { 1.0 } else { 0.0 })
+                .collect(),
         }
     }
 

@@ -2,7 +2,8 @@
 //! `.pvd` collection giving each file its time, both written with quick-xml.
 //!
 //! Every value traces back to the deck. Point data: `grid_id` (the NASTRAN grid),
-//! `displacement` and `velocity` (translations). Cell data: `element_id` and the
+//! `displacement` and `velocity` (translations, in the basic system: a grid displaced
+//! in another frame, its CD, is turned to basic). Cell data: `element_id` and the
 //! strains the element recovers (`axial_strain` for rods; `strain_z1`, `strain_z2`
 //! with components xx, yy, xy for shells), NaN where an element recovers no such
 //! value; when a laminate's PCOMP names a failure theory, `failure_index`: each
@@ -197,6 +198,8 @@ struct Mesh<'m> {
     offsets: Vec<i64>,
     types: Vec<u8>,
     cells: Vec<&'m Element>,
+    /// The displacement frames of grids not displaced in the basic system.
+    frames: &'m std::collections::BTreeMap<i64, crate::model::GridFrame>,
     /// The strain arrays written per cell (see [`strain_layout`]).
     layout: Vec<StrainArray>,
 }
@@ -211,6 +214,7 @@ impl<'m> Mesh<'m> {
             offsets: Vec::new(),
             types: Vec::new(),
             cells: Vec::new(),
+            frames: &model.frames,
             layout: Vec::new(),
         };
         for e in model.elements.iter() {
@@ -304,6 +308,14 @@ impl<'m> Mesh<'m> {
                 if let Some(&p) = self.index.get(&l.point) {
                     disp[3 * p + l.comp as usize - 1] = s.u[i];
                     velo[3 * p + l.comp as usize - 1] = s.v[i];
+                }
+            }
+        }
+        for (g, f) in self.frames.iter() {
+            if let Some(&p) = self.index.get(g) {
+                for a in [&mut disp, &mut velo] {
+                    let basic = f.axes * nalgebra::Vector3::from_column_slice(&a[3 * p..3 * p + 3]);
+                    a[3 * p..3 * p + 3].copy_from_slice(basic.as_slice());
                 }
             }
         }

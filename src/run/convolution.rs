@@ -167,12 +167,21 @@ impl Kernels {
             .ok_or_else(|| RunError::Engine("the convolution engine needs a model with a contact".into()))?;
         // Functionals the ledger needs beyond the outputs, over the target's DOFs.
         let imp = ct.impactor.dof;
-        let comp = model.dofs[imp].comp;
+        let weights = model.momentum_weights();
         let m_diag = sys.m_diag();
         let target = model.target_mask();
         let momentum_t: Vec<(usize, f64)> = (0..model.n())
-            .filter(|&i| target[i] && model.dofs[i].comp == comp && m_diag[i] != 0.0)
-            .map(|i| (i, m_diag[i]))
+            .filter(|&i| target[i] && weights[i] != 0.0 && m_diag[i] != 0.0)
+            .map(|i| {
+                (
+                    i,
+                    if weights[i] == 1.0 {
+                        m_diag[i]
+                    } else {
+                        weights[i] * m_diag[i]
+                    },
+                )
+            })
             .collect();
         let nc_t: Vec<(usize, f64)> = ct.nonconservative.iter().copied().filter(|&(j, _)| j != imp).collect();
         let mut rows: Vec<Vec<f64>> = Vec::with_capacity(steps);

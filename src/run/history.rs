@@ -17,12 +17,13 @@ pub enum Column {
     ImpactorDisp,
     /// The impactor's velocity along the impact direction.
     ImpactorVelo,
-    /// Displacement of a DOF (DISP request).
-    Disp(DofLabel),
-    /// Velocity of a DOF (VELO request).
-    Velo(DofLabel),
-    /// A NOLIN3 load on a DOF (NLLOAD request).
-    NlLoad(DofLabel),
+    /// Displacement of a DOF (DISP request), in its grid's displacement frame (the
+    /// CD, 0 for the basic system and for a scalar point).
+    Disp(DofLabel, i64),
+    /// Velocity of a DOF (VELO request), in its grid's displacement frame.
+    Velo(DofLabel, i64),
+    /// A NOLIN3 load on a DOF (NLLOAD request), in its grid's displacement frame.
+    NlLoad(DofLabel, i64),
     /// A recovered stress or strain of an element (STRESS/STRAIN requests).
     Element {
         /// Element id.
@@ -149,14 +150,16 @@ impl Column {
         }
     }
 
-    /// The column's name (the header without its unit): `disp_73_T1`, `strain_72`.
+    /// The column's name (the header without its unit): `disp_73_T1`, `strain_72`;
+    /// a grid's component in a displacement frame other than the basic system names
+    /// it: `disp_73_T1_cd5` is T1 along the x axis (or e_R) of system 5 at grid 73.
     pub fn name(&self) -> String {
-        let tag = |d: &DofLabel| {
+        let tag = |d: &DofLabel, cd: &i64| {
             const C: [&str; 7] = ["", "T1", "T2", "T3", "R1", "R2", "R3"];
-            if d.comp == 0 {
-                format!("{}", d.point)
-            } else {
-                format!("{}_{}", d.point, C[d.comp as usize])
+            match (d.comp, cd) {
+                (0, _) => format!("{}", d.point),
+                (c, 0) => format!("{}_{}", d.point, C[c as usize]),
+                (c, cd) => format!("{}_{}_cd{cd}", d.point, C[c as usize]),
             }
         };
         match self {
@@ -165,9 +168,9 @@ impl Column {
             Column::Indentation => "indentation".into(),
             Column::ImpactorDisp => "impactor_disp".into(),
             Column::ImpactorVelo => "impactor_velo".into(),
-            Column::Disp(d) => format!("disp_{}", tag(d)),
-            Column::Velo(d) => format!("velo_{}", tag(d)),
-            Column::NlLoad(d) => format!("nlload_{}", tag(d)),
+            Column::Disp(d, cd) => format!("disp_{}", tag(d, cd)),
+            Column::Velo(d, cd) => format!("velo_{}", tag(d, cd)),
+            Column::NlLoad(d, cd) => format!("nlload_{}", tag(d, cd)),
             Column::Element { eid, value } => value.name(*eid),
             Column::Ply {
                 eid,
@@ -209,11 +212,11 @@ impl Column {
         };
         match self {
             Column::Time => t.clone(),
-            Column::ContactForce | Column::NlLoad(_) => f.clone(),
+            Column::ContactForce | Column::NlLoad(..) => f.clone(),
             Column::Indentation | Column::ImpactorDisp => l.clone(),
             Column::ImpactorVelo => format!("{l}/{t}"),
-            Column::Disp(d) => dof(d),
-            Column::Velo(d) => format!("{}/{t}", dof(d)),
+            Column::Disp(d, _) => dof(d),
+            Column::Velo(d, _) => format!("{}/{t}", dof(d)),
             Column::Element {
                 value: Recovered { measure, .. },
                 ..
@@ -237,7 +240,8 @@ mod tests {
     use super::*;
     use crate::deck::Units;
 
-    /// Goal: headers carry the deck's units, rotations in rad, strains dimensionless.
+    /// Goal: headers carry the deck's units, rotations in rad, strains dimensionless,
+    /// and a grid's displacement frame when it is not the basic system.
     #[test]
     fn headers_carry_the_decks_units() {
         let u = UnitSystem::of(&Units {
@@ -247,9 +251,10 @@ mod tests {
         });
         let d = |point, comp| DofLabel { point, comp };
         assert_eq!(Column::Time.header(&u), "time [ms]");
-        assert_eq!(Column::Velo(d(73, 5)).header(&u), "velo_73_R2 [rad/ms]");
-        assert_eq!(Column::Disp(d(1001, 0)).header(&u), "disp_1001 [mm]");
-        assert_eq!(Column::NlLoad(d(999, 1)).header(&u), "nlload_999_T1 [kN]");
+        assert_eq!(Column::Velo(d(73, 5), 0).header(&u), "velo_73_R2 [rad/ms]");
+        assert_eq!(Column::Disp(d(1001, 0), 0).header(&u), "disp_1001 [mm]");
+        assert_eq!(Column::NlLoad(d(999, 1), 0).header(&u), "nlload_999_T1 [kN]");
+        assert_eq!(Column::Disp(d(73, 3), 5).header(&u), "disp_73_T3_cd5 [mm]");
         assert_eq!(Column::rod_strain(72).header(&u), "strain_72 [-]");
         let stress = Column::Element {
             eid: 3,

@@ -354,10 +354,16 @@ impl RunResult {
 /// The columns of `history.csv`, in the order the recorder writes its rows.
 pub fn history_columns(m: &Model) -> Vec<Column> {
     let mut cols = FIXED_COLUMNS.to_vec();
-    cols.extend(m.outputs.disp.iter().map(|(d, _)| Column::Disp(*d)));
-    cols.extend(m.outputs.velo.iter().map(|(d, _)| Column::Velo(*d)));
+    let cd = |d: &crate::model::DofLabel| m.frames.get(&d.point).map_or(0, |f| f.cd);
+    cols.extend(m.outputs.disp.iter().map(|(d, _)| Column::Disp(*d, cd(d))));
+    cols.extend(m.outputs.velo.iter().map(|(d, _)| Column::Velo(*d, cd(d))));
     if let Some(c) = &m.contact {
-        cols.extend(m.outputs.nlload.iter().map(|&k| Column::NlLoad(c.loads[k].label)));
+        cols.extend(
+            m.outputs
+                .nlload
+                .iter()
+                .map(|&k| Column::NlLoad(c.loads[k].label, cd(&c.loads[k].label))),
+        );
     }
     for (e, stress) in m.outputs.written() {
         let e = &m.elements[e];

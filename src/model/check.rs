@@ -1,0 +1,226 @@
+//! `impactlab check`: will impactlab take this deck? Its structure built alone
+//! ([`super::build_structure`]), counted and weighed, with every card that is not
+//! taken: those that would change the structure (not supported) and those that do
+//! not (loads, temperatures, eigenvalue and solution controls, output and design
+//! cards, PARAMs: ignored).
+
+use super::{build_structure, MassProperties};
+use crate::deck::cards::CoordKind;
+use crate::deck::{Deck, Diagnostic};
+use serde::Serialize;
+use std::collections::BTreeMap;
+
+/// Bulk data cards that do not change a structure's stiffness, mass or constraints:
+/// loads, temperatures, eigenvalue and solution controls, tables, design and output
+/// cards. A deck's card of these kinds is listed as ignored, not as unsupported.
+pub const NON_STRUCTURAL: [&str; 70] = [
+    // Static and dynamic loads.
+    "FORCE", "FORCE1", "FORCE2", "MOMENT", "MOMENT1", "MOMENT2", "PLOAD", "PLOAD1", "PLOAD2", "PLOAD4", "PLOADX1",
+    "GRAV", "LOAD", "ACCEL", "ACCEL1", "RFORCE", "SPCD", "DAREA", "DLOAD", "TLOAD1", "TLOAD2", "RLOAD1", "RLOAD2",
+    "LSEQ", "DELAY", "DPHASE", "SLOAD", // Temperatures.
+    "TEMP", "TEMPD", "TEMPP1", "TEMPRB", "TEMPAX", // Eigenvalue and solution controls.
+    "EIGRL", "EIGR", "EIGC", "EIGB", "FREQ", "FREQ1", "FREQ2", "FREQ3", "FREQ4", "FREQ5", "TSTEPNL", "NLPARM", "NLPCI",
+    "TABDMP1", // Tables.
+    "TABLED1", "TABLED2", "TABLED3", "TABLED4", "TABLEM1", "TABLEM2", "TABLEM3", "TABLEM4", "TABLES1", "TABLEST",
+    "TABRND1", // Design and output.
+    "DESVAR", "DRESP1", "DRESP2", "DCONSTR", "DCONADD", "DOPTPRM", "DVPREL1", "DVPREL2", "DLINK", "MONPNT1", "PLOTEL",
+    "SET1", "SET3",
+];
+
+/// Cards of one name the deck holds and impactlab does not take.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CardCount {
+    /// The card's name.
+    pub card: String,
+    /// How many the deck has.
+    pub count: usize,
+    /// Where the first is (file:line:column).
+    pub first_at: String,
+    /// Its first line as written.
+    pub first_line: String,
+}
+
+/// A coordinate system of the deck and its use.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SystemUse {
+    /// Its id.
+    pub cid: i64,
+    /// The card that defines it.
+    pub card: String,
+    /// Rectangular, cylindrical or spherical.
+    pub kind: &'static str,
+    /// Grids located in it (CP).
+    pub located: usize,
+    /// Grids displaced in it (CD).
+    pub displaced: usize,
+}
+
+/// The mass properties as reported.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Weight {
+    /// The mass along basic x, y, z.
+    pub mass: [f64; 3],
+    /// The centre of gravity (basic).
+    pub centre: Option<[f64; 3]>,
+    /// The inertia tensor about it (basic axes; products with their minus sign).
+    pub inertia: [[f64; 3]; 3],
+    /// The principal moments.
+    pub principal: [f64; 3],
+}
+
+impl From<MassProperties> for Weight {
+    fn from(m: MassProperties) -> Self {
+        Weight {
+            mass: m.mass,
+            centre: m.centre,
+            inertia: m.inertia,
+            principal: m.principal,
+        }
+    }
+}
+
+/// What `impactlab check` answers.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CheckReport {
+    /// The deck's name.
+    pub deck: String,
+    /// The SOL statement, as written.
+    pub solution: Option<String>,
+    /// True when the structure builds and no card that would change it is left out:
+    /// impactlab takes the deck.
+    pub takes: bool,
+    /// Grids.
+    pub grids: usize,
+    /// Elements by kind (CONM2 masses and drilling supports included).
+    pub elements: BTreeMap<String, usize>,
+    /// Grid DOFs left free by PS, GRDSET and the selected SPC.
+    pub free_dofs: usize,
+    /// Grid DOFs constrained.
+    pub constrained_dofs: usize,
+    /// Scalar points.
+    pub scalar_points: usize,
+    /// Mass, centre of gravity and inertia (`None` when the structure does not build).
+    pub weight: Option<Weight>,
+    /// The coordinate systems.
+    pub systems: Vec<SystemUse>,
+    /// Cards that would change the structure and are not supported.
+    pub unsupported: Vec<CardCount>,
+    /// Cards that do not change the structure, ignored (PARAM among them).
+    pub ignored: Vec<CardCount>,
+    /// Why the structure does not build (the model builder's errors), when it does not.
+    pub errors: Vec<String>,
+    /// Warnings of the reader and the model builder.
+    pub warnings: Vec<String>,
+}
+
+/// The check of a deck read with [`crate::deck::ReadOptions::structure`].
+pub fn check(deck: &Deck) -> CheckReport {
+    let b = &deck.bulk;
+    let mut unsupported: BTreeMap<String, CardCount> = BTreeMap::new();
+    let mut ignored: BTreeMap<String, CardCount> = BTreeMap::new();
+    for u in &deck.unknown {
+        let to = if NON_STRUCTURAL.contains(&u.name.as_str()) {
+            &mut ignored
+        } else {
+            &mut unsupported
+        };
+        to.entry(u.name.clone())
+            .or_insert_with(|| CardCount {
+                card: u.name.clone(),
+                count: 0,
+                first_at: u.pos.to_string(),
+                first_line: u.line.clone(),
+            })
+            .count += 1;
+    }
+    for w in deck.warnings.iter().filter(|w| w.card.as_deref() == Some("PARAM")) {
+        ignored
+            .entry("PARAM".into())
+            .or_insert_with(|| CardCount {
+                card: "PARAM".into(),
+                count: 0,
+                first_at: w.pos.as_ref().map(|p| p.to_string()).unwrap_or_default(),
+                first_line: w
+                    .quote
+                    .as_deref()
+                    .and_then(|q| q.lines().next())
+                    .unwrap_or("")
+                    .to_string(),
+            })
+            .count += 1;
+    }
+    let mut warnings: Vec<String> = deck
+        .warnings
+        .iter()
+        .filter(|w| w.card.as_deref() != Some("PARAM"))
+        .map(Diagnostic::to_string)
+        .collect();
+    let systems = b
+        .cords
+        .iter()
+        .map(|c| SystemUse {
+            cid: c.cid,
+            card: c.at.name.clone(),
+            kind: match c.kind {
+                CoordKind::Rectangular => "rectangular",
+                CoordKind::Cylindrical => "cylindrical",
+                CoordKind::Spherical => "spherical",
+            },
+            located: b
+                .grids
+                .iter()
+                .filter(|g| crate::geometry::grid_systems(g, b).0 == c.cid)
+                .count(),
+            displaced: b
+                .grids
+                .iter()
+                .filter(|g| crate::geometry::grid_systems(g, b).1 == c.cid)
+                .count(),
+        })
+        .collect();
+    let mut report = CheckReport {
+        deck: deck.name.clone(),
+        solution: deck.executive.solution.clone(),
+        takes: false,
+        grids: b.grids.len(),
+        elements: BTreeMap::new(),
+        free_dofs: 0,
+        constrained_dofs: 0,
+        scalar_points: 0,
+        weight: None,
+        systems,
+        unsupported: unsupported.into_values().collect(),
+        ignored: ignored.into_values().collect(),
+        errors: Vec::new(),
+        warnings: Vec::new(),
+    };
+    match build_structure(deck) {
+        Ok((s, diags)) => {
+            for e in &s.elements {
+                *report.elements.entry(e.kernel.card().to_string()).or_default() += 1;
+            }
+            report.free_dofs = s.free_dofs;
+            report.constrained_dofs = s.constrained_dofs;
+            report.scalar_points = s.scalar_points;
+            report.weight = Some(s.mass_properties().into());
+            warnings.extend(diags.iter().map(Diagnostic::to_string));
+            report.takes = report.unsupported.is_empty();
+        }
+        Err(e) => {
+            report.errors = e
+                .diagnostics
+                .iter()
+                .filter(|d| d.is_error())
+                .map(Diagnostic::to_string)
+                .collect();
+            warnings.extend(
+                e.diagnostics
+                    .iter()
+                    .filter(|d| !d.is_error())
+                    .map(Diagnostic::to_string),
+            );
+        }
+    }
+    report.warnings = warnings;
+    report
+}
