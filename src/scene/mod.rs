@@ -15,6 +15,10 @@ use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
 use std::path::Path;
 
+mod strike;
+use strike::{deck_bulk, direction_of};
+pub use strike::{strike, Strike};
+
 /// A scene file: a target, an impactor and a contact law, described by what they are rather than by cards.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -38,6 +42,9 @@ pub struct Scene {
     pub output: Output,
     /// The `[run]` table: scheme, step and end.
     pub run: RunResult,
+    /// The directory of the scene file: a deck target's path is relative to it.
+    #[serde(skip)]
+    pub dir: std::path::PathBuf,
 }
 
 /// The scene's unit names.
@@ -65,7 +72,7 @@ pub struct Isotropic {
     pub rho: f64,
 }
 
-/// The struck structure (`kind = "rod"` or `"plate"`).
+/// The struck structure (`kind = "rod"`, `"plate"` or `"deck"`).
 #[derive(Debug, Clone, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum Target {
@@ -108,6 +115,13 @@ pub enum Target {
         /// Per edge (y = −b/2, x = +a/2, y = +b/2, x = −a/2): "clamped" or "free".
         edges: [String; 4],
     },
+    /// The structure of a deck (any deck `impactlab check` takes: its SOL, loads and
+    /// transient cards are left out), struck where `impactor.at` or `impactor.grid`
+    /// says.
+    Deck {
+        /// The deck's path, relative to the scene file.
+        deck: String,
+    },
 }
 
 /// The impactor: a rigid mass.
@@ -122,20 +136,34 @@ pub struct Impactor {
     pub material: Option<Isotropic>,
     /// Impact velocity.
     pub velocity: f64,
+    /// A deck target's struck point (basic coordinates), on the surface of one of
+    /// its shells.
+    #[serde(default)]
+    pub at: Option<[f64; 3]>,
+    /// A deck target's struck grid, instead of `at`.
+    #[serde(default)]
+    pub grid: Option<i64>,
+    /// A deck target: the impactor's travel, a vector (basic components) or
+    /// "normal" (along the struck element's normal; at a grid, the mean of its
+    /// shells' normals).
+    #[serde(default)]
+    pub direction: Option<toml::Value>,
 }
 
 /// The contact law.
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Contact {
-    /// "hertz" (F = K α^1.5).
+    /// "hertz" (F = K α^1.5), the default.
+    #[serde(default = "hertz")]
     pub law: String,
     /// A number, "eq5" (sphere on an isotropic flat) or "eq18" (k_t = E33).
     pub k: toml::Value,
 }
 
-/// Effects asked for: each is off unless asked for or needed.
-#[derive(Debug, Clone, Default, Deserialize)]
+/// Effects asked for: each is off unless asked for or needed; the ledger is on unless
+/// turned off.
+#[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Effects {
     /// Solve the plate's membrane DOFs.
@@ -157,6 +185,23 @@ pub struct Effects {
 
 fn yes() -> bool {
     true
+}
+
+impl Default for Effects {
+    /// A scene without an `[effects]` table: nothing asked for, the ledger booked.
+    fn default() -> Self {
+        Effects {
+            membrane: false,
+            rotary_inertia: false,
+            damping: false,
+            gravity: false,
+            ledger: true,
+        }
+    }
+}
+
+fn hertz() -> String {
+    "hertz".into()
 }
 
 /// What a scene's run writes.
@@ -257,7 +302,10 @@ pub fn parse(path: &Path, text: &str) -> Result<Scene, SceneError> {
         issue: SceneIssue(e.message().to_string()),
     })?;
     validate(&s).map_err(|e| invalid(path, e))?;
-    Ok(s)
+    Ok(Scene {
+        dir: path.parent().map(Path::to_path_buf).unwrap_or_default(),
+        ..s
+    })
 }
 
 /// A positive finite number, or why not.
@@ -302,9 +350,42 @@ fn validate(s: &Scene) -> Result<(), SceneIssue> {
     validate_target(s)
 }
 
-/// The target: a rod or a square plate the generators can mesh.
+/// The target: a rod or a square plate the generators can mesh, or a deck struck at
+/// a point or grid along a direction.
 fn validate_target(s: &Scene) -> Result<(), SceneIssue> {
+    let i = &s.impactor;
+    let deck = matches!(s.target, Target::Deck { .. });
+    if !deck && (i.at.is_some() || i.grid.is_some() || i.direction.is_some()) {
+        return Err(SceneIssue(
+            "impactor.at, impactor.grid and impactor.direction are for a deck target (kind = \"deck\"); a rod \
+             is struck at its end, a plate at its centre"
+                .into(),
+        ));
+    }
     match &s.target {
+        Target::Deck { .. } => {
+            match (i.at, i.grid) {
+                (Some(_), Some(_)) => {
+                    return Err(SceneIssue("impactor: give `at` or `grid`, not both".into()));
+                }
+                (None, None) => {
+                    return Err(SceneIssue(
+                        "impactor: a deck target needs the struck point, `at = [x, y, z]`, or a grid, `grid = id`"
+                            .into(),
+                    ));
+                }
+                (Some(p), None) if p.iter().any(|v| !v.is_finite()) => {
+                    return Err(SceneIssue(format!("impactor.at = {p:?} must be three finite numbers")));
+                }
+                _ => {}
+            }
+            direction_of(i.direction.as_ref())?;
+            if s.effects.membrane {
+                return Err(SceneIssue(
+                    "effects.membrane is for a generated plate; a deck's membrane is solved wherever it is live".into(),
+                ));
+            }
+        }
         Target::Rod {
             length,
             area,
@@ -381,6 +462,10 @@ fn validate_target(s: &Scene) -> Result<(), SceneIssue> {
 
 /// Hertz K of the scene: given, Eq. 5 or Eq. 18 (with the formula's inputs).
 pub fn contact_stiffness(s: &Scene) -> Result<(f64, String), SceneIssue> {
+    if let Target::Deck { .. } = &s.target {
+        let st = strike(s)?;
+        return Ok((st.k, st.how));
+    }
     let k = &s.contact.k;
     if let Some(v) = k.as_float().or(k.as_integer().map(|i| i as f64)) {
         return if v > 0.0 {
@@ -415,6 +500,7 @@ pub fn contact_stiffness(s: &Scene) -> Result<(f64, String), SceneIssue> {
                 "contact.k = \"eq18\" is for a composite plate; a rod uses \"eq5\"".into(),
             ))
         }
+        (_, Target::Deck { .. }) => unreachable!("a deck target's K is its strike's"),
         (w, _) => {
             return Err(SceneIssue(format!(
                 "contact.k must be a number, \"eq5\" or \"eq18\", not '{w}'"
@@ -471,11 +557,16 @@ pub fn to_deck(s: &Scene) -> Result<String, SceneIssue> {
     let _ = writeln!(w, "$ Units: {}, {}, {}", s.units.length, s.units.force, s.units.time);
     let _ = writeln!(w, "ID SCENE,IMPACT\nSOL 27\nCEND");
     let _ = writeln!(w, "  TITLE = {}", if s.title.is_empty() { "SCENE" } else { &s.title });
-    let _ = writeln!(w, "  SPC = 1\n  IC = 3\n  NONLINEAR = 5\n  TSTEP = 1\n  TFL = 111");
     let steps_line = format!("TSTEP,1,{steps},{},{every}", format_real(dt));
+    if let Target::Deck { .. } = &s.target {
+        deck_bulk(w, s, &strike(s)?, &steps_line);
+    } else {
+        let _ = writeln!(w, "  SPC = 1\n  IC = 3\n  NONLINEAR = 5\n  TSTEP = 1\n  TFL = 111");
+    }
     match &s.target {
         Target::Rod { .. } => rod_bulk(w, s, k, &steps_line),
         Target::Plate { .. } => plate_bulk(w, s, k, &steps_line)?,
+        Target::Deck { .. } => {}
     }
     let _ = writeln!(w, "ENDDATA");
     Ok(d)
@@ -673,6 +764,13 @@ pub fn effects(s: &Scene, inert_dofs: usize, steps_done: usize) -> EffectReport 
         (Target::Plate { .. }, false) => skip.push(Effect::new("membrane", format!(
             "not asked for; a transverse impact on a plate with no membrane-bending coupling leaves the in-plane DOFs at zero: {inert_dofs} DOFs not solved"))),
         (Target::Rod { .. }, _) => sim.push(Effect::new("axial waves", "the rod's response")),
+        (Target::Deck { .. }, _) => sim.push(Effect::new(
+            "the deck's structure",
+            format!(
+                "every DOF a load, initial condition or the contact reaches, its membrane wherever it is coupled to \
+                 bending: {inert_dofs} DOFs nothing reaches not solved"
+            ),
+        )),
     }
     if let Target::Plate { transverse_shear, .. } = &s.target {
         match transverse_shear {
