@@ -383,6 +383,12 @@ fn surface_deck(n: usize, edges: Edges, cells: Cells, surface: Surface) -> Resul
     Ok(d)
 }
 
+/// The model of [`panel_deck`] (CQUAD4).
+pub fn panel_model(n: usize, radius: f64) -> Result<crate::model::Model, MeshError> {
+    let text = panel_deck(n, radius, Cells::Quad4)?;
+    Ok(crate::model_from_text(&format!("panel{n}"), &text)?)
+}
+
 /// The paper's rod deck (`reference-data/decks/rod.bdf`) with N elements instead of
 /// 144: the same 36 in rod, ball, contact and TSTEP; the two elements at mid-rod are
 /// requested for output (N even); the CONM2 is renumbered 99999.

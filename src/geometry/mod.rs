@@ -394,6 +394,11 @@ fn cycle(start: i64, defs: &BTreeMap<i64, &Cord>, grids: &BTreeMap<i64, &Grid>, 
 /// here is ours, h/(¼(d₁₃ + d₂₄)), h the corners' distance from the mean plane.
 pub const MAX_WARP: f64 = 0.05;
 
+/// A quadrilateral whose corners stand off its mean plane by no more than this
+/// fraction of half its mean diagonal is flat: the distance is round-off of its
+/// coordinates (about 1e-16 of their size).
+pub const FLAT: f64 = 1e-12;
+
 /// A flat shell's own frame: the plane its kernel works in.
 ///
 /// - Normal n: (G3 − G1) × (G4 − G2) for a quadrilateral (the mean plane of its
@@ -446,13 +451,20 @@ pub fn shell_frame(points: &[[f64; 3]]) -> Result<ShellFrame, FrameError> {
     }
     let x = x.normalize();
     let y = n.cross(&x);
-    let heights: Vec<f64> = p.iter().map(|q| (q - centroid).dot(&n)).collect();
+    let mut heights: Vec<f64> = p.iter().map(|q| (q - centroid).dot(&n)).collect();
     if p.len() == 4 {
         let half_diagonal = 0.25 * ((p[2] - p[0]).norm() + (p[3] - p[1]).norm());
         let warp = heights.iter().fold(0.0f64, |m, h| m.max(h.abs())) / half_diagonal;
         if warp > MAX_WARP {
             return Err(FrameError::Warped(warp));
         }
+        // Heights at the round-off of the coordinates are no warp: a flat element
+        // keeps its corners where its grids are (no offsets).
+        if warp <= FLAT {
+            heights.iter_mut().for_each(|h| *h = 0.0);
+        }
+    } else {
+        heights.iter_mut().for_each(|h| *h = 0.0);
     }
     Ok(ShellFrame {
         axes: Matrix3::from_columns(&[x, y, n]),
