@@ -225,36 +225,11 @@ fn the_plate_with_its_normal_along_basic_x_gives_the_flat_plates_history() {
 fn scordelis_lo(n: usize) -> f64 {
     let (r, half_length, arc) = (25.0f64, 25.0f64, 40.0f64);
     let id = |i: usize, j: usize| 1000 * (i + 1) + j + 1;
-    let mut d = String::from(
-        "$ Units: unspecified\nSOL 27\nCEND\n  SPC = 1\n  TSTEP = 1\nBEGIN BULK\nTSTEP,1,1,1.0,1\n\
-         MAT1,1,4.32+8,,0.0,360.0\nPSHELL,1,1,0.25,1\n",
-    );
-    for i in 0..=n {
-        for j in 0..=n {
-            let x = half_length * i as f64 / n as f64;
-            let t = (arc * j as f64 / n as f64).to_radians();
-            d.push_str(&format!(
-                "GRID,{},,{:?},{:?},{:?}\n",
-                id(i, j),
-                x,
-                r * t.sin(),
-                r * t.cos()
-            ));
-        }
-    }
-    for i in 0..n {
-        for j in 0..n {
-            // Counter-clockwise seen from outside (normal outward).
-            d.push_str(&format!(
-                "CQUAD4,{},1,{},{},{},{}\n",
-                id(i, j),
-                id(i, j),
-                id(i, j + 1),
-                id(i + 1, j + 1),
-                id(i + 1, j)
-            ));
-        }
-    }
+    let point = |i: usize, j: usize| {
+        let t = (arc * j as f64 / n as f64).to_radians();
+        [half_length * i as f64 / n as f64, r * t.sin(), r * t.cos()]
+    };
+    let mut d = shell_grid_deck(n, 4.32e8, 0.0, 0.25, 360.0, point);
     for j in 0..=n {
         d.push_str(&format!("SPC1,1,234,{}\n", id(0, j)));
         d.push_str(&format!("SPC1,1,156,{}\n", id(n, j)));
@@ -502,12 +477,13 @@ fn static_displacement(name: &str, deck: &str, loads: &[(i64, u8, f64)], at: (i6
 }
 
 /// A deck's header and an n×n grid of CQUAD4 over `grid(i, j)`'s points, i, j from 0
-/// to n, with PSHELL 1 / MAT1 1 of `e`, `nu`, thickness `t`.
-fn shell_grid_deck(n: usize, e: f64, nu: f64, t: f64, grid: impl Fn(usize, usize) -> [f64; 3]) -> String {
+/// to n (grid ids 1000(i + 1) + j + 1), with PSHELL 1 / MAT1 1 of `e`, `nu`,
+/// density `rho`, thickness `t`.
+fn shell_grid_deck(n: usize, e: f64, nu: f64, t: f64, rho: f64, grid: impl Fn(usize, usize) -> [f64; 3]) -> String {
     let id = |i: usize, j: usize| 1000 * (i + 1) + j + 1;
     let mut d = format!(
         "$ Units: unspecified\nSOL 27\nCEND\n  SPC = 1\n  TSTEP = 1\nBEGIN BULK\nTSTEP,1,1,1.0,1\n\
-         MAT1,1,{e:?},,{nu:?},1.0\nPSHELL,1,1,{t:?},1\n"
+         MAT1,1,{e:?},,{nu:?},{rho:?}\nPSHELL,1,1,{t:?},1\n"
     );
     for i in 0..=n {
         for j in 0..=n {
@@ -543,7 +519,7 @@ fn pinched_cylinder(n: usize) -> f64 {
         [half * i as f64 / n as f64, r * t.sin(), r * t.cos()]
     };
     let id = |i: usize, j: usize| (1000 * (i + 1) + j + 1) as i64;
-    let mut d = shell_grid_deck(n, 3.0e6, 0.3, 3.0, point);
+    let mut d = shell_grid_deck(n, 3.0e6, 0.3, 3.0, 1.0, point);
     for k in 0..=n {
         d.push_str(&format!(
             "SPC1,1,234,{}\nSPC1,1,156,{}\nSPC1,1,246,{}\nSPC1,1,345,{}\n",
@@ -592,7 +568,7 @@ fn pinched_hemisphere(n: usize) -> f64 {
         [r * polar.sin() * az.cos(), r * polar.sin() * az.sin(), r * polar.cos()]
     };
     let id = |i: usize, j: usize| (1000 * (i + 1) + j + 1) as i64;
-    let mut d = shell_grid_deck(n, 6.825e7, 0.3, 0.04, point);
+    let mut d = shell_grid_deck(n, 6.825e7, 0.3, 0.04, 1.0, point);
     for k in 0..=n {
         d.push_str(&format!("SPC1,1,246,{}\nSPC1,1,156,{}\n", id(k, 0), id(k, n)));
     }

@@ -515,11 +515,7 @@ pub struct OnShell {
 /// 1e-14), and the shape functions there. `None` for a degenerate element or a
 /// projection Newton's method does not resolve (far outside a distorted quadrilateral).
 pub fn on_shell(points: &[[f64; 3]], p: [f64; 3]) -> Option<OnShell> {
-    let unwarped: Vec<[f64; 3]> = points.to_vec();
-    let f = match shell_frame(&unwarped) {
-        Ok(f) => f,
-        Err(FrameError::Warped(_)) | Err(FrameError::Degenerate) => return None,
-    };
+    let f = shell_frame(points).ok()?;
     let centroid = points.iter().map(|&q| Vector3::from(q)).sum::<Vector3<f64>>() / points.len() as f64;
     let r = Vector3::from(p) - centroid;
     let (x, y, height) = (

@@ -17,6 +17,7 @@ use std::path::Path;
 
 mod strike;
 use strike::{deck_bulk, direction_of};
+
 pub use strike::{strike, Strike};
 
 /// A scene file: a target, an impactor and a contact law, described by what they are rather than by cards.
@@ -460,21 +461,27 @@ fn validate_target(s: &Scene) -> Result<(), SceneIssue> {
     Ok(())
 }
 
+/// Hertz K as the scene gives it, when it gives a number (which must be positive).
+fn given_k(s: &Scene) -> Option<Result<(f64, String), SceneIssue>> {
+    let k = &s.contact.k;
+    let v = k.as_float().or(k.as_integer().map(|i| i as f64))?;
+    Some(if v > 0.0 {
+        Ok((v, "given".into()))
+    } else {
+        Err(SceneIssue(format!("contact.k must be positive, not {v}")))
+    })
+}
+
 /// Hertz K of the scene: given, Eq. 5 or Eq. 18 (with the formula's inputs).
 pub fn contact_stiffness(s: &Scene) -> Result<(f64, String), SceneIssue> {
     if let Target::Deck { .. } = &s.target {
         let st = strike(s)?;
         return Ok((st.k, st.how));
     }
-    let k = &s.contact.k;
-    if let Some(v) = k.as_float().or(k.as_integer().map(|i| i as f64)) {
-        return if v > 0.0 {
-            Ok((v, "given".into()))
-        } else {
-            Err(SceneIssue(format!("contact.k must be positive, not {v}")))
-        };
+    if let Some(given) = given_k(s) {
+        return given;
     }
-    let which = k.as_str().unwrap_or("");
+    let which = s.contact.k.as_str().unwrap_or("");
     let r = s
         .impactor
         .radius

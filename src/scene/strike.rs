@@ -190,15 +190,10 @@ pub fn strike(s: &Scene) -> Result<Strike, SceneIssue> {
 /// a MAT1), or Eq. 18 with k_t the transverse modulus E2 of its PCOMP's MAT8 plies
 /// (a ply transversely isotropic about its fibres: E33 = E2), each printed.
 fn hertz(s: &Scene, deck: &Deck, eid: Option<i64>, weights: &[(i64, f64)]) -> Result<(f64, String), SceneIssue> {
-    let k = &s.contact.k;
-    if let Some(v) = k.as_float().or(k.as_integer().map(|i| i as f64)) {
-        return if v > 0.0 {
-            Ok((v, "given".into()))
-        } else {
-            Err(SceneIssue(format!("contact.k must be positive, not {v}")))
-        };
+    if let Some(given) = super::given_k(s) {
+        return given;
     }
-    let which = k.as_str().unwrap_or("");
+    let which = s.contact.k.as_str().unwrap_or("");
     if which != "eq5" && which != "eq18" {
         return Err(SceneIssue(format!(
             "contact.k must be a number, \"eq5\" or \"eq18\", not '{which}'"
