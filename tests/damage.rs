@@ -233,7 +233,7 @@ fn failure_indices_are_the_theory_on_the_written_ply_stresses() {
 }
 
 /// Goal: a failure theory whose allowables are missing is an input error (exit 2) that
-/// names the PCOMP, the ply, its material and the missing field: HILL without Yc,
+/// names the PCOMP, the ply, its material and the missing field: HILL without S,
 /// HOFF over strain allowables (STRN = 1.0); nothing is written. TSAI without F12 runs,
 /// with NASTRAN's F12 = 0 and a warning that says so.
 #[test]
@@ -242,8 +242,8 @@ fn a_theory_without_its_allowables_is_refused() {
     for (ft, cont, why) in [
         (
             "HILL",
-            ",,,1.54+5,8.85+4,4.5+3,,1.04+4",
-            "FT = HILL needs the allowable Yc, which is blank",
+            ",,,1.54+5,8.85+4,4.5+3,1.71+4",
+            "FT = HILL needs the allowable S, which is blank",
         ),
         (
             "HOFF",
@@ -303,6 +303,40 @@ fn tsai_with_a_blank_f12_runs_as_with_f12_zero() {
         histories.push(std::fs::read_to_string(out.join("history.csv")).unwrap());
     }
     assert!(histories[0].contains("ply_"), "ply columns written");
+    assert_eq!(histories[0], histories[1]);
+}
+
+/// Goal: a MAT8 whose Xc and Yc are blank takes Xt and Yt for them, as NASTRAN does,
+/// and says so: the cross-ply with FT = HILL runs (exit 0) with a warning on each
+/// field, and its history, ply indices included, is the one with Xc = Xt and Yc = Yt
+/// written out.
+#[test]
+fn blank_compressive_allowables_are_the_tensile_ones() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut histories = Vec::new();
+    for (name, cont) in [
+        ("blank", ",,,1.54+5,,4.5+3,,1.04+4"),
+        ("written", ",,,1.54+5,1.54+5,4.5+3,4.5+3,1.04+4"),
+    ] {
+        let sub = dir.path().join(name);
+        std::fs::create_dir_all(&sub).unwrap();
+        let path = pcomp_with_ft(&sub, "HILL", cont);
+        let out = sub.join("out");
+        let o = impactlab(&[
+            "run",
+            path.to_str().unwrap(),
+            "--steps",
+            "40",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(0), "{name}: {stderr}");
+        let warned = stderr.contains("(Xc): is blank: Xc = Xt = 1.54e5, as NASTRAN takes it")
+            && stderr.contains("(Yc): is blank: Yc = Yt = 4.5e3, as NASTRAN takes it");
+        assert_eq!(warned, name == "blank", "{name}: {stderr}");
+        histories.push(std::fs::read_to_string(out.join("history.csv")).unwrap());
+    }
     assert_eq!(histories[0], histories[1]);
 }
 

@@ -823,11 +823,7 @@ pub fn type_cards(raw: &[RawCard], ids_left: &mut usize, diags: &mut Diagnostics
             "TSTEP" => card_tstep(&mut r, &mut b, card),
             "NOLIN3" => card_nolin3(&mut r, &mut b),
             "TIC" => card_tic(&mut r, &mut b),
-            "PARAM" => r.diags.push(
-                Diagnostic::warning(Some(card.pos.clone()), "PARAM cards are not used by impactlab; ignored")
-                    .card("PARAM")
-                    .quote(&card.source),
-            ),
+            "PARAM" => card_param(&mut r, card),
             name => match crate::elements::kind(name) {
                 Some(kind) => card_element(&mut r, &mut b, kind),
                 None => unknown.push(super::UnknownCard {
@@ -839,6 +835,31 @@ pub fn type_cards(raw: &[RawCard], ids_left: &mut usize, diags: &mut Diagnostics
         }
     }
     (b, unknown)
+}
+
+/// PARAM: not used by impactlab and ignored with a warning, except WTMASS other than
+/// 1.0, which scales every mass of the deck and is refused (masses are taken as
+/// written: multiply the densities and masses by it and remove the PARAM).
+fn card_param(r: &mut Reader, card: &RawCard) {
+    if r.text(0).eq_ignore_ascii_case("WTMASS") {
+        let w = r.real_or(1, "V1", 1.0);
+        if w != 1.0 {
+            r.fail(
+                1,
+                "V1",
+                format!(
+                    "PARAM WTMASS = {w:e} scales every mass of the deck, which impactlab takes as written: multiply \
+                     the densities and masses by it and remove the PARAM"
+                ),
+            );
+        }
+        return;
+    }
+    r.diags.push(
+        Diagnostic::warning(Some(card.pos.clone()), "PARAM cards are not used by impactlab; ignored")
+            .card("PARAM")
+            .quote(&card.source),
+    );
 }
 
 /// GRID.
@@ -1151,7 +1172,8 @@ fn card_mat2(r: &mut Reader, b: &mut Bulk) {
 /// MAT8: MID E1 E2 NU12 G12 G1Z G2Z RHO / A1 A2 TREF Xt Xc Yt Yc S / GE F12 STRN.
 /// E1, E2 and G12 are required and positive, NU12 must leave the ply's compliance
 /// positive definite (NU12² < E1/E2); the allowables, when given, are positive (Xc
-/// and Yc as magnitudes, as NASTRAN takes them).
+/// and Yc as magnitudes, as NASTRAN takes them); a blank Xc is Xt and a blank Yc is
+/// Yt (NASTRAN's defaults), with a warning.
 fn card_mat8(r: &mut Reader, b: &mut Bulk) {
     let mid = r.id(0, "MID");
     let e1 = r.real(1, "E1");
@@ -1186,13 +1208,27 @@ fn card_mat8(r: &mut Reader, b: &mut Bulk) {
         r.real_opt(k, name);
     }
     let names = ["Xt", "Xc", "Yt", "Yc", "S"];
-    let allowables: [Option<f64>; 5] = std::array::from_fn(|i| {
+    let mut allowables: [Option<f64>; 5] = std::array::from_fn(|i| {
         let v = r.real_opt(11 + i, names[i]);
         if let Some(v) = v {
             r.positive(11 + i, names[i], v);
         }
         v
     });
+    // A blank compressive allowable is the tensile one, as NASTRAN takes it.
+    for (c, t) in [(1, 0), (3, 2)] {
+        if let (None, Some(tension)) = (allowables[c], allowables[t]) {
+            allowables[c] = Some(tension);
+            r.warn(
+                11 + c,
+                names[c],
+                format!(
+                    "is blank: {} = {} = {tension:e}, as NASTRAN takes it",
+                    names[c], names[t]
+                ),
+            );
+        }
+    }
     let f12 = r.real_opt(17, "F12");
     let strn = r.real_or(18, "STRN", 0.0);
     if strn != 0.0 && strn != 1.0 {

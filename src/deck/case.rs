@@ -92,7 +92,8 @@ pub fn parse_executive(lines: &[SrcLine], structure: bool, diags: &mut Diagnosti
     let mut e = Executive::default();
     for l in lines {
         let t = l.text.trim();
-        let mut words = t.splitn(2, |c: char| c.is_whitespace());
+        // `ID A,B`, and `ID,A,B` as some writers put it.
+        let mut words = t.splitn(2, |c: char| c.is_whitespace() || c == ',');
         let key = words.next().unwrap_or("").to_ascii_uppercase();
         let rest = words.next().unwrap_or("").trim();
         match key.as_str() {
