@@ -273,20 +273,16 @@ fn a_theory_without_its_allowables_is_refused() {
     }
 }
 
-/// Goal: a TSAI laminate whose MAT8 leaves F12 blank runs with NASTRAN's F12 = 0 and
-/// says so: exit 0, a warning naming the PCOMP, and the same history, ply indices
-/// included, as the deck with F12 = 0.0 written out.
-#[test]
-fn tsai_with_a_blank_f12_runs_as_with_f12_zero() {
+/// The cross-ply with FT = `ft` run 40 steps twice, its MAT8 continuation `blank`
+/// (fields left blank) and `written` (NASTRAN's defaults for them written out): both
+/// exit 0, the blank one's stderr holds every one of `warnings` and the written one's
+/// none; their `history.csv` texts.
+fn blank_and_written(ft: &str, blank: &str, written: &str, warnings: &[&str]) -> [String; 2] {
     let dir = tempfile::tempdir().unwrap();
-    let mut histories = Vec::new();
-    for (name, cont) in [
-        ("blank", ALLOWABLES.to_string()),
-        ("zero", format!("{ALLOWABLES},+M2\n+M2,,0.0")),
-    ] {
+    [("blank", blank), ("written", written)].map(|(name, cont)| {
         let sub = dir.path().join(name);
         std::fs::create_dir_all(&sub).unwrap();
-        let path = pcomp_with_ft(&sub, "TSAI", &cont);
+        let path = pcomp_with_ft(&sub, ft, cont);
         let out = sub.join("out");
         let o = impactlab(&[
             "run",
@@ -298,12 +294,26 @@ fn tsai_with_a_blank_f12_runs_as_with_f12_zero() {
         ]);
         let stderr = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(0), "{name}: {stderr}");
-        let warned = stderr.contains("FT = TSAI with a ply whose MAT8 leaves F12 blank: F12 = 0 there");
-        assert_eq!(warned, name == "blank", "{name}: {stderr}");
-        histories.push(std::fs::read_to_string(out.join("history.csv")).unwrap());
-    }
-    assert!(histories[0].contains("ply_"), "ply columns written");
-    assert_eq!(histories[0], histories[1]);
+        for w in warnings {
+            assert_eq!(stderr.contains(w), name == "blank", "{name}: {w:?} in {stderr}");
+        }
+        std::fs::read_to_string(out.join("history.csv")).unwrap()
+    })
+}
+
+/// Goal: a TSAI laminate whose MAT8 leaves F12 blank runs with NASTRAN's F12 = 0 and
+/// says so: exit 0, a warning naming the PCOMP, and the same history, ply indices
+/// included, as the deck with F12 = 0.0 written out.
+#[test]
+fn tsai_with_a_blank_f12_runs_as_with_f12_zero() {
+    let [blank, written] = blank_and_written(
+        "TSAI",
+        ALLOWABLES,
+        &format!("{ALLOWABLES},+M2\n+M2,,0.0"),
+        &["FT = TSAI with a ply whose MAT8 leaves F12 blank: F12 = 0 there"],
+    );
+    assert!(blank.contains("ply_"), "ply columns written");
+    assert_eq!(blank, written);
 }
 
 /// Goal: a MAT8 whose Xc and Yc are blank takes Xt and Yt for them, as NASTRAN does,
@@ -312,32 +322,16 @@ fn tsai_with_a_blank_f12_runs_as_with_f12_zero() {
 /// written out.
 #[test]
 fn blank_compressive_allowables_are_the_tensile_ones() {
-    let dir = tempfile::tempdir().unwrap();
-    let mut histories = Vec::new();
-    for (name, cont) in [
-        ("blank", ",,,1.54+5,,4.5+3,,1.04+4"),
-        ("written", ",,,1.54+5,1.54+5,4.5+3,4.5+3,1.04+4"),
-    ] {
-        let sub = dir.path().join(name);
-        std::fs::create_dir_all(&sub).unwrap();
-        let path = pcomp_with_ft(&sub, "HILL", cont);
-        let out = sub.join("out");
-        let o = impactlab(&[
-            "run",
-            path.to_str().unwrap(),
-            "--steps",
-            "40",
-            "--out",
-            out.to_str().unwrap(),
-        ]);
-        let stderr = String::from_utf8_lossy(&o.stderr);
-        assert_eq!(o.status.code(), Some(0), "{name}: {stderr}");
-        let warned = stderr.contains("(Xc): is blank: Xc = Xt = 1.54e5, as NASTRAN takes it")
-            && stderr.contains("(Yc): is blank: Yc = Yt = 4.5e3, as NASTRAN takes it");
-        assert_eq!(warned, name == "blank", "{name}: {stderr}");
-        histories.push(std::fs::read_to_string(out.join("history.csv")).unwrap());
-    }
-    assert_eq!(histories[0], histories[1]);
+    let [blank, written] = blank_and_written(
+        "HILL",
+        ",,,1.54+5,,4.5+3,,1.04+4",
+        ",,,1.54+5,1.54+5,4.5+3,4.5+3,1.04+4",
+        &[
+            "(Xc): is blank: Xc = Xt = 1.54e5, as NASTRAN takes it",
+            "(Yc): is blank: Yc = Yt = 4.5e3, as NASTRAN takes it",
+        ],
+    );
+    assert_eq!(blank, written);
 }
 
 /// Goal: allowables so small that the struck plate's stresses cannot be divided by

@@ -229,12 +229,13 @@ pub fn kind(card: &str) -> Option<&'static Kind> {
 }
 
 /// The in-plane coordinates of a flat shell's corners, refused when they are not in
-/// one plane z = const (within 1e-9 relative).
+/// one plane z = const (within 1e-9 relative): the model builder hands a kernel its
+/// corners in the basic XY plane or in the element's own frame, both such planes.
 pub fn flat_xy<const N: usize>(points: &[[f64; 3]]) -> Result<[[f64; 2]; N], BadShape> {
     let z = points[0][2];
     if points.iter().any(|p| (p[2] - z).abs() > 1e-9 * (1.0 + z.abs())) {
         return Err(BadShape(
-            "is not in a plane z = const: only flat plates in the basic XY plane are supported",
+            "is not in a plane z = const: a kernel takes its corners in its own plane",
         ));
     }
     Ok(std::array::from_fn(|k| [points[k][0], points[k][1]]))
