@@ -69,26 +69,7 @@ fn pynastran(path: &Path, masses_only: bool) -> Option<(f64, [f64; 3], [f64; 6])
             ""
         }
     );
-    let python = std::env::var("IMPACTLAB_PYNASTRAN_PYTHON").unwrap_or_else(|_| "python3".into());
-    match std::process::Command::new(&python)
-        .arg("-c")
-        .arg(&script)
-        .arg(path)
-        .output()
-    {
-        Ok(o) if o.status.success() => {
-            let (m, c, i): (f64, [f64; 3], [f64; 6]) = serde_json::from_slice(&o.stdout).unwrap();
-            Some((m, c, i))
-        }
-        other => {
-            assert!(
-                std::env::var_os("CI").is_none(),
-                "pyNastran is required under CI: {other:?}"
-            );
-            eprintln!("skipped: no pyNastran in {python}; see .ci/run to install it");
-            None
-        }
-    }
+    common::pynastran_json(&script, &[path.as_os_str()])
 }
 
 /// Goal: `check` reads a structural deck with no impactor and answers for it: exit 0,

@@ -88,17 +88,27 @@ fn thru_lists_in_spc1_epoint_and_case_sets() {
 }
 
 #[test]
-fn executive_control_accepts_every_direct_transient_sol() {
-    for sol in ["9", "27", "109", "129", "SEDTRAN"] {
+fn executive_control_accepts_every_direct_transient_sol_and_statics() {
+    for (sol, read) in [
+        ("9", 9),
+        ("27", 27),
+        ("109", 109),
+        ("129", 129),
+        ("SEDTRAN", 109),
+        ("101", 101),
+        ("1", 101),
+        ("SESTATIC", 101),
+        ("STATICS", 101),
+    ] {
         let d = parse_deck_str(
             "t.bdf",
             &format!("ID A,B\nSOL {sol}\nCEND\nBEGIN BULK\nENDDATA\n"),
             ReadOptions::default(),
         );
-        assert!(d.is_ok(), "SOL {sol}");
+        assert_eq!(d.map(|d| d.executive.sol).ok(), Some(Some(read)), "SOL {sol}");
     }
-    let e = errors("SOL 101\nCEND\nBEGIN BULK\nENDDATA\n");
-    assert!(e[0].contains("SOL 101 is not supported"), "{e:?}");
+    let e = errors("SOL 103\nCEND\nBEGIN BULK\nENDDATA\n");
+    assert!(e[0].contains("SOL 103 is not supported"), "{e:?}");
 }
 
 #[test]

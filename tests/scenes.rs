@@ -371,3 +371,48 @@ fn a_deck_scene_refuses_a_point_off_the_structure() {
     let (_, _, deck) = impactlab::scene::load(&grid).unwrap();
     assert!(deck.contains("contact weights 505: 1.0"), "{deck}");
 }
+
+/// Goal: a struck deck keeps its constraints however they are written, and leaves its
+/// static loads out. Model: the plate structure (9×9) with its SPC1 cards rewritten
+/// as set 2, joined to set 1 by SPCADD, its first edge's grids held by SPC cards
+/// instead, and a FORCE and a GRAV in it (a SOL 101 deck's loads). Reference: the
+/// plate structure as written, struck alike. Exact: the same DOFs solved, the same
+/// contact duration.
+#[test]
+fn a_struck_deck_keeps_its_spc_and_spcadd_and_leaves_its_loads_out() {
+    let dir = tempfile::tempdir().unwrap();
+    let plain = plate_structure(9);
+    let mut rewritten = String::new();
+    for line in plain.lines() {
+        if let Some(rest) = line.strip_prefix("SPC1,1,123456,101,THRU,110") {
+            assert!(rest.is_empty());
+            for g in 101..=110 {
+                rewritten += &format!("SPC,2,{g},123456,0.0\n");
+            }
+        } else if let Some(rest) = line.strip_prefix("SPC1,1,") {
+            rewritten += &format!("SPC1,2,{rest}\n");
+        } else if line == "BEGIN BULK" {
+            rewritten += "BEGIN BULK\nSPCADD,1,2\nFORCE,7,505,,1.0,0.0,0.0,1.0\nGRAV,7,,386.1,0.0,0.0,-1.0\n";
+        } else {
+            rewritten += line;
+            rewritten += "\n";
+        }
+    }
+    assert!(rewritten.contains("SPC,2,110,123456"));
+    write(dir.path(), "plain.bdf", &plain);
+    write(dir.path(), "rewritten.bdf", &rewritten);
+    let strike = "at = [0.0, 0.0, 0.0]\ndirection = \"normal\"";
+    let load = |deck: &str| {
+        let scene = write(dir.path(), &format!("{deck}.toml"), &deck_scene(deck, strike));
+        impactlab::scene::load(&scene).unwrap()
+    };
+    let ((s, a, _), (_, b, text)) = (load("plain.bdf"), load("rewritten.bdf"));
+    assert!(
+        text.contains("SPCADD,1,2") && !text.contains("FORCE") && !text.contains("GRAV"),
+        "{text}"
+    );
+    assert_eq!(a.dofs, b.dofs);
+    let o = impactlab::run::RunOptions::for_scene(&s);
+    let (ra, rb) = (run_model(&a, &o).unwrap(), run_model(&b, &o).unwrap());
+    assert_eq!(ra.summary.contact.duration, rb.summary.contact.duration);
+}

@@ -3,7 +3,7 @@
 //! no INCLUDE), so one input costs at most what a small deck costs. The first byte's
 //! low bits choose whether unknown cards are errors or warnings, and whether the deck
 //! is read for its structure alone and checked (`impactlab check`), so every path is
-//! explored.
+//! explored. A linear static deck (SOL 101) is solved, as `impactlab run` solves it.
 #![no_main]
 
 use impactlab::deck::{parse_deck_str, Limits, ReadOptions};
@@ -21,6 +21,8 @@ fuzz_target!(|data: &[u8]| {
     if let Ok(deck) = parse_deck_str("fuzz.bdf", text, opts) {
         if opts.structure {
             let _ = impactlab::model::check::check(&deck);
+        } else if deck.executive.sol == Some(impactlab::deck::STATICS) {
+            let _ = impactlab::run::statics::solve(&deck);
         } else {
             let _ = impactlab::model::build_model(&deck);
         }

@@ -32,15 +32,21 @@ pub struct System {
 /// Assembles K and M of a model over its solved DOFs, element by element through
 /// [`crate::elements::Element::scatter`]: no element kind is named here.
 pub fn assemble(model: &Model) -> System {
+    assemble_elements(&model.elements, model.n())
+}
+
+/// Assembles K and M of `elements` over `n` solved DOFs (a structure built alone,
+/// [`crate::model::Structure`]).
+pub fn assemble_elements(elements: &[crate::elements::Element], n: usize) -> System {
     let mut k = Vec::new();
     let mut m = Vec::new();
-    for e in model.elements.iter() {
+    for e in elements {
         e.scatter(&mut k, &mut m);
     }
     let triplets = |v: Vec<(usize, usize, f64)>| -> Vec<Triplet<usize, usize, f64>> {
         v.into_iter().map(|(i, j, x)| Triplet::new(i, j, x)).collect()
     };
-    System::from_triplets(model.n(), triplets(k), triplets(m))
+    System::from_triplets(n, triplets(k), triplets(m))
 }
 
 impl System {

@@ -78,6 +78,16 @@ impl From<DeckError> for Error {
     }
 }
 
+impl From<impactlab::run::statics::StaticError> for Error {
+    fn from(e: impactlab::run::statics::StaticError) -> Self {
+        use impactlab::run::statics::StaticError;
+        match e {
+            StaticError::Model(m) => m.into(),
+            StaticError::Solve(s) => Error::Solve(s),
+        }
+    }
+}
+
 impl From<ModelError> for Error {
     fn from(e: ModelError) -> Self {
         Error::Load(e.into())
@@ -100,7 +110,9 @@ impl Error {
             Error::Run(e) => run_code(e),
             Error::Study(e) => match e {
                 StudyError::Run(r) => run_code(r),
-                StudyError::Solve(_) | StudyError::Unconfirmed(_) => 3,
+                StudyError::Solve(_)
+                | StudyError::Unconfirmed(_)
+                | StudyError::Static(impactlab::run::statics::StaticError::Solve(_)) => 3,
                 _ => 2,
             },
             _ => 2,

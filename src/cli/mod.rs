@@ -193,8 +193,14 @@ pub fn run(a: RunArgs) -> Result<u8, Error> {
             allow_unknown: a.allow_unknown,
             ..Default::default()
         };
-        let (model, warnings) = impactlab::load_deck(&a.deck, read)?;
-        for w in &warnings {
+        let d = deck::read_deck(&a.deck, read).map_err(impactlab::model::LoadError::from)?;
+        if d.executive.sol == Some(deck::STATICS) {
+            return run_static(&a, &d);
+        }
+        let (model, mut warnings) = impactlab::model::build_model(&d).map_err(impactlab::model::LoadError::from)?;
+        let mut all = d.warnings;
+        all.append(&mut warnings);
+        for w in &all {
             say_err(&w.to_string());
         }
         let o = RunOptions {
@@ -274,6 +280,38 @@ pub fn run(a: RunArgs) -> Result<u8, Error> {
             fdir.display()
         ));
     }
+    Ok(0)
+}
+
+/// `impactlab run` on a linear static deck (SOL 101): K u = f, its displacements and
+/// summary written to the output directory.
+fn run_static(a: &RunArgs, d: &deck::Deck) -> Result<u8, Error> {
+    let transient = [
+        (a.scheme.is_some(), "--scheme"),
+        (a.dt.is_some(), "--dt"),
+        (a.steps.is_some(), "--steps"),
+        (a.giic.is_some(), "--giic"),
+        (a.fields.is_some(), "--fields"),
+        (a.all_dofs, "--all-dofs"),
+        (!a.engine.is_direct(), "--engine"),
+    ];
+    if let Some((_, flag)) = transient.iter().find(|t| t.0) {
+        return Err(Error::Usage(format!(
+            "{}: {flag} applies to a transient run; this deck is a linear static one (SOL 101)",
+            a.deck.display()
+        )));
+    }
+    for w in &d.warnings {
+        say_err(&w.to_string());
+    }
+    let (solution, warnings) = impactlab::run::statics::solve(d)?;
+    for w in &warnings {
+        say_err(&w.to_string());
+    }
+    let dir = a.out.clone().unwrap_or_else(|| PathBuf::from("out").join(&d.name));
+    output::write_dir_atomically(&dir, &output::static_files(&solution)).map_err(io_error(&dir))?;
+    say(&output::static_summary(&solution));
+    sayln(&format!("  outputs:  {}", dir.display()));
     Ok(0)
 }
 

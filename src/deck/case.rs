@@ -10,7 +10,8 @@ use std::collections::BTreeMap;
 pub struct Executive {
     /// ID statement's text.
     pub id: Option<String>,
-    /// Solution sequence (SOL), a direct transient one.
+    /// Solution sequence (SOL): a direct transient one, or 101 for a linear static
+    /// one (SOL 1, 101, SESTATIC, STATICS).
     pub sol: Option<u32>,
     /// The SOL statement's solution as written (`101`, `SESTATIC`).
     pub solution: Option<String>,
@@ -20,6 +21,10 @@ pub struct Executive {
 
 /// Solution sequences that mean direct transient response.
 pub const DIRECT_TRANSIENT_SOLS: [u32; 4] = [9, 27, 109, 129];
+
+/// The solution number of linear statics, as [`Executive::sol`] holds it for SOL 1,
+/// 101, SESTATIC and STATICS.
+pub const STATICS: u32 = 101;
 
 /// A case-control selection with where it was written.
 #[derive(Debug, Clone)]
@@ -82,6 +87,8 @@ pub struct CaseControl {
     pub tstep: Option<Selection>,
     /// TFL selection (TF cards).
     pub tfl: Option<Selection>,
+    /// LOAD selection (the static loads of a SOL 101 deck).
+    pub load: Option<Selection>,
     /// Output requests by keyword: NLLOAD, DISP, VELO, ACCEL, STRESS, STRAIN.
     pub outputs: BTreeMap<String, OutputRequest>,
 }
@@ -107,10 +114,14 @@ pub fn parse_executive(lines: &[SrcLine], structure: bool, diags: &mut Diagnosti
                 }
                 match parse_int(word) {
                     Some(n) if DIRECT_TRANSIENT_SOLS.contains(&(n as u32)) => e.sol = Some(n as u32),
+                    Some(1 | 101) => e.sol = Some(STATICS),
                     Some(n) => diags.push(
                         Diagnostic::error(
                             Some(l.pos(1)),
-                            format!("SOL {n} is not supported: only direct transient response (SOL 9, 27, 109, 129)"),
+                            format!(
+                                "SOL {n} is not supported: only direct transient response (SOL 9, 27, 109, 129) and \
+                                 linear statics (SOL 101)"
+                            ),
                         )
                         .card("SOL")
                         .quote(&l.text),
@@ -119,11 +130,13 @@ pub fn parse_executive(lines: &[SrcLine], structure: bool, diags: &mut Diagnosti
                         let up = word.to_ascii_uppercase();
                         if up == "SEDTRAN" || up == "NLTRAN" {
                             e.sol = Some(109);
+                        } else if up == "SESTATIC" || up == "STATICS" {
+                            e.sol = Some(STATICS);
                         } else {
                             diags.push(
                                 Diagnostic::error(
                                     Some(l.pos(1)),
-                                    "is not a supported solution sequence (SOL 9, 27, 109, 129)",
+                                    "is not a supported solution sequence (SOL 9, 27, 109, 129; SOL 101)",
                                 )
                                 .card("SOL")
                                 .token(word)
@@ -144,7 +157,7 @@ pub fn parse_executive(lines: &[SrcLine], structure: bool, diags: &mut Diagnosti
     if e.sol.is_none() && !structure && !diags.has_errors() {
         diags.push(Diagnostic::error(
             lines.first().map(|l| l.pos(1)),
-            "executive control has no SOL statement (direct transient: SOL 9, 27, 109 or 129)",
+            "executive control has no SOL statement (direct transient: SOL 9, 27, 109 or 129; linear statics: SOL 101)",
         ));
     }
     e
@@ -199,22 +212,41 @@ fn parse_id_list(text: &str, pos: &Pos, src: &str, ids_left: &mut usize, diags: 
     out
 }
 
-const SELECTORS: [&str; 5] = ["SPC", "IC", "NONLINEAR", "TSTEP", "TFL"];
+const SELECTORS: [&str; 6] = ["SPC", "IC", "NONLINEAR", "TSTEP", "TFL", "LOAD"];
 const OUTPUTS: [&str; 6] = ["NLLOAD", "DISP", "VELO", "ACCEL", "STRESS", "STRAIN"];
 const IGNORED: [&str; 8] = [
     "ECHO", "LINE", "MAXLINES", "OUTPUT", "ELFORCE", "FORCE", "OLOAD", "SPCFORCE",
 ];
 
+/// How case control takes SUBCASE.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Subcases {
+    /// A transient deck: one case, no SUBCASE.
+    None,
+    /// A static deck: at most one SUBCASE, whose selections are the deck's.
+    One,
+    /// A deck read for its structure alone: any, their SPC selections read as the deck's.
+    Any,
+}
+
 /// Reads case control from its lines; findings go to `diags`; `ids_left` is what
-/// remains of [`super::Limits::max_listed_ids`]. A deck read for its structure alone
-/// (`structure`) may have SUBCASEs: their SPC selections are read as the deck's.
-pub fn parse_case(lines: &[SrcLine], structure: bool, ids_left: &mut usize, diags: &mut Diagnostics) -> CaseControl {
+/// remains of [`super::Limits::max_listed_ids`]; `subcases` says how SUBCASE is taken.
+pub fn parse_case(lines: &[SrcLine], subcases: Subcases, ids_left: &mut usize, diags: &mut Diagnostics) -> CaseControl {
     let mut cc = CaseControl::default();
+    let mut first_subcase: Option<Pos> = None;
     let mut i = 0;
     while i < lines.len() {
         let l = &lines[i];
         i += 1;
         let t = l.text.trim();
+        let pos = l.pos(1);
+        if t.split_whitespace()
+            .next()
+            .is_some_and(|w| w.eq_ignore_ascii_case("SUBCASE"))
+        {
+            subcase(subcases, &mut first_subcase, pos, &l.text, diags);
+            continue;
+        }
         let Some(eq) = t.find('=') else {
             diags.push(Diagnostic::warning(Some(l.pos(1)), "case control line without '=' is ignored").quote(&l.text));
             continue;
@@ -223,7 +255,6 @@ pub fn parse_case(lines: &[SrcLine], structure: bool, ids_left: &mut usize, diag
         let mut rhs = t[eq + 1..].trim().to_string();
         let key_full = lhs.to_ascii_uppercase();
         let key = key_full.split('(').next().unwrap_or("").trim().to_string();
-        let pos = l.pos(1);
         let words: Vec<&str> = key.split_whitespace().collect();
         match words.as_slice() {
             ["TITLE"] => cc.title = rhs,
@@ -242,12 +273,7 @@ pub fn parse_case(lines: &[SrcLine], structure: bool, ids_left: &mut usize, diag
             }
             [k] if SELECTORS.contains(k) => selector(&mut cc, k, &rhs, pos, &l.text, diags),
             [k] if OUTPUTS.contains(k) => output_request(&mut cc, k, &rhs, pos, &l.text, diags),
-            ["SUBCASE"] | ["SUBCASE", ..] if structure => {}
-            ["SUBCASE"] | ["SUBCASE", ..] => diags.push(
-                Diagnostic::error(Some(pos), "SUBCASE is not supported: one transient case per deck")
-                    .card("SUBCASE")
-                    .quote(&l.text),
-            ),
+            ["SUBCASE"] | ["SUBCASE", ..] => subcase(subcases, &mut first_subcase, pos, &l.text, diags),
             [k] if IGNORED.contains(k) => diags.push(
                 Diagnostic::warning(Some(pos), "case control request is not supported and is ignored")
                     .card(k)
@@ -262,6 +288,24 @@ pub fn parse_case(lines: &[SrcLine], structure: bool, ids_left: &mut usize, diag
     }
     check_output_sets(&cc, diags);
     cc
+}
+
+/// A SUBCASE line, taken as `subcases` says; `first` is where the first one was.
+fn subcase(subcases: Subcases, first: &mut Option<Pos>, pos: Pos, text: &str, diags: &mut Diagnostics) {
+    let refuse = |message: String| {
+        Diagnostic::error(Some(pos.clone()), message)
+            .card("SUBCASE")
+            .quote(text)
+    };
+    match (subcases, &first) {
+        (Subcases::Any, _) => {}
+        (Subcases::One, None) => *first = Some(pos),
+        (Subcases::One, Some(at)) => diags.push(refuse(format!(
+            "a second SUBCASE (the first at {at}): impactlab solves one static load case a deck; give each its own \
+             deck"
+        ))),
+        (Subcases::None, _) => diags.push(refuse("SUBCASE is not supported: one transient case per deck".into())),
+    }
 }
 
 /// `SET n = …`: the set's members (its lines joined in `src`).
@@ -307,6 +351,7 @@ fn selector(cc: &mut CaseControl, k: &str, rhs: &str, pos: Pos, text: &str, diag
                 "IC" => cc.ic = sel,
                 "NONLINEAR" => cc.nonlinear = sel,
                 "TSTEP" => cc.tstep = sel,
+                "LOAD" => cc.load = sel,
                 _ => cc.tfl = sel,
             }
         }

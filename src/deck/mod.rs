@@ -12,7 +12,7 @@ pub mod number;
 pub mod source;
 
 pub use cards::{Bulk, CardRef, Components};
-pub use case::{CaseControl, Executive, OutputSet};
+pub use case::{CaseControl, Executive, OutputSet, STATICS};
 pub use diag::{Diagnostic, Diagnostics, Pos, Severity};
 
 use std::collections::HashMap;
@@ -255,7 +255,14 @@ fn finish(
 ) -> Result<Deck, DeckError> {
     let executive = case::parse_executive(&sections.executive, opts.structure, &mut diags);
     let mut ids_left = opts.limits.max_listed_ids;
-    let mut case = case::parse_case(&sections.case, opts.structure, &mut ids_left, &mut diags);
+    let subcases = if opts.structure {
+        case::Subcases::Any
+    } else if executive.sol == Some(STATICS) {
+        case::Subcases::One
+    } else {
+        case::Subcases::None
+    };
+    let mut case = case::parse_case(&sections.case, subcases, &mut ids_left, &mut diags);
     case.at = sections
         .case
         .last()

@@ -180,6 +180,14 @@ struct Elements {
 /// its problems against the cards.
 pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> {
     let mut cx = Ctx::default();
+    if deck.executive.sol == Some(crate::deck::STATICS) {
+        cx.err(Diagnostic::error(
+            deck.case.at.clone(),
+            "a linear static deck (SOL 101): `impactlab run` solves it; this command takes a transient deck",
+        ));
+        return Err(ModelError { diagnostics: cx.diags });
+    }
+    no_static_loads(&mut cx, deck);
     let case = &deck.case;
     let sel = select_cards(&mut cx, deck);
     let (geo, geo_errors) = crate::geometry::resolve(&deck.bulk);
@@ -261,6 +269,8 @@ pub struct Structure {
     pub constrained_dofs: usize,
     /// Scalar points (EPOINT, SPOINT).
     pub scalar_points: usize,
+    /// The solved DOFs, in the order the elements' DOF indices count them.
+    pub dofs: Vec<DofLabel>,
 }
 
 impl Structure {
@@ -302,11 +312,33 @@ pub fn build_structure(deck: &Deck) -> Result<(Structure, Vec<Diagnostic>), Mode
         free_dofs: grid_dofs,
         constrained_dofs: 6 * num.grids.len() - grid_dofs,
         scalar_points: num.scalar.len(),
+        dofs: num.dofs,
     };
     if cx.diags.iter().any(|d| d.is_error()) {
         Err(ModelError { diagnostics: cx.diags })
     } else {
         Ok((structure, cx.diags))
+    }
+}
+
+/// A transient deck's static load cards and LOAD selection are errors: a transient
+/// run applies none of them (its load is the contact's NOLIN3), and ignoring them
+/// would answer another question than the deck asks.
+fn no_static_loads(cx: &mut Ctx, deck: &Deck) {
+    let b = &deck.bulk;
+    let why = "is a static load, which a transient run does not apply (its load is the contact's NOLIN3): \
+               remove it, or solve the deck as SOL 101";
+    let firsts = [
+        b.point_loads.first().map(|l| &l.at),
+        b.pload4s.first().map(|l| &l.at),
+        b.gravs.first().map(|l| &l.at),
+        b.load_combinations.first().map(|l| &l.at),
+    ];
+    for at in firsts.into_iter().flatten() {
+        cx.err(at.error(format!("{} {why}", at.name)));
+    }
+    if let Some(sel) = &deck.case.load {
+        cx.err(Diagnostic::error(Some(sel.pos.clone()), format!("LOAD = {} {why}", sel.id)).card("LOAD"));
     }
 }
 

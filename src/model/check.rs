@@ -149,6 +149,26 @@ pub fn check(deck: &Deck) -> CheckReport {
             })
             .count += 1;
     }
+    // The static loads are read (a SOL 101 deck's `impactlab run` applies them) but do
+    // not change the structure.
+    let loads = b
+        .point_loads
+        .iter()
+        .map(|l| &l.at)
+        .chain(b.pload4s.iter().map(|l| &l.at))
+        .chain(b.gravs.iter().map(|l| &l.at))
+        .chain(b.load_combinations.iter().map(|l| &l.at));
+    for at in loads {
+        ignored
+            .entry(at.name.clone())
+            .or_insert_with(|| CardCount {
+                card: at.name.clone(),
+                count: 0,
+                first_at: at.pos.to_string(),
+                first_line: at.source.lines().next().unwrap_or("").to_string(),
+            })
+            .count += 1;
+    }
     let mut warnings: Vec<String> = deck
         .warnings
         .iter()

@@ -8,6 +8,7 @@
 
 mod build;
 pub mod check;
+pub mod loads;
 mod modify;
 mod weight;
 

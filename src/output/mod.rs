@@ -286,3 +286,64 @@ pub fn human_summary(model: &Model, run: &RunResult) -> String {
     }
     out
 }
+
+/// A static solution's files: `displacements.csv` (every grid's T1..R3 in its
+/// displacement frame, the frame's system in `cd`) and `summary.json`.
+pub fn static_files(s: &crate::run::statics::StaticSolution) -> Vec<(&'static str, Vec<u8>)> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    w.write_record(["grid", "cd", "T1", "T2", "T3", "R1", "R2", "R3"])
+        .expect("writing to memory");
+    for d in &s.grids {
+        let mut row = vec![d.grid.to_string(), d.cd.to_string()];
+        row.extend(d.u.iter().map(|v| format!("{v:e}")));
+        w.write_record(&row).expect("writing to memory");
+    }
+    #[derive(serde::Serialize)]
+    struct Summary<'a> {
+        solution: &'static str,
+        #[serde(flatten)]
+        solved: &'a crate::run::statics::StaticSolution,
+    }
+    let mut json = serde_json::to_value(Summary {
+        solution: "linear static (SOL 101)",
+        solved: s,
+    })
+    .expect("plain data");
+    if let Some(o) = json.as_object_mut() {
+        o.remove("grids");
+    }
+    let mut summary = serde_json::to_vec_pretty(&json).expect("plain data");
+    summary.push(b'\n');
+    vec![
+        ("displacements.csv", w.into_inner().expect("writing to memory")),
+        ("summary.json", summary),
+    ]
+}
+
+/// A static solution in a few lines, each value with the deck's unit.
+pub fn static_summary(s: &crate::run::statics::StaticSolution) -> String {
+    let (a, u) = (&s.applied, &s.units);
+    let (t, g) = s.largest_translation;
+    format!(
+        "{}: linear static, LOAD = {}, {} DOF solved ({} unstiffened held)\n  applied force ({:.6e}, {:.6e}, {:.6e}) {}, \
+         moment about the origin ({:.6e}, {:.6e}, {:.6e}) {}*{} (basic axes)\n  largest translation: {t:.6e} {} at grid \
+         {g}\n  strain energy: {:.6e} {}\n  residual ‖Ku − f‖/‖f‖: {:.1e}\n",
+        s.deck,
+        s.load_set,
+        s.dofs,
+        s.autospc,
+        a[0],
+        a[1],
+        a[2],
+        u.force,
+        a[3],
+        a[4],
+        a[5],
+        u.force,
+        u.length,
+        u.length,
+        s.strain_energy,
+        u.energy,
+        s.residual
+    )
+}

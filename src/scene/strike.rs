@@ -20,8 +20,9 @@ use std::fmt::Write as _;
 /// Cards of a deck target that the scene leaves out: the transient and impact cards
 /// it writes itself, and scalar points (a structure's EPOINT would be a DOF with no
 /// mass or stiffness once its TF is gone).
-const LEFT_OUT: [&str; 9] = [
-    "TSTEP", "TF", "NOLIN3", "TIC", "EPOINT", "SPOINT", "PARAM", "INCLUDE", "ENDDATA",
+const LEFT_OUT: [&str; 14] = [
+    "TSTEP", "TF", "NOLIN3", "TIC", "EPOINT", "SPOINT", "FORCE", "MOMENT", "PLOAD4", "GRAV", "LOAD", "PARAM",
+    "INCLUDE", "ENDDATA",
 ];
 
 /// Components of d in a grid's frame smaller than this are left out of the contact.

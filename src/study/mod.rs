@@ -29,6 +29,9 @@ pub enum StudyError {
     /// A solve failed.
     #[error("numerical failure: {0}")]
     Solve(#[from] crate::integrate::SolveError),
+    /// A static solution could not be had.
+    #[error("{0}")]
+    Static(#[from] crate::run::statics::StaticError),
     /// A verification case could not be used.
     #[error("{0}")]
     Case(#[from] crate::verify::CaseError),

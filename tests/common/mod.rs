@@ -100,3 +100,26 @@ pub fn hill(s1: f64, s2: f64, t: f64) -> f64 {
     let y = if s2 >= 0.0 { yt } else { yc };
     (s1 * s1 - s1 * s2) / (x * x) + (s2 / y).powi(2) + (t / sh).powi(2)
 }
+
+/// What a Python `script` run by pyNastran's interpreter (`IMPACTLAB_PYNASTRAN_PYTHON`,
+/// else `python3`) with `args` prints as JSON; `None` (and a note) where pyNastran
+/// cannot run it, except under CI, where that fails.
+pub fn pynastran_json<T: serde::de::DeserializeOwned>(script: &str, args: &[&std::ffi::OsStr]) -> Option<T> {
+    let python = std::env::var("IMPACTLAB_PYNASTRAN_PYTHON").unwrap_or_else(|_| "python3".into());
+    match std::process::Command::new(&python)
+        .arg("-c")
+        .arg(script)
+        .args(args)
+        .output()
+    {
+        Ok(o) if o.status.success() => Some(serde_json::from_slice(&o.stdout).unwrap()),
+        other => {
+            assert!(
+                std::env::var_os("CI").is_none(),
+                "pyNastran is required under CI: {other:?}"
+            );
+            eprintln!("skipped: no pyNastran in {python}; see .ci/run to install it");
+            None
+        }
+    }
+}

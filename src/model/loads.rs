@@ -1,0 +1,304 @@
+//! The static loads of a linear static deck (SOL 101): the set the case control's
+//! `LOAD = n` selects (FORCE, MOMENT, PLOAD4 and GRAV cards of set n, or a LOAD card
+//! combining such sets), as each grid's six components in its displacement frame.
+//!
+//! - FORCE and MOMENT: F·(N1, N2, N3) in system CID (for a cylindrical or spherical
+//!   CID, its axes at the grid), on the grid's translations or rotations.
+//! - PLOAD4 on a shell: the consistent nodal forces ∫ Nᵢ p dA of the pressure p
+//!   interpolated from the corners (P1..P4) by the element's own shape functions over
+//!   its mean plane (2×2 Gauss points on a quadrilateral; A/12·(pᵢ + Σⱼ pⱼ)
+//!   on a triangle), along the element's normal (G1→G2→G3, right-handed; positive
+//!   pressure pushes along it, as NASTRAN's does) or along CID's (N1, N2, N3). The
+//!   forces go to the grids' translations (a warped quadrilateral's corner offsets,
+//!   at most [`crate::geometry::MAX_WARP`] of its size, carry no moment here).
+//! - GRAV: the inertia load M·a of every element's mass matrix on the rigid
+//!   acceleration a = A·(N1, N2, N3) in rectangular system CID (NASTRAN's gravity: a
+//!   mass is pushed along a).
+//! - LOAD: S·Σ Sᵢ·(set Lᵢ); a set it names may not itself be a LOAD.
+
+use super::{ModelError, Structure};
+use crate::deck::cards::CardRef;
+use crate::deck::cards::CoordKind;
+use crate::deck::{Deck, Diagnostic};
+use crate::elements::Family;
+use nalgebra::{Matrix3, Vector3};
+use std::collections::{BTreeMap, HashMap};
+
+/// Each loaded grid's six load components (T1..R3) in its displacement frame.
+pub type GridLoads = BTreeMap<i64, [f64; 6]>;
+
+/// The static load the case control's LOAD selects (see the module's doc).
+pub fn static_load(deck: &Deck, s: &Structure) -> Result<GridLoads, ModelError> {
+    let mut errors = Vec::new();
+    let mut out = GridLoads::new();
+    let Some(sel) = &deck.case.load else {
+        errors.push(Diagnostic::error(
+            deck.case.at.clone(),
+            "a static deck needs a load: LOAD = n in case control, selecting FORCE, MOMENT, PLOAD4, GRAV or LOAD \
+             cards of set n",
+        ));
+        return Err(ModelError { diagnostics: errors });
+    };
+    let b = &deck.bulk;
+    let combos: Vec<_> = b.load_combinations.iter().filter(|l| l.sid == sel.id).collect();
+    let terms: Vec<(f64, i64, Option<&CardRef>)> = match combos.as_slice() {
+        [] => vec![(1.0, sel.id, None)],
+        [l] => l
+            .terms
+            .iter()
+            .map(|&(si, li)| (l.scale * si, li, Some(&l.at)))
+            .collect(),
+        [first, second, ..] => {
+            errors.push(second.at.error(format!(
+                "LOAD {} is defined twice (first at {})",
+                second.sid, first.at.pos
+            )));
+            Vec::new()
+        }
+    };
+    let cx = Loads {
+        structure: s,
+        elements: s.elements.iter().map(|e| (e.eid, e)).collect(),
+    };
+    for (factor, set, by) in terms {
+        if let Some(at) = by.filter(|_| b.load_combinations.iter().any(|l| l.sid == set)) {
+            errors.push(at.error(format!(
+                "LOAD {} names set {set}, which is itself a LOAD: a LOAD combines FORCE, MOMENT, PLOAD4 and GRAV sets",
+                sel.id
+            )));
+            continue;
+        }
+        let before = errors.len();
+        let found = cx.apply(deck, set, factor, &mut out, &mut errors);
+        if !found && errors.len() == before {
+            let message = format!("set {set} has no FORCE, MOMENT, PLOAD4 or GRAV card");
+            errors.push(match by {
+                Some(at) => at.error(format!("LOAD {} names {message}", sel.id)),
+                None => Diagnostic::error(Some(sel.pos.clone()), format!("LOAD = {}: {message}", sel.id)).card("LOAD"),
+            });
+        }
+    }
+    if errors.is_empty() {
+        Ok(out)
+    } else {
+        Err(ModelError { diagnostics: errors })
+    }
+}
+
+/// What applying a load set needs.
+struct Loads<'s> {
+    structure: &'s Structure,
+    elements: HashMap<i64, &'s crate::elements::Element>,
+}
+
+impl Loads<'_> {
+    /// Adds `factor` times load set `set` to `out`; false when the set has no card.
+    fn apply(&self, deck: &Deck, set: i64, factor: f64, out: &mut GridLoads, errors: &mut Vec<Diagnostic>) -> bool {
+        let b = &deck.bulk;
+        let g = &self.structure.geometry;
+        let mut found = false;
+        for l in b.point_loads.iter().filter(|l| l.sid == set) {
+            found = true;
+            let Some(p) = g.positions.get(&l.g) else {
+                errors.push(l.at.error(format!(
+                    "{} {} loads grid {}, which does not exist",
+                    l.at.name, l.sid, l.g
+                )));
+                continue;
+            };
+            let Some(axes) = self.axes(&l.at, l.cid, &Vector3::from(*p), errors) else {
+                continue;
+            };
+            let v = g.frame(l.g).transpose() * (axes * Vector3::from(l.vector)) * factor;
+            let slot = out.entry(l.g).or_default();
+            let first = if l.moment { 3 } else { 0 };
+            for c in 0..3 {
+                slot[first + c] += v[c];
+            }
+        }
+        for l in b.pload4s.iter().filter(|l| l.sid == set) {
+            found = true;
+            for eid in &l.eids {
+                self.pressure(l, *eid, factor, out, errors);
+            }
+        }
+        for l in b.gravs.iter().filter(|l| l.sid == set) {
+            found = true;
+            let Some(axes) = self.axes(&l.at, l.cid, &Vector3::zeros(), errors) else {
+                continue;
+            };
+            if g.systems.get(&l.cid).is_some_and(|s| s.kind != CoordKind::Rectangular) {
+                errors.push(l.at.error(format!(
+                    "GRAV {} is given in system {}, which is not rectangular: a uniform acceleration needs fixed axes",
+                    l.sid, l.cid
+                )));
+                continue;
+            }
+            let a = axes * Vector3::from(l.vector) * factor;
+            for e in &self.structure.elements {
+                let acc: Vec<Vector3<f64>> = e.grids.iter().map(|&id| g.frame(id).transpose() * a).collect();
+                for m in e.mass() {
+                    for (r, &(gr, cr)) in m.at.iter().enumerate() {
+                        let f: f64 =
+                            m.at.iter()
+                                .enumerate()
+                                .filter(|(_, &(_, cc))| cc < 3)
+                                .map(|(c, &(gc, cc))| m.values[(r, c)] * acc[gc][cc])
+                                .sum();
+                        if f != 0.0 {
+                            out.entry(e.grids[gr]).or_default()[cr] += f;
+                        }
+                    }
+                }
+            }
+        }
+        found
+    }
+
+    /// The axes of system `cid` at basic point `p`, or an error on `at`.
+    fn axes(&self, at: &CardRef, cid: i64, p: &Vector3<f64>, errors: &mut Vec<Diagnostic>) -> Option<Matrix3<f64>> {
+        let Some(sys) = self.structure.geometry.systems.get(&cid) else {
+            errors.push(at.error(format!(
+                "{} names coordinate system {cid}, which is not defined",
+                at.name
+            )));
+            return None;
+        };
+        let axes = sys.frame_at(p);
+        if axes.is_none() {
+            errors.push(at.error(format!(
+                "{} is directed in system {cid} at a point on its axis, where its axes are undefined",
+                at.name
+            )));
+        }
+        axes
+    }
+
+    /// A PLOAD4's consistent nodal forces on shell `eid`.
+    fn pressure(
+        &self,
+        l: &crate::deck::cards::Pload4,
+        eid: i64,
+        factor: f64,
+        out: &mut GridLoads,
+        errors: &mut Vec<Diagnostic>,
+    ) {
+        let Some(e) = self.elements.get(&eid) else {
+            errors.push(l.at.error(format!("PLOAD4 {} loads element {eid}, which does not exist", l.sid)));
+            return;
+        };
+        if !matches!(e.kernel.family(), Family::Shell(_)) {
+            errors.push(l.at.error(format!(
+                "PLOAD4 {} loads element {eid}, which is not a shell (CQUAD4, CTRIA3)",
+                l.sid
+            )));
+            return;
+        }
+        let points = e.points();
+        let Ok(frame) = crate::geometry::shell_frame(&points) else {
+            return; // the element's own build has refused it
+        };
+        let n = points.len();
+        let centroid = points.iter().map(|&p| Vector3::from(p)).sum::<Vector3<f64>>() / n as f64;
+        let direction = match l.direction {
+            None => frame.axes.column(2).into_owned(),
+            Some(d) => match self.axes(&l.at, l.cid, &centroid, errors) {
+                Some(axes) => (axes * Vector3::from(d)).normalize(),
+                None => return,
+            },
+        };
+        let p = &l.p[..n];
+        let weights = nodal_integrals(&frame.local, p);
+        let g = &self.structure.geometry;
+        for (k, &id) in e.grids.iter().enumerate() {
+            let v = g.frame(id).transpose() * direction * (weights[k] * factor);
+            let slot = out.entry(id).or_default();
+            for c in 0..3 {
+                slot[c] += v[c];
+            }
+        }
+    }
+}
+
+/// ∫ Nᵢ p dA over a flat shell with corners `local` (in its plane) and corner values
+/// `p` interpolated by its shape functions: bilinear over a quadrilateral (2×2 Gauss
+/// points: Nᵢ·p·det J is at most cubic in each of ξ, η, so exact), linear over a
+/// triangle (exact).
+pub fn nodal_integrals(local: &[[f64; 3]], p: &[f64]) -> Vec<f64> {
+    if local.len() == 3 {
+        let (a, b, c) = (local[0], local[1], local[2]);
+        let area = 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1])).abs();
+        let sum: f64 = p.iter().sum();
+        return p.iter().map(|pi| area / 12.0 * (pi + sum)).collect();
+    }
+    const SIGNS: [(f64, f64); 4] = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
+    let g = 1.0 / 3f64.sqrt();
+    let mut out = vec![0.0; 4];
+    for (xi, eta) in [(-g, -g), (g, -g), (g, g), (-g, g)] {
+        let shape: Vec<f64> = SIGNS
+            .iter()
+            .map(|(s, t)| 0.25 * (1.0 + s * xi) * (1.0 + t * eta))
+            .collect();
+        let (mut jx, mut jy) = ([0.0; 2], [0.0; 2]);
+        for (k, (s, t)) in SIGNS.iter().enumerate() {
+            let (dxi, deta) = (0.25 * s * (1.0 + t * eta), 0.25 * t * (1.0 + s * xi));
+            jx[0] += dxi * local[k][0];
+            jx[1] += deta * local[k][0];
+            jy[0] += dxi * local[k][1];
+            jy[1] += deta * local[k][1];
+        }
+        let det = (jx[0] * jy[1] - jx[1] * jy[0]).abs();
+        let pressure: f64 = shape.iter().zip(p).map(|(n, p)| n * p).sum();
+        for k in 0..4 {
+            out[k] += shape[k] * pressure * det;
+        }
+    }
+    out
+}
+
+/// The resultant of grid loads in the basic system: force and moment about the basic
+/// origin.
+pub fn resultant(loads: &GridLoads, s: &Structure) -> [f64; 6] {
+    let g = &s.geometry;
+    let (mut f, mut m) = (Vector3::zeros(), Vector3::zeros());
+    for (id, l) in loads {
+        let t = g.frame(*id);
+        let x = Vector3::from(g.positions.get(id).copied().unwrap_or_default());
+        let force = t * Vector3::new(l[0], l[1], l[2]);
+        f += force;
+        m += x.cross(&force) + t * Vector3::new(l[3], l[4], l[5]);
+    }
+    [f.x, f.y, f.z, m.x, m.y, m.z]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::nodal_integrals;
+
+    /// Goal: the consistent pressure forces carry the pressure's resultant and its first
+    /// moments exactly (Σ Fᵢ = ∫p dA, Σ xᵢFᵢ = ∫x p dA, as Σ Nᵢ = 1 and Σ Nᵢxᵢ = x).
+    /// Model: a rectangle a × b = 2 × 1 with corner pressures 5, 6, 7, 8 (bilinear p),
+    /// and a triangle of the same corners' first three (linear p). Reference: the
+    /// integrals by hand: ∫p dA = ab·mean(p); ∫x p dA = b/2·(a²/6·(p₁ + p₄) +
+    /// a²/3·(p₂ + p₃)) on the rectangle; on the triangle (0,0), (2,0), (2,1): ∫p dA =
+    /// A·mean(p), A = 1. Tolerance: 1e-14 relative (round-off).
+    #[test]
+    fn consistent_pressure_forces_carry_the_resultant_and_its_moment() {
+        let (a, b) = (2.0, 1.0);
+        let corners = [[0.0, 0.0, 0.0], [a, 0.0, 0.0], [a, b, 0.0], [0.0, b, 0.0]];
+        let p = [5.0, 6.0, 7.0, 8.0];
+        let f = nodal_integrals(&corners, &p);
+        let total: f64 = f.iter().sum();
+        assert!((total - a * b * 6.5).abs() < 1e-14 * total, "{f:?}");
+        let moment: f64 = f.iter().zip(&corners).map(|(f, c)| f * c[0]).sum();
+        let exact = b / 2.0 * (a * a / 6.0 * (p[0] + p[3]) + a * a / 3.0 * (p[1] + p[2]));
+        assert!((moment - exact).abs() < 1e-14 * exact, "{moment} vs {exact}");
+        let t = nodal_integrals(&corners[..3], &p[..3]);
+        let total: f64 = t.iter().sum();
+        assert!((total - 6.0).abs() < 1e-14 * 6.0, "{t:?}");
+        let moment: f64 = t.iter().zip(&corners).map(|(f, c)| f * c[0]).sum();
+        // ∫x p dA over the triangle: A/12·Σᵢ xᵢ(pᵢ + Σⱼ pⱼ) for linear x and p.
+        let exact = 1.0 / 12.0 * (0.0 * (5.0 + 18.0) + 2.0 * (6.0 + 18.0) + 2.0 * (7.0 + 18.0));
+        assert!((moment - exact).abs() < 1e-14 * exact, "{moment} vs {exact}");
+    }
+}

@@ -1,0 +1,184 @@
+//! A linear static solution (SOL 101): K u = f on the structure's assembly
+//! ([`crate::assembly::assemble_elements`]) and the sparse Cholesky factorisation the
+//! implicit schemes use ([`crate::integrate::linear::Factor`]), f the static load the
+//! case control's LOAD selects ([`crate::model::loads`]), over the DOFs the selected
+//! SPCs leave free but those no element stiffens and no load reaches, which are held
+//! as NASTRAN's AUTOSPC holds them (a flat shell's rotation about its normal). Exact up to the factorisation's round-off, which the residual
+//! ‖K u − f‖ / ‖f‖ reports.
+
+use super::UnitSystem;
+use crate::assembly::assemble_elements;
+use crate::deck::{Deck, Diagnostic};
+use crate::integrate::linear::Factor;
+use crate::integrate::SolveError;
+use crate::model::loads::{resultant, static_load};
+use crate::model::{build_structure, ModelError, Structure};
+use serde::Serialize;
+
+/// A static solution that could not be had.
+#[derive(Debug, thiserror::Error)]
+pub enum StaticError {
+    /// The structure or its load could not be built.
+    #[error("{0}")]
+    Model(#[from] ModelError),
+    /// The stiffness could not be factorised (a mechanism).
+    #[error("{0}")]
+    Solve(#[from] SolveError),
+}
+
+/// One grid's displacement, in its displacement (CD) frame.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct GridDisplacement {
+    /// The grid.
+    pub grid: i64,
+    /// Its displacement frame's system (0: basic).
+    pub cd: i64,
+    /// T1, T2, T3, R1, R2, R3 (zero where constrained).
+    pub u: [f64; 6],
+    /// Its basic position.
+    pub position: [f64; 3],
+    /// Its translation in the basic system.
+    pub basic: [f64; 3],
+}
+
+/// What a static solution gives.
+#[derive(Debug, Clone, Serialize)]
+pub struct StaticSolution {
+    /// The deck's name.
+    pub deck: String,
+    /// SHA-256 of the deck's bytes.
+    pub deck_sha256: String,
+    /// The deck's units.
+    pub units: UnitSystem,
+    /// The LOAD set solved for.
+    pub load_set: i64,
+    /// Solved DOFs.
+    pub dofs: usize,
+    /// Free DOFs no element stiffens and no load reaches, held (NASTRAN's AUTOSPC).
+    pub autospc: usize,
+    /// The resultant of the applied load (constrained components too) in the basic
+    /// system: force, then moment about the basic origin.
+    pub applied: [f64; 6],
+    /// ½ uᵀ K u.
+    pub strain_energy: f64,
+    /// ‖K u − f‖ / ‖f‖ (0 for no load).
+    pub residual: f64,
+    /// The largest translation's magnitude and its grid.
+    pub largest_translation: (f64, i64),
+    /// Every grid, in id order.
+    pub grids: Vec<GridDisplacement>,
+}
+
+impl StaticSolution {
+    /// The grid nearest to basic point `p`, if one lies within `tol` of it.
+    pub fn grid_at(&self, p: [f64; 3], tol: f64) -> Option<&GridDisplacement> {
+        let d2 = |g: &GridDisplacement| (0..3).map(|k| (g.position[k] - p[k]).powi(2)).sum::<f64>();
+        self.grids
+            .iter()
+            .min_by(|a, b| d2(a).total_cmp(&d2(b)))
+            .filter(|g| d2(g).sqrt() <= tol)
+    }
+
+    /// Grid `g`'s component `c` (1..6) in its displacement frame.
+    pub fn displacement(&self, g: i64, c: usize) -> Option<f64> {
+        let i = self.grids.binary_search_by_key(&g, |d| d.grid).ok()?;
+        self.grids[i].u.get(c.checked_sub(1)?).copied()
+    }
+}
+
+/// Solves a static deck (read with [`crate::deck::STATICS`] as its solution):
+/// the solution and the model builder's warnings.
+pub fn solve(deck: &Deck) -> Result<(StaticSolution, Vec<Diagnostic>), StaticError> {
+    let (s, warnings) = build_structure(deck)?;
+    let loads = static_load(deck, &s)?;
+    let n = s.dofs.len();
+    let index: std::collections::HashMap<_, _> = s.dofs.iter().enumerate().map(|(i, l)| (*l, i)).collect();
+    let mut f = vec![0.0; n];
+    for (g, l) in &loads {
+        for (c, v) in l.iter().enumerate() {
+            if let Some(&i) = index.get(&crate::model::DofLabel {
+                point: *g,
+                comp: c as u8 + 1,
+            }) {
+                f[i] += v;
+            }
+        }
+    }
+    // AUTOSPC, as NASTRAN's statics does: a DOF no element stiffens (a flat shell's
+    // rotation about its normal) is held, unless it is loaded.
+    let full = assemble_elements(&s.elements, n);
+    let diag = full.k_diag();
+    let mut map = vec![None; n];
+    let mut kept = Vec::new();
+    for i in 0..n {
+        if diag[i] != 0.0 || f[i] != 0.0 {
+            map[i] = Some(kept.len());
+            kept.push(i);
+        }
+    }
+    let sys = full.restricted(&map, kept.len());
+    let labels: Vec<_> = kept.iter().map(|&i| s.dofs[i]).collect();
+    let fk: Vec<f64> = kept.iter().map(|&i| f[i]).collect();
+    let mut uk = fk.clone();
+    Factor::new(&sys.k_csc, &labels)?.solve_in_place(&mut uk);
+    let mut u = vec![0.0; n];
+    for (k, &i) in kept.iter().enumerate() {
+        u[i] = uk[k];
+    }
+    let mut ku = vec![0.0; n];
+    full.k_mul(&u, &mut ku);
+    let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let diff: Vec<f64> = ku.iter().zip(&f).map(|(a, b)| a - b).collect();
+    let residual = if norm(&f) > 0.0 { norm(&diff) / norm(&f) } else { 0.0 };
+    let strain_energy = 0.5 * u.iter().zip(&ku).map(|(a, b)| a * b).sum::<f64>();
+    let grids = displacements(deck, &s, &u);
+    let largest_translation = grids
+        .iter()
+        .map(|d| (d.u[0].hypot(d.u[1]).hypot(d.u[2]), d.grid))
+        .fold((0.0, 0), |a, b| if b.0 > a.0 { b } else { a });
+    Ok((
+        StaticSolution {
+            deck: deck.name.clone(),
+            deck_sha256: deck.sha256.clone(),
+            units: UnitSystem::of(&deck.units),
+            load_set: deck.case.load.as_ref().map_or(0, |l| l.id),
+            dofs: kept.len(),
+            autospc: n - kept.len(),
+            applied: resultant(&loads, &s),
+            strain_energy,
+            residual,
+            largest_translation,
+            grids,
+        },
+        warnings,
+    ))
+}
+
+/// Every grid's displacement from the solved DOFs' `u`.
+fn displacements(deck: &Deck, s: &Structure, u: &[f64]) -> Vec<GridDisplacement> {
+    let mut out: Vec<GridDisplacement> = deck
+        .bulk
+        .grids
+        .iter()
+        .map(|g| GridDisplacement {
+            grid: g.id,
+            cd: crate::geometry::grid_systems(g, &deck.bulk).1,
+            u: [0.0; 6],
+            position: s.geometry.positions.get(&g.id).copied().unwrap_or_default(),
+            basic: [0.0; 3],
+        })
+        .collect();
+    out.sort_by_key(|d| d.grid);
+    for (l, v) in s.dofs.iter().zip(u) {
+        if l.comp == 0 {
+            continue;
+        }
+        if let Ok(i) = out.binary_search_by_key(&l.point, |d| d.grid) {
+            out[i].u[l.comp as usize - 1] = *v;
+        }
+    }
+    for d in &mut out {
+        d.basic = (s.geometry.frame(d.grid) * nalgebra::Vector3::new(d.u[0], d.u[1], d.u[2])).into();
+    }
+    out
+}
