@@ -580,3 +580,47 @@ pub fn in_triangles(deck: &str) -> String {
     }
     out
 }
+
+/// A simply supported closed cylinder (R = 1, L = 2, thickness t, E = 1, ν = 0.3,
+/// ρ = 1; lumped mass, no rotary inertia) on `around` × `along` CQUAD4, its grids
+/// located and displaced in a cylindrical CORD2C about the axis (T1 radial, T2
+/// circumferential, T3 axial): the diaphragms at both ends hold T1 and T2, and T3 is
+/// held on the mid-length ring against the rigid axial motion (every odd-m mode's
+/// u = A cos λs vanishes there; a single held grid would leave the cylinder free to
+/// slide about it, a spurious mode whose frequency falls to zero with h, as a point
+/// support of a membrane holds nothing in the limit). `along` even.
+pub fn cylinder_model(t: f64, around: usize, along: usize) -> Result<crate::model::Model, MeshError> {
+    let id = |i: usize, j: usize| 1000 * (i + 1) + j % around + 1;
+    let mut d = format!(
+        "$ Units: unspecified\nSOL 27\nCEND\n  SPC = 1\n  TSTEP = 1\nBEGIN BULK\nTSTEP,1,1,1.0,1\n\
+         CORD2C,1,0,0.0,0.0,0.0,0.0,0.0,1.0\n,1.0,0.0,0.0\nMAT1,1,1.0,,0.3,1.0\nPSHELL,1,1,{t:?},1\n"
+    );
+    for i in 0..=along {
+        for j in 0..around {
+            let (theta, z) = (360.0 * j as f64 / around as f64, 2.0 * i as f64 / along as f64);
+            d += &format!("GRID,{},1,1.0,{theta:?},{z:?},1\n", id(i, j));
+        }
+    }
+    for i in 0..along {
+        for j in 0..around {
+            d += &format!(
+                "CQUAD4,{},1,{},{},{},{}\n",
+                id(i, j),
+                id(i, j),
+                id(i, j + 1),
+                id(i + 1, j + 1),
+                id(i + 1, j)
+            );
+        }
+    }
+    for j in 0..around {
+        d += &format!(
+            "SPC1,1,12,{},{}\nSPC1,1,3,{}\n",
+            id(0, j),
+            id(along, j),
+            id(along / 2, j)
+        );
+    }
+    d += "ENDDATA\n";
+    Ok(crate::model_from_text(&format!("cylinder-{around}x{along}"), &d)?)
+}

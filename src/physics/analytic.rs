@@ -14,6 +14,8 @@
 //! - [`NavierPlate`]: a simply supported, specially orthotropic Kirchhoff plate under
 //!   point loads F(t): its fibre strains by the Navier double sine series, each mode
 //!   integrated exactly (Duhamel) for a piecewise-linear F.
+//! - [`cylinder_lowest_frequency`]: the lowest natural frequency of a simply supported
+//!   closed cylindrical shell by Sanders' or Donnell-Mushtari's thin-shell theory.
 
 /// Ball + Hertz spring + dashpot. State y = (x, v, w): impactor displacement and
 /// velocity, target face displacement; α = x − w.
@@ -375,6 +377,72 @@ pub fn rigid_target(mass: f64, v0: f64, stiffness: f64) -> (f64, f64, f64) {
 
 /// 2∫₀¹ ds/√(1 − s^(5/2)) = 2 Γ(2/5) Γ(1/2) / (5/2 · Γ(9/10)) = 2.9432752…
 pub const RIGID_DURATION_FACTOR: f64 = 2.943_275_184_324_705;
+
+/// A thin-shell theory of the closed cylinder (Leissa, Vibration of Shells, NASA
+/// SP-288, 1973, ch. 2).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ShellTheory {
+    /// Sanders' (the curvature changes and twist with their in-plane terms).
+    Sanders,
+    /// Donnell-Mushtari's (the curvatures of w alone; too stiff at low n).
+    Donnell,
+}
+
+/// Ω² of mode (m, n) of a simply supported closed cylinder (R, L, t, ν): the lowest
+/// eigenvalue of the 3×3 stiffness of u = A cos λs cos nθ, v = B sin λs sin nθ,
+/// w = C sin λs cos nθ (s = x/R, λ = mπR/L, the diaphragms' v = w = 0 and free u),
+/// with unit mass on A, B, C; Ω² = ρ(1 − ν²)R²ω²/E. Membrane strains ε_x = u_s,
+/// ε_θ = v_θ + w, γ = u_θ + v_s; Sanders' changes of curvature κ_x = −w_ss,
+/// κ_θ = v_θ − w_θθ, twist τ = −w_sθ + ¾v_s − ¼u_θ (all over R, R²); energy
+/// ε_x² + ε_θ² + 2νε_xε_θ + (1−ν)/2 γ² + k(κ_x² + κ_θ² + 2νκ_xκ_θ + 2(1−ν)τ²),
+/// k = t²/12R². Donnell-Mushtari's theory keeps only the w terms of the curvatures.
+pub fn cylinder_omega2(r: f64, l: f64, t: f64, nu: f64, (m, n): (usize, usize), theory: ShellTheory) -> f64 {
+    use nalgebra::{Matrix3, Vector3};
+    let (lam, n) = (m as f64 * std::f64::consts::PI * r / l, n as f64);
+    let k = t * t / (12.0 * r * r);
+    let mut s = Matrix3::new(
+        lam * lam + 0.5 * (1.0 - nu) * n * n,
+        -0.5 * (1.0 + nu) * lam * n,
+        -nu * lam,
+        -0.5 * (1.0 + nu) * lam * n,
+        n * n + 0.5 * (1.0 - nu) * lam * lam,
+        n,
+        -nu * lam,
+        n,
+        1.0,
+    );
+    // Curvatures and twist as linear forms in (A, B, C).
+    let (kx, kt, tw) = match theory {
+        ShellTheory::Donnell => (
+            Vector3::new(0.0, 0.0, lam * lam),
+            Vector3::new(0.0, 0.0, n * n),
+            Vector3::new(0.0, 0.0, lam * n),
+        ),
+        ShellTheory::Sanders => (
+            Vector3::new(0.0, 0.0, lam * lam),
+            Vector3::new(0.0, n, n * n),
+            Vector3::new(0.25 * n, 0.75 * lam, lam * n),
+        ),
+    };
+    s += (kx * kx.transpose()
+        + kt * kt.transpose()
+        + (kx * kt.transpose() + kt * kx.transpose()) * nu
+        + tw * tw.transpose() * (2.0 * (1.0 - nu)))
+        * k;
+    s.symmetric_eigenvalues().min()
+}
+
+/// The lowest Ω = √(ρ(1 − ν²)/E)·Rω of a simply supported closed cylinder by
+/// `theory`, and its mode (m, n), over m = 1..=3 axial half-waves and n = 1..=24
+/// circumferential waves (the lowest of a thin cylinder of L/R ~ 2 lies at m = 1,
+/// n of 3 to 8).
+pub fn cylinder_lowest_frequency(r: f64, l: f64, t: f64, nu: f64, theory: ShellTheory) -> (f64, (usize, usize)) {
+    (1..=3)
+        .flat_map(|m| (1..=24).map(move |n| (m, n)))
+        .map(|mode| (cylinder_omega2(r, l, t, nu, mode, theory).sqrt(), mode))
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .expect("modes searched")
+}
 
 #[cfg(test)]
 mod tests {

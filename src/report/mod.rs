@@ -53,6 +53,9 @@ pub fn sig(x: f64, digits: usize) -> String {
 /// solver's file it overlays, or a file it writes.
 #[derive(Debug, thiserror::Error)]
 pub enum ReportError {
+    /// The case is static: its verdicts are `verify`'s, with no run to draw.
+    #[error("{0}: a static case has no run to report")]
+    Static(String),
     /// A figure could not be drawn.
     #[error("{0}")]
     Plot(#[from] crate::plot::PlotError),
@@ -88,11 +91,13 @@ fn io(path: &Path) -> impl Fn(std::io::Error) -> ReportError + '_ {
 pub fn report_case(outcome: &CaseOutcome, dir: &Path) -> Result<CaseReport, ReportError> {
     let CaseOutcome {
         case,
-        model,
-        run,
         checks,
         wall_s: wall,
+        ..
     } = outcome;
+    let Some((model, run)) = outcome.transient() else {
+        return Err(ReportError::Static(case.name.clone()));
+    };
     // A plate in bending; a target of membranes alone (an in-plane strip) is not one.
     let plate = model
         .elements

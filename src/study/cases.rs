@@ -9,7 +9,9 @@ use crate::mesh::plate_model;
 use crate::model::Model;
 use crate::numerics::slope;
 use crate::run::{run_model, RunResult};
-use crate::verify::{case_model, case_options, check, Bound, Case, CaseOutcome, CheckResult, CheckSpec, Quantity};
+use crate::verify::{
+    case_model, case_options, check, Bound, Case, CaseOutcome, CheckResult, CheckSpec, Quantity, Solved,
+};
 use std::time::Instant;
 
 /// Runs a case and evaluates all its checks, timing each check on its own (a
@@ -25,6 +27,9 @@ use std::time::Instant;
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn evaluate(case: &Case) -> Result<CaseOutcome, StudyError> {
+    if !case.statics.is_empty() {
+        return evaluate_static(case);
+    }
     let model = case_model(case)?;
     let t0 = Instant::now();
     let run = run_model(&model, &case_options(case))?;
@@ -52,8 +57,36 @@ pub fn evaluate(case: &Case) -> Result<CaseOutcome, StudyError> {
     }
     Ok(CaseOutcome {
         case: case.clone(),
-        model,
-        run,
+        solved: Solved::Transient {
+            model: Box::new(model),
+            run: Box::new(run),
+        },
+        checks,
+        wall_s,
+    })
+}
+
+/// Solves a static case's decks (SOL 101, [`crate::run::statics::solve`]) and judges
+/// its checks ([`crate::verify::checks::static_check`]).
+fn evaluate_static(case: &Case) -> Result<CaseOutcome, StudyError> {
+    let t0 = Instant::now();
+    let mut solutions = Vec::new();
+    for d in &case.statics {
+        let deck = crate::deck::read_deck(&crate::verify::case::rel(case, d), Default::default())
+            .map_err(crate::model::LoadError::from)?;
+        solutions.push(crate::run::statics::solve(&deck)?.0);
+    }
+    let wall_s = t0.elapsed().as_secs_f64();
+    let mut checks = Vec::new();
+    for spec in &case.checks {
+        let t = Instant::now();
+        let mut r = crate::verify::checks::static_check(case, &solutions, spec)?;
+        r.time_s = t.elapsed().as_secs_f64();
+        checks.push(r);
+    }
+    Ok(CaseOutcome {
+        case: case.clone(),
+        solved: Solved::Static(solutions),
         checks,
         wall_s,
     })

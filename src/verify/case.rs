@@ -62,6 +62,11 @@ pub struct Case {
     pub deck: Option<PathBuf>,
     /// Or the paper's plate on a generated n×n mesh.
     pub plate_mesh: Option<usize>,
+    /// Or linear static decks (SOL 101), relative to the case file: one problem on a
+    /// sequence of meshes, coarse to fine, each halving the element size. Such a case
+    /// takes the static check kinds alone ([`CheckSpec::is_static`]).
+    #[serde(default)]
+    pub statics: Vec<PathBuf>,
     /// The generated plate's elements (default CQUAD4).
     #[serde(default)]
     pub plate_cells: crate::mesh::Cells,
@@ -95,6 +100,10 @@ pub struct Case {
     /// The file the case was read from (set by [`read_case`]).
     #[serde(skip)]
     pub path: PathBuf,
+}
+
+fn yes() -> bool {
+    true
 }
 
 fn default_scheme() -> Scheme {
@@ -232,6 +241,40 @@ pub enum CheckSpec {
         /// The tolerance on both.
         tol: Tol,
     },
+    /// A static case's deflection at `point` along `direction` (the translation of the
+    /// grid there, in the basic system), deck by deck: the finest mesh's relative
+    /// error against `reference` ≤ max, and the error falling mesh by mesh; or, for a
+    /// patch test (`falling = false`), every deck's error ≤ max.
+    StaticDeflection {
+        /// The grid's location (basic coordinates; the grid nearest to it, which must
+        /// lie within 1e-6 of the model's size).
+        point: [f64; 3],
+        /// The direction read (normalised).
+        direction: [f64; 3],
+        /// The reference deflection.
+        reference: f64,
+        /// Where it comes from and why it is held to.
+        source: String,
+        /// Largest relative error of the finest mesh (of every deck when not `falling`).
+        max: f64,
+        /// The decks are a mesh sequence whose error falls (default); `false`: each
+        /// deck is exact up to round-off (a patch test).
+        #[serde(default = "yes")]
+        falling: bool,
+    },
+    /// A static case's observed order of convergence at `point` along `direction`
+    /// from its last three meshes (h halving): p = log₂(|w₁ − w₂| / |w₂ − w₃|) ≥ min;
+    /// the detail gives the Richardson extrapolation and its error against `reference`.
+    StaticOrder {
+        /// The grid's location, as for [`CheckSpec::StaticDeflection`].
+        point: [f64; 3],
+        /// The direction read.
+        direction: [f64; 3],
+        /// The reference deflection the extrapolation is compared with.
+        reference: f64,
+        /// Smallest order accepted.
+        min: f64,
+    },
     /// The lowest `modes` natural frequencies of a simply supported square plate of the
     /// case's size and shell section (bending), on two meshes (n × n, the second
     /// twice as fine), Richardson-extrapolated at order 2, against Navier's closed form:
@@ -243,6 +286,29 @@ pub enum CheckSpec {
         /// Number of modes.
         modes: usize,
         /// Largest relative difference allowed.
+        max: f64,
+        /// The section thickened (or thinned) to this thickness, its materials as they
+        /// are: D ∝ t³, the transverse shear stiffness and the mass ∝ t. A thick plate
+        /// brings its shear into the lower modes, where a fault of the shear
+        /// interpolation (a spurious mode among them) shows.
+        thickness: Option<f64>,
+    },
+    /// Curved-shell dynamics, independent of the case's model: the lowest natural
+    /// frequency of a simply supported closed cylinder (R = 1, L = 2, ν = 0.3;
+    /// [`crate::mesh::cylinder_model`]) at each R/t of `slenderness`, on the `meshes`
+    /// (around × along, refined by one factor in both), against Sanders' thin-shell
+    /// theory ([`crate::physics::analytic::cylinder_lowest_frequency`]): the frequency
+    /// falling mesh by mesh, the order observed on the last three meshes ≥ `min_order`,
+    /// its Richardson extrapolation within `max` of Sanders' value and nearer to it than
+    /// to Donnell-Mushtari's. The value is the largest such error.
+    CylinderFrequencies {
+        /// The radius-to-thickness ratios.
+        slenderness: Vec<f64>,
+        /// The meshes, elements around × along, coarse to fine (three at least).
+        meshes: Vec<[usize; 2]>,
+        /// Smallest observed order accepted.
+        min_order: f64,
+        /// Largest relative error of the extrapolation.
         max: f64,
     },
     /// The plate's gage strains against the Navier series: the paper's plate on a
@@ -380,11 +446,33 @@ pub fn read_case(path: &Path) -> Result<Case, CaseError> {
         line: e.span().map(|s| text[..s.start].lines().count().max(1)),
         message: e.message().to_string(),
     })?;
-    if case.deck.is_some() == case.plate_mesh.is_some() {
+    if [case.deck.is_some(), case.plate_mesh.is_some(), !case.statics.is_empty()]
+        .iter()
+        .filter(|&&b| b)
+        .count()
+        != 1
+    {
         return Err(CaseError::Invalid {
             path: file(),
             line: None,
-            message: "give exactly one of `deck` and `plate_mesh`".into(),
+            message: "give exactly one of `deck`, `plate_mesh` and `statics`".into(),
+        });
+    }
+    if case.checks.iter().any(|c| c.is_static() == case.statics.is_empty()) {
+        return Err(CaseError::Invalid {
+            path: file(),
+            line: None,
+            message: "static_deflection and static_order judge static decks (a case with `statics`), every other \
+                      check a transient run: this case mixes them"
+                .into(),
+        });
+    }
+    if case.statics.len() < 3 && case.checks.iter().any(|c| matches!(c, CheckSpec::StaticOrder { .. })) {
+        return Err(CaseError::Invalid {
+            path: file(),
+            line: None,
+            message: "static_order reads an order from the last three meshes: `statics` needs at least three decks"
+                .into(),
         });
     }
     if case.deck.is_some() && case.plate_mid3 {
@@ -410,6 +498,13 @@ pub fn read_case(path: &Path) -> Result<Case, CaseError> {
     }
     case.path = path.to_path_buf();
     Ok(case)
+}
+
+impl CheckSpec {
+    /// True for the kinds that judge a case's static decks.
+    pub fn is_static(&self) -> bool {
+        matches!(self, CheckSpec::StaticDeflection { .. } | CheckSpec::StaticOrder { .. })
+    }
 }
 
 /// The case files named on the command line: files as given, directories expanded
@@ -457,7 +552,13 @@ pub fn case_model(case: &Case) -> Result<Model, CaseError> {
         (Some(d), _) => crate::load_deck(&rel(case, d), Default::default())?.0,
         (None, Some(n)) if case.plate_mid3 => crate::mesh::plate_model_mid3(n, case.plate_cells)?,
         (None, Some(n)) => crate::mesh::plate_model_with(n, case.plate_cells)?,
-        _ => unreachable!("checked by read_case"),
+        (None, None) => {
+            return Err(CaseError::Invalid {
+                path: case.path.display().to_string(),
+                line: None,
+                message: "a static case (`statics`) has no transient model".into(),
+            })
+        }
     };
     if case.every_step {
         m.time.every = 1;

@@ -171,8 +171,19 @@ pub fn check(case: &Case, model: &Model, run: &RunResult, spec: &CheckSpec) -> R
         CheckSpec::InfinitePlate { until_s, max } => infinite_plate_force(&cx, *until_s, *max)?,
         CheckSpec::RigidTarget { tol } => rigid_target(&cx, tol)?,
         CheckSpec::CriticalStep { min_ratio } => critical_step(&cx, *min_ratio)?,
-        CheckSpec::NavierFrequencies { meshes, modes, max } => navier_frequencies(&cx, *meshes, *modes, *max)?,
+        CheckSpec::NavierFrequencies {
+            meshes,
+            modes,
+            max,
+            thickness,
+        } => navier_frequencies(&cx, *meshes, *modes, *max, *thickness)?,
         CheckSpec::NavierStrains { mesh, until_s, max } => navier_strains(&cx, *mesh, *until_s, *max)?,
+        CheckSpec::CylinderFrequencies {
+            slenderness,
+            meshes,
+            min_order,
+            max,
+        } => cylinder_frequencies(&cx, slenderness, meshes, *min_order, *max)?,
         CheckSpec::Gold { file, tol } => {
             let path = rel(case, file);
             let out = gold::compare(&path, &run.history_names(), &run.history, tol);
@@ -198,6 +209,13 @@ pub fn check(case: &Case, model: &Model, run: &RunResult, spec: &CheckSpec) -> R
         CheckSpec::DtConvergence { .. }
         | CheckSpec::MeshConvergence { .. }
         | CheckSpec::ConvergesToReference { .. } => return Ok(None),
+        CheckSpec::StaticDeflection { .. } | CheckSpec::StaticOrder { .. } => {
+            return Err(CheckError::Failed {
+                case: case.name.clone(),
+                check: "static",
+                message: "a static check judges a case's static decks, not a run".into(),
+            })
+        }
     }))
 }
 
@@ -984,7 +1002,13 @@ pub fn material_law(case: &Case, model: &Model, run: &RunResult) -> CheckResult 
     )
 }
 
-fn navier_frequencies(cx: &Cx, meshes: [usize; 2], modes: usize, max: f64) -> Result<CheckResult, CheckError> {
+fn navier_frequencies(
+    cx: &Cx,
+    meshes: [usize; 2],
+    modes: usize,
+    max: f64,
+    thickness: Option<f64>,
+) -> Result<CheckResult, CheckError> {
     let check = "navier_frequencies";
     let case = || cx.case.name.clone();
     let shells: Vec<_> = cx
@@ -1010,20 +1034,22 @@ fn navier_frequencies(cx: &Cx, meshes: [usize; 2], modes: usize, max: f64) -> Re
     };
     let xs = shells.iter().flat_map(|e| e.points().into_iter().map(|p| p[0]));
     let side = xs.clone().fold(f64::NEG_INFINITY, f64::max) - xs.fold(f64::INFINITY, f64::min);
-    let t = section.thickness;
+    let t = thickness.unwrap_or(section.thickness);
+    let scale = t / section.thickness;
+    let mass_per_area = section.mass_per_area * scale;
     let d = |x: f64| x * t.powi(3) / 12.0;
     // G13 and G23 (the paper's are 1e-9 of G11) are left out of the closed form.
     let dd = [d(g[(0, 0)]), d(g[(1, 1)]), d(g[(0, 1)]), d(g[(2, 2)])];
     // A shear-deformable section: Mindlin's Navier solution (K12 left out, as D16).
-    let shear = section.shear.map(|k| [k[(0, 0)], k[(1, 1)]]);
+    let shear = section.shear.map(|k| [k[(0, 0)] * scale, k[(1, 1)] * scale]);
     let exact = match shear {
-        None => analytic::navier_frequencies(side, section.mass_per_area, dd, modes),
-        Some(k) => analytic::mindlin_navier_frequencies(side, section.mass_per_area, dd, k, modes),
+        None => analytic::navier_frequencies(side, mass_per_area, dd, modes),
+        Some(k) => analytic::mindlin_navier_frequencies(side, mass_per_area, dd, k, modes),
     };
     let g6 = [g[(0, 0)], g[(0, 1)], g[(0, 2)], g[(1, 1)], g[(1, 2)], g[(2, 2)]];
     let mut fem = Vec::new();
     for n in meshes {
-        let rho = section.mass_per_area / t;
+        let rho = mass_per_area / t;
         let plate = crate::mesh::navier_plate(n, side, t, g6, rho, shear, cells);
         let m = plate.map_err(|e| CheckError::Failed {
             case: case(),
@@ -1064,11 +1090,97 @@ fn navier_frequencies(cx: &Cx, meshes: [usize; 2], modes: usize, max: f64) -> Re
         ));
     }
     Ok(cx.result(
-        format!("navier_frequencies {modes} modes"),
+        match thickness {
+            None => format!("navier_frequencies {modes} modes"),
+            Some(t) => format!("navier_frequencies {modes} modes, t = {t}"),
+        },
         worst,
         None,
         Bound::at_most(max),
         worst <= max,
+        detail.join("; "),
+    ))
+}
+
+fn cylinder_frequencies(
+    cx: &Cx,
+    slenderness: &[f64],
+    meshes: &[[usize; 2]],
+    min_order: f64,
+    max: f64,
+) -> Result<CheckResult, CheckError> {
+    use analytic::{cylinder_lowest_frequency, ShellTheory};
+    let check = "cylinder_frequencies";
+    let failed = |message: String| CheckError::Failed {
+        case: cx.case.name.clone(),
+        check,
+        message,
+    };
+    if meshes.len() < 3 {
+        return Err(failed(
+            "three meshes at least: the order is read from the last three".into(),
+        ));
+    }
+    let nu = 0.3;
+    let (mut worst, mut passed, mut detail) = (0.0f64, true, Vec::new());
+    for &slender in slenderness {
+        let t = 1.0 / slender;
+        let (sanders, mode) = cylinder_lowest_frequency(1.0, 2.0, t, nu, ShellTheory::Sanders);
+        let (donnell, _) = cylinder_lowest_frequency(1.0, 2.0, t, nu, ShellTheory::Donnell);
+        let mut w = Vec::new();
+        for &[around, along] in meshes {
+            let m = crate::mesh::cylinder_model(t, around, along).map_err(|e| failed(e.to_string()))?;
+            let f = crate::assembly::lowest_frequencies(&m, 4)
+                .ok_or_else(|| failed(format!("the {around}×{along} cylinder's rotations are not restrained")))?;
+            // The lowest nonzero frequency, as Ω = √(ρ(1 − ν²)/E)·Rω with R = E = ρ = 1.
+            let omega = f.iter().copied().find(|&x| x > 1e-6).unwrap_or(f64::NAN);
+            w.push(omega * (1.0 - nu * nu).sqrt());
+        }
+        // Order p from w(h) = w∞ + C hᵖ on the last three meshes (h ∝ 1/around):
+        // bisection on (w₁ − w₂)/(w₂ − w₃) = (h₁ᵖ − h₂ᵖ)/(h₂ᵖ − h₃ᵖ).
+        let k = meshes.len() - 3;
+        let h: Vec<f64> = meshes[k..].iter().map(|m| 1.0 / m[0] as f64).collect();
+        let v = &w[k..];
+        let ratio = (v[0] - v[1]) / (v[1] - v[2]);
+        let g = |p: f64| (h[0].powf(p) - h[1].powf(p)) / (h[1].powf(p) - h[2].powf(p)) - ratio;
+        let (mut lo, mut hi) = (0.1, 8.0);
+        for _ in 0..100 {
+            let mid = 0.5 * (lo + hi);
+            if g(lo) * g(mid) <= 0.0 {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        let p = 0.5 * (lo + hi);
+        let extrapolated = v[2] - (v[1] - v[2]) * h[2].powf(p) / (h[1].powf(p) - h[2].powf(p));
+        let error = (extrapolated / sanders - 1.0).abs();
+        let falling = w.windows(2).all(|x| x[1] < x[0]);
+        let apart = donnell - extrapolated > 0.5 * (donnell - sanders);
+        passed &= falling && p >= min_order && error <= max && apart;
+        worst = worst.max(error);
+        detail.push(format!(
+            "R/t {slender}: Ω {} ({}), order {p:.2}, extrapolated {extrapolated:.5}; Sanders {sanders:.5} at (m, n) = \
+             {mode:?}, Donnell {donnell:.5}{}{}",
+            w.iter().map(|x| format!("{x:.5}")).collect::<Vec<_>>().join(", "),
+            meshes
+                .iter()
+                .map(|m| format!("{}×{}", m[0], m[1]))
+                .collect::<Vec<_>>()
+                .join(", "),
+            if falling { "" } else { "; not falling" },
+            if apart { "" } else { "; nearer to Donnell's" },
+        ));
+    }
+    Ok(cx.result(
+        format!("cylinder_frequencies R/t {slenderness:?}"),
+        worst,
+        None,
+        Bound {
+            text: format!("≤ {max:.1e}, order ≥ {min_order}, falling"),
+            ..Bound::at_most(max)
+        },
+        passed,
         detail.join("; "),
     ))
 }
@@ -1154,6 +1266,131 @@ fn navier_strains(cx: &Cx, n: usize, until: f64, max: [f64; 2]) -> Result<CheckR
         worst <= 1.0,
         format!("relative L2 difference until {until:e}: {}", detail.join("; ")),
     ))
+}
+
+/// A static case's deflection at `point` along `direction`, deck by deck: the
+/// translation of the grid there in the basic system (a grid within 1e-6 of the
+/// model's size of the point, in every deck).
+fn static_deflections(
+    case: &Case,
+    solutions: &[crate::run::statics::StaticSolution],
+    point: [f64; 3],
+    direction: [f64; 3],
+) -> Result<Vec<f64>, CheckError> {
+    let d = nalgebra::Vector3::from(direction);
+    if d.norm() == 0.0 {
+        return Err(CheckError::Failed {
+            case: case.name.clone(),
+            check: "static",
+            message: "the direction is zero".into(),
+        });
+    }
+    let d = d.normalize();
+    solutions
+        .iter()
+        .map(|s| {
+            let size = s
+                .grids
+                .iter()
+                .flat_map(|g| g.position)
+                .fold(0.0f64, |m, x| m.max(x.abs()))
+                .max(1.0);
+            let g = s.grid_at(point, 1e-6 * size).ok_or_else(|| CheckError::Failed {
+                case: case.name.clone(),
+                check: "static",
+                message: format!("{}: no grid at {point:?}", s.deck),
+            })?;
+            Ok(nalgebra::Vector3::from(g.basic).dot(&d))
+        })
+        .collect()
+}
+
+/// Judges a static case's check on its decks' solutions (in the case's order).
+pub fn static_check(
+    case: &Case,
+    solutions: &[crate::run::statics::StaticSolution],
+    spec: &CheckSpec,
+) -> Result<CheckResult, CheckError> {
+    let list = |v: &[f64]| v.iter().map(|x| format!("{x:.6e}")).collect::<Vec<_>>().join(", ");
+    let decks = solutions.iter().map(|s| s.deck.as_str()).collect::<Vec<_>>().join(", ");
+    match spec {
+        CheckSpec::StaticDeflection {
+            point,
+            direction,
+            reference,
+            source,
+            max,
+            falling: sequence,
+        } => {
+            let w = static_deflections(case, solutions, *point, *direction)?;
+            let err: Vec<f64> = w.iter().map(|x| (x / reference - 1.0).abs()).collect();
+            let (value, falling, text) = if *sequence {
+                let finest = *err.last().unwrap_or(&f64::NAN);
+                let falling = err.windows(2).all(|p| p[1] < p[0]);
+                (finest, falling, format!("≤ {max:.1e} of the reference, falling"))
+            } else {
+                let worst = err.iter().fold(0.0f64, |m, &e| if e.is_nan() { e } else { m.max(e) });
+                (worst, true, format!("≤ {max:.1e} of the reference, every deck"))
+            };
+            Ok(CheckResult::new(
+                case,
+                "static_deflection".into(),
+                value,
+                None,
+                Bound {
+                    text,
+                    ..Bound::at_most(*max)
+                },
+                value <= *max && falling,
+                format!(
+                    "{decks}: {} against {reference:e} ({source}); relative errors {}{}",
+                    list(&w),
+                    list(&err),
+                    if falling { "" } else { ": not falling mesh by mesh" }
+                ),
+            ))
+        }
+        CheckSpec::StaticOrder {
+            point,
+            direction,
+            reference,
+            min,
+        } => {
+            let w = static_deflections(case, solutions, *point, *direction)?;
+            let [a, b, c] = w[w.len() - 3..] else {
+                unreachable!("read_case asks for three decks at least")
+            };
+            let ratio = (a - b) / (b - c);
+            let p = ratio.abs().log2();
+            let extrapolated = c + (c - b) / (ratio.abs() - 1.0) * ratio.signum();
+            Ok(CheckResult::new(
+                case,
+                "static_order".into(),
+                p,
+                None,
+                Bound {
+                    text: format!("≥ {min}"),
+                    ..Bound::at_most(f64::INFINITY)
+                },
+                p >= *min && ratio > 0.0,
+                format!(
+                    "{decks}: {}; Richardson's extrapolation {extrapolated:.6e}, {:.2e} from {reference:e}{}",
+                    list(&w),
+                    (extrapolated / reference - 1.0).abs(),
+                    if ratio > 0.0 {
+                        ""
+                    } else {
+                        "; the last changes alternate in sign"
+                    }
+                ),
+            ))
+        }
+        _ => Err(CheckError::Failed {
+            case: case.name.clone(),
+            check: "static",
+            message: "a transient check judges a run, not static decks".into(),
+        }),
+    }
 }
 
 #[cfg(test)]

@@ -113,20 +113,42 @@ impl CheckResult {
     }
 }
 
-/// A case, its model, its run and the verdicts of its checks: what `verify` judged
-/// and what `report` draws, so that nothing is run twice.
+/// A case, what it solved and the verdicts of its checks: what `verify` judged and
+/// what `report` draws, so that nothing is run twice.
 #[derive(Debug, Clone)]
 pub struct CaseOutcome {
     /// The case.
     pub case: Case,
-    /// Its model.
-    pub model: Model,
-    /// Its run.
-    pub run: RunResult,
+    /// What it solved.
+    pub solved: Solved,
     /// The verdicts of its checks.
     pub checks: Vec<CheckResult>,
     /// Wall-clock seconds of the case's run.
     pub wall_s: f64,
+}
+
+/// What a case solved: a transient run of its model, or its static decks.
+#[derive(Debug, Clone)]
+pub enum Solved {
+    /// A transient case: its model and run.
+    Transient {
+        /// The model.
+        model: Box<Model>,
+        /// Its run.
+        run: Box<RunResult>,
+    },
+    /// A static case: each deck's solution, in the case's order.
+    Static(Vec<crate::run::statics::StaticSolution>),
+}
+
+impl CaseOutcome {
+    /// The model and run of a transient case.
+    pub fn transient(&self) -> Option<(&Model, &RunResult)> {
+        match &self.solved {
+            Solved::Transient { model, run } => Some((model, run)),
+            Solved::Static(_) => None,
+        }
+    }
 }
 
 /// The verdicts of all cases.
@@ -307,16 +329,19 @@ pub enum BlessError {
 /// CI), then judges those checks again against what was written.
 pub fn bless(o: &mut CaseOutcome) -> Result<Vec<PathBuf>, BlessError> {
     let mut written = Vec::new();
+    let Solved::Transient { model, run } = &o.solved else {
+        return Ok(written);
+    };
     for spec in &o.case.checks {
         if let CheckSpec::Gold { file, .. } = spec {
             let path = case::rel(&o.case, file);
-            let bytes = crate::output::csv_bytes(&o.run.history_header(), o.run.history.iter().cloned());
+            let bytes = crate::output::csv_bytes(&run.history_header(), run.history.iter().cloned());
             crate::output::write_file_atomically(&path, &bytes).map_err(|source| BlessError::Write {
                 path: path.display().to_string(),
                 source,
             })?;
             written.push(path);
-            let verdict = check(&o.case, &o.model, &o.run, spec)?.expect("a gold check judges one run");
+            let verdict = check(&o.case, model, run, spec)?.expect("a gold check judges one run");
             if let Some(r) = o.checks.iter_mut().find(|r| r.check == verdict.check) {
                 *r = verdict;
             }
