@@ -148,6 +148,19 @@ pub enum StudyKind {
         #[arg(long)]
         redraw: bool,
     },
+    /// The curved panel (R = 10 in) against the flat plate on several meshes: contact,
+    /// energy ledger, gage strains side by side.
+    Panel {
+        /// Mesh sizes (elements per side, odd).
+        #[arg(long, value_delimiter = ',', default_values_t = impactlab::study::mesh::MESHES)]
+        n: Vec<usize>,
+        /// Output directory: panel-study.csv, panel-histories.csv, README.md and figures.
+        #[arg(long, default_value = "reports/panel")]
+        out: PathBuf,
+        /// Remake README.md and the figures from the CSVs in the output directory; run nothing.
+        #[arg(long)]
+        redraw: bool,
+    },
     /// The mutation campaign's page (reports/mutants): made from campaign.toml and each
     /// run's CSV; with --from, a cargo-mutants output directory is first recorded as a run.
     Mutants {

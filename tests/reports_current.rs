@@ -60,6 +60,43 @@ fn mesh_study_page_and_figures_are_current() {
     assert_svgs_current(&figs, &dir);
 }
 
+/// Goal: `reports/panel/README.md` and every figure of it are what `impactlab study
+/// panel` makes from the committed `panel-study.csv` and `panel-histories.csv`, which
+/// hold the flat plate and the panel on each of the mesh study's meshes.
+#[test]
+fn panel_study_page_and_figures_are_current() {
+    use impactlab::study::{mesh, panel};
+    let dir = root().join("reports/panel");
+    let rows_csv = std::fs::read(dir.join("panel-study.csv")).unwrap();
+    let hist_csv = std::fs::read(dir.join("panel-histories.csv")).unwrap();
+    let rows: Vec<panel::PanelRow> = panel::read_csv(&rows_csv).unwrap();
+    let samples: Vec<panel::PanelSample> = panel::read_csv(&hist_csv).unwrap();
+    let expected: Vec<(usize, Option<f64>)> = mesh::MESHES
+        .iter()
+        .flat_map(|&n| [(n, None), (n, Some(panel::RADIUS))])
+        .collect();
+    assert_eq!(
+        rows.iter().map(|r| (r.n, r.radius_in)).collect::<Vec<_>>(),
+        expected,
+        "the study's runs"
+    );
+    assert_eq!(panel::csv(&rows), rows_csv, "panel-study.csv reads back to itself");
+    assert_eq!(
+        panel::csv(&samples),
+        hist_csv,
+        "panel-histories.csv reads back to itself"
+    );
+    assert_eq!(
+        panel::readme(&rows),
+        std::fs::read_to_string(dir.join("README.md")).unwrap(),
+        "reports/panel/README.md is stale: `impactlab study panel --redraw`"
+    );
+    let tmp = tempfile::tempdir().unwrap();
+    let figs = panel::figures(&samples, tmp.path()).unwrap();
+    assert_eq!(figs.len(), 6, "three figures, PNG and SVG");
+    assert_svgs_current(&figs, &dir);
+}
+
 /// Goal: `reports/mutants/README.md` is what `impactlab study mutants` makes from the
 /// committed `campaign.toml` and runs' CSVs (which refuses a survivor without a verdict
 /// that holds), and every run the campaign names has its CSV.

@@ -571,6 +571,17 @@ pub fn study(what: StudyKind) -> Result<u8, Error> {
             say(&String::from_utf8_lossy(&mesh::csv(&rows)));
             sayln(&format!("outputs: {}", out.display()));
         }
+        StudyKind::Panel { out, redraw: true, .. } => {
+            impactlab::study::panel::redraw(&out)?;
+            sayln(&format!("redrawn from its CSVs: {}", out.display()));
+        }
+        StudyKind::Panel { n, out, .. } => {
+            use impactlab::study::panel;
+            let (rows, samples) = panel::run(&n, &panel::options(progress("panel study".into())))?;
+            panel::write(&out, &rows, &samples)?;
+            say(&String::from_utf8_lossy(&panel::csv(&rows)));
+            sayln(&format!("outputs: {}", out.display()));
+        }
         StudyKind::Mutants { from, run, out } => {
             let from = from.as_deref().zip(run.as_deref());
             impactlab::study::mutants::write(&out, from)?;

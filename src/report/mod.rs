@@ -988,7 +988,7 @@ pub fn index(dir: &Path) -> String {
     let mut m = String::from(
         "# Reports\n\nRegenerate with `cargo run --release -- report` (all cases in `verification/` that run a \
          deck); the studies with `impactlab study accuracy`, `impactlab study mesh`, `impactlab study \
-         stability` and `impactlab study mutants`.\n\n\
+         panel`, `impactlab study stability` and `impactlab study mutants`.\n\n\
          | case | checks passed | failed | report |\n|---|---|---|---|\n",
     );
     let mut cases: Vec<(String, String)> = std::fs::read_dir(dir)
@@ -1009,7 +1009,8 @@ pub fn index(dir: &Path) -> String {
     let _ = writeln!(
         m,
         "\nStudies: [accuracy](accuracy/README.md) (what accuracy costs in time), [mesh](mesh/README.md) (the \
-         paper's plate mesh study, 25/49/61), \
+         paper's plate mesh study, 25/49/61), [panel](panel/README.md) (the curved panel, R = 10 in, against \
+         the flat plate), \
          [stability](stability/README.md) (the stability map), [scenes](scenes/README.md) (what each effect costs), \
          [mutants](mutants/README.md) (whether the gate catches injected faults)."
     );

@@ -5,6 +5,7 @@
 
 pub mod cases;
 pub mod mesh;
+pub mod panel;
 
 use crate::run::{Column, RunResult};
 use serde::{de::DeserializeOwned, Serialize};
