@@ -507,3 +507,28 @@ fn a_coupling_material_that_cannot_hold_is_refused() {
         "[A B; B D] are not positive definite",
     );
 }
+
+/// Goal: a note about a PCOMP is said once, however many material axes its elements
+/// turn it to. Model: reference-data/decks/laminate-coupling-distorted.bdf with its
+/// MCID taken out, so that each of its 16 elements lays its [0/90] along its own
+/// turned G1→G2 side and is laminated for its own angle; its MAT8 leaves G1Z and G2Z
+/// blank. Reference: one warning that the laminate is taken as thin (it was said once
+/// per element angle, 12 times).
+#[test]
+fn a_pcomps_note_is_said_once_for_all_its_element_angles() {
+    let text = std::fs::read_to_string(deck("laminate-coupling-distorted.bdf")).unwrap();
+    let theta_blank: String = text
+        .lines()
+        .map(|l| match l.strip_prefix("CQUAD4,") {
+            Some(rest) => format!("CQUAD4,{}\n", rest.strip_suffix(",0").expect("MCID 0")),
+            None => format!("{l}\n"),
+        })
+        .collect();
+    let d = impactlab::deck::parse_deck_str("distorted.bdf", &theta_blank, Default::default()).unwrap();
+    let (_, warnings) = impactlab::model::build_structure(&d).unwrap();
+    let thin = warnings
+        .iter()
+        .filter(|w| w.to_string().contains("rigid in transverse shear"))
+        .count();
+    assert_eq!(thin, 1, "{warnings:?}");
+}

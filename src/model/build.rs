@@ -49,9 +49,11 @@ impl Ctx {
         }
     }
 
+    /// Records a warning once, as [`Ctx::err`] an error (a PCOMP's note, laminated
+    /// again for each material axis its elements turn it to, is said once).
     fn warn(&mut self, mut d: Diagnostic) {
         d.severity = crate::deck::Severity::Warning;
-        self.diags.push(d);
+        self.err(d);
     }
 
     /// Cards of one kind selected by a case-control set id. Warns about cards whose
