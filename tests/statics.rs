@@ -259,7 +259,8 @@ fn impactlab_run_solves_a_static_deck_and_refuses_transient_flags() {
 
 /// Goal: what a static or transient deck may not mix is refused with the card and
 /// where it is: a transient deck's FORCE and LOAD selection, a static deck without
-/// LOAD, a LOAD naming a LOAD, a PLOAD4 on a rod.
+/// LOAD, a LOAD naming a LOAD, a PLOAD4 on an element that does not exist, a set with
+/// no load card, a GRAV in a cylindrical system, a FORCE in an undefined one.
 #[test]
 fn static_loads_are_refused_where_they_do_not_belong() {
     let transient =
@@ -286,4 +287,15 @@ fn static_loads_are_refused_where_they_do_not_belong() {
     assert!(e.contains("loads element 7, which does not exist"), "{e}");
     let e = solve_err(strip(2, "FORCE,1,TIP,,1.0,0.0,0.0,-1.0\n").replace("  LOAD = 1", "  LOAD = 4"));
     assert!(e.contains("LOAD = 4: set 4 has no FORCE"), "{e}");
+    let cylindrical = "CORD2C,5,0,0.0,0.0,0.0,0.0,0.0,1.0\n,1.0,0.0,0.0\nGRAV,1,5,386.1,0.0,0.0,-1.0\n";
+    let e = solve_err(strip(2, cylindrical));
+    assert!(
+        e.contains("GRAV 1 is given in system 5, which is not rectangular"),
+        "{e}"
+    );
+    let e = solve_err(strip(2, "FORCE,1,TIP,9,1.0,0.0,0.0,-1.0\n"));
+    assert!(
+        e.contains("FORCE names coordinate system 9, which is not defined"),
+        "{e}"
+    );
 }

@@ -124,9 +124,6 @@ impl Loads<'_> {
         }
         for l in b.gravs.iter().filter(|l| l.sid == set) {
             found = true;
-            let Some(axes) = self.axes(&l.at, l.cid, &Vector3::zeros(), errors) else {
-                continue;
-            };
             if g.systems.get(&l.cid).is_some_and(|s| s.kind != CoordKind::Rectangular) {
                 errors.push(l.at.error(format!(
                     "GRAV {} is given in system {}, which is not rectangular: a uniform acceleration needs fixed axes",
@@ -134,6 +131,9 @@ impl Loads<'_> {
                 )));
                 continue;
             }
+            let Some(axes) = self.axes(&l.at, l.cid, &Vector3::zeros(), errors) else {
+                continue;
+            };
             let a = axes * Vector3::from(l.vector) * factor;
             for e in &self.structure.elements {
                 let acc: Vec<Vector3<f64>> = e.grids.iter().map(|&id| g.frame(id).transpose() * a).collect();
