@@ -176,6 +176,22 @@ pub fn curvature(xy: &Xy, w: &SMatrix<f64, 12, 1>) -> Vector3<f64> {
     b_bending(xy, 0.0, 0.0).0 * w
 }
 
+/// The consistent nodal forces ∫ Nᵢ p dA of a pressure p interpolated from the
+/// corners' values `p` by the element's own shape functions, 2×2 Gauss points
+/// (Nᵢ·p·det J is at most cubic in each of ξ, η, so exact). Corners counter-clockwise.
+pub fn pressure_loads(xy: &Xy, p: &[f64; 4]) -> [f64; 4] {
+    let mut f = [0.0; 4];
+    for &(xi, eta) in &GAUSS {
+        let (n, _, _) = bilinear(xi, eta);
+        let det = jacobian(xy, xi, eta).1;
+        let pressure: f64 = n.iter().zip(p).map(|(n, p)| n * p).sum();
+        for i in 0..4 {
+            f[i] += n[i] * pressure * det;
+        }
+    }
+    f
+}
+
 /// Row-sum lumped nodal masses for a mass per unit area.
 pub fn lumped_mass(xy: &Xy, mass_per_area: f64) -> [f64; 4] {
     let mut m = [0.0; 4];

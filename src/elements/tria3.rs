@@ -54,6 +54,13 @@ pub fn area(xy: &Xy) -> f64 {
     0.5 * jacobian(xy).1
 }
 
+/// The consistent nodal forces ∫ Nᵢ p dA of a pressure p linear between the corners'
+/// values `p`: A/12·(pᵢ + Σⱼ pⱼ), exact. Corners counter-clockwise.
+pub fn pressure_loads(xy: &Xy, p: &[f64; 3]) -> [f64; 3] {
+    let (a, sum) = (area(xy), p.iter().sum::<f64>());
+    p.map(|pi| a / 12.0 * (pi + sum))
+}
+
 /// Membrane strain-displacement matrix (constant), DOFs (u1 v1 u2 v2 u3 v3).
 pub(super) fn b_membrane(xy: &Xy) -> SMatrix<f64, 3, 6> {
     let (j, det) = jacobian(xy);

@@ -6,8 +6,7 @@
 //!   CID, its axes at the grid), on the grid's translations or rotations.
 //! - PLOAD4 on a shell: the consistent nodal forces ∫ Nᵢ p dA of the pressure p
 //!   interpolated from the corners (P1..P4) by the element's own shape functions over
-//!   its mean plane (2×2 Gauss points on a quadrilateral; A/12·(pᵢ + Σⱼ pⱼ)
-//!   on a triangle), along the element's normal (G1→G2→G3, right-handed; positive
+//!   its mean plane ([`nodal_integrals`]), along the element's normal (G1→G2→G3, right-handed; positive
 //!   pressure pushes along it, as NASTRAN's does) or along CID's (N1, N2, N3). The
 //!   forces go to the grids' translations (a warped quadrilateral's corner offsets,
 //!   at most [`crate::geometry::MAX_WARP`] of its size, carry no moment here).
@@ -220,40 +219,16 @@ impl Loads<'_> {
     }
 }
 
-/// ∫ Nᵢ p dA over a flat shell with corners `local` (in its plane) and corner values
-/// `p` interpolated by its shape functions: bilinear over a quadrilateral (2×2 Gauss
-/// points: Nᵢ·p·det J is at most cubic in each of ξ, η, so exact), linear over a
-/// triangle (exact).
+/// ∫ Nᵢ p dA over a flat shell with corners `local` (in its plane, counter-clockwise)
+/// and corner values `p`, by the element's own shape functions: bilinear over a
+/// quadrilateral ([`crate::elements::quad4::pressure_loads`]), linear over a triangle
+/// ([`crate::elements::tria3::pressure_loads`]).
 pub fn nodal_integrals(local: &[[f64; 3]], p: &[f64]) -> Vec<f64> {
-    if local.len() == 3 {
-        let (a, b, c) = (local[0], local[1], local[2]);
-        let area = 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1])).abs();
-        let sum: f64 = p.iter().sum();
-        return p.iter().map(|pi| area / 12.0 * (pi + sum)).collect();
+    let xy = |k: usize| [local[k][0], local[k][1]];
+    match (local.len(), p.len()) {
+        (3, 3) => crate::elements::tria3::pressure_loads(&[xy(0), xy(1), xy(2)], &[p[0], p[1], p[2]]).to_vec(),
+        _ => crate::elements::quad4::pressure_loads(&[xy(0), xy(1), xy(2), xy(3)], &[p[0], p[1], p[2], p[3]]).to_vec(),
     }
-    const SIGNS: [(f64, f64); 4] = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
-    let g = 1.0 / 3f64.sqrt();
-    let mut out = vec![0.0; 4];
-    for (xi, eta) in [(-g, -g), (g, -g), (g, g), (-g, g)] {
-        let shape: Vec<f64> = SIGNS
-            .iter()
-            .map(|(s, t)| 0.25 * (1.0 + s * xi) * (1.0 + t * eta))
-            .collect();
-        let (mut jx, mut jy) = ([0.0; 2], [0.0; 2]);
-        for (k, (s, t)) in SIGNS.iter().enumerate() {
-            let (dxi, deta) = (0.25 * s * (1.0 + t * eta), 0.25 * t * (1.0 + s * xi));
-            jx[0] += dxi * local[k][0];
-            jx[1] += deta * local[k][0];
-            jy[0] += dxi * local[k][1];
-            jy[1] += deta * local[k][1];
-        }
-        let det = (jx[0] * jy[1] - jx[1] * jy[0]).abs();
-        let pressure: f64 = shape.iter().zip(p).map(|(n, p)| n * p).sum();
-        for k in 0..4 {
-            out[k] += shape[k] * pressure * det;
-        }
-    }
-    out
 }
 
 /// The resultant of grid loads in the basic system: force and moment about the basic

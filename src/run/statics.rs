@@ -3,8 +3,8 @@
 //! implicit schemes use ([`crate::integrate::linear::Factor`]), f the static load the
 //! case control's LOAD selects ([`crate::model::loads`]), over the DOFs the selected
 //! SPCs leave free but those no element stiffens and no load reaches, which are held
-//! as NASTRAN's AUTOSPC holds them (a flat shell's rotation about its normal). Exact up to the factorisation's round-off, which the residual
-//! ‖K u − f‖ / ‖f‖ reports.
+//! as NASTRAN's AUTOSPC holds them (a flat shell's rotation about its normal). Exact
+//! up to the factorisation's round-off, which the residual ‖K u − f‖ / ‖f‖ reports.
 
 use super::UnitSystem;
 use crate::assembly::assemble_elements;
@@ -118,8 +118,7 @@ pub fn solve(deck: &Deck) -> Result<(StaticSolution, Vec<Diagnostic>), StaticErr
     }
     let sys = full.restricted(&map, kept.len());
     let labels: Vec<_> = kept.iter().map(|&i| s.dofs[i]).collect();
-    let fk: Vec<f64> = kept.iter().map(|&i| f[i]).collect();
-    let mut uk = fk.clone();
+    let mut uk: Vec<f64> = kept.iter().map(|&i| f[i]).collect();
     Factor::new(&sys.k_csc, &labels)?.solve_in_place(&mut uk);
     let mut u = vec![0.0; n];
     for (k, &i) in kept.iter().enumerate() {

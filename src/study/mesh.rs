@@ -170,20 +170,30 @@ pub fn options(progress: Option<indicatif::ProgressBar>) -> RunOptions {
     }
 }
 
-/// Runs the plate on each mesh: one row per mesh and the histories of all.
-pub fn run(ns: &[usize], opts: &RunOptions) -> Result<(Vec<MeshRow>, Vec<Sample>), StudyError> {
-    let (mut rows, mut samples) = (Vec::new(), Vec::new());
-    for &n in ns {
-        let [a, b] = PlateMesh::new(n)?.gage_elements();
-        let run = run_model(&plate_model(n)?, opts)?;
-        let gage = |eid: usize, c: Plane| Column::shell_strain(eid as i64, Fibre::Z2, c);
-        let cols = [
-            Column::ContactForce,
+/// The paper's gages A and B on an n×n mesh: their elements, and their back-face
+/// (z2 = +T/2) strain columns A εxx, A εyy, B εxx, B εyy.
+pub fn gage_columns(n: usize) -> Result<([usize; 2], [Column; 4]), StudyError> {
+    let [a, b] = PlateMesh::new(n)?.gage_elements();
+    let gage = |eid: usize, c: Plane| Column::shell_strain(eid as i64, Fibre::Z2, c);
+    Ok((
+        [a, b],
+        [
             gage(a, Plane::Xx),
             gage(a, Plane::Yy),
             gage(b, Plane::Xx),
             gage(b, Plane::Yy),
-        ];
+        ],
+    ))
+}
+
+/// Runs the plate on each mesh: one row per mesh and the histories of all.
+pub fn run(ns: &[usize], opts: &RunOptions) -> Result<(Vec<MeshRow>, Vec<Sample>), StudyError> {
+    let (mut rows, mut samples) = (Vec::new(), Vec::new());
+    for &n in ns {
+        let ([a, b], gages) = gage_columns(n)?;
+        let run = run_model(&plate_model(n)?, opts)?;
+        let [axx, ayy, bxx, byy] = gages;
+        let cols = [Column::ContactForce, axx, ayy, bxx, byy];
         // The generated deck records all of them; a missing one reads NaN.
         let idx = cols.map(|c| run.column(&c));
         samples.extend(run.history.iter().map(|h| {

@@ -11,9 +11,9 @@
 //! `panel-histories.csv` (the contact force and gage strains at every output time);
 //! the page and figures are made from those files alone, so a test remakes them.
 
+use super::mesh::gage_columns;
 use super::{history_extreme, StudyError};
-use crate::elements::{Fibre, Plane};
-use crate::mesh::{panel_model, plate_model, PlateMesh};
+use crate::mesh::{panel_model, plate_model};
 use crate::plot::{self, Chart, Line};
 use crate::run::{run_model, Column, RunOptions};
 use serde::{Deserialize, Serialize};
@@ -95,20 +95,13 @@ pub struct PanelSample {
 pub fn run(ns: &[usize], opts: &RunOptions) -> Result<(Vec<PanelRow>, Vec<PanelSample>), StudyError> {
     let (mut rows, mut samples) = (Vec::new(), Vec::new());
     for &n in ns {
-        let [a, b] = PlateMesh::new(n)?.gage_elements();
+        let (_, cols) = gage_columns(n)?;
         for radius in [None, Some(RADIUS)] {
             let model = match radius {
                 None => plate_model(n)?,
                 Some(r) => panel_model(n, r)?,
             };
             let run = run_model(&model, opts)?;
-            let gage = |eid: usize, c: Plane| Column::shell_strain(eid as i64, Fibre::Z2, c);
-            let cols = [
-                gage(a, Plane::Xx),
-                gage(a, Plane::Yy),
-                gage(b, Plane::Xx),
-                gage(b, Plane::Yy),
-            ];
             let [axx, ayy, bxx, byy] = cols.map(|c| history_extreme(&run, &c).map(|e| e.value));
             let [ja, jb] = [&cols[1], &cols[3]].map(|c| run.column(c));
             let fc = run.column(&Column::ContactForce);

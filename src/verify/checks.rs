@@ -1136,24 +1136,11 @@ fn cylinder_frequencies(
             let omega = f.iter().copied().find(|&x| x > 1e-6).unwrap_or(f64::NAN);
             w.push(omega * (1.0 - nu * nu).sqrt());
         }
-        // Order p from w(h) = w∞ + C hᵖ on the last three meshes (h ∝ 1/around):
-        // bisection on (w₁ − w₂)/(w₂ − w₃) = (h₁ᵖ − h₂ᵖ)/(h₂ᵖ − h₃ᵖ).
+        // Order and extrapolation on the last three meshes (h ∝ 1/around); falling
+        // frequencies make the changes' ratio positive.
         let k = meshes.len() - 3;
-        let h: Vec<f64> = meshes[k..].iter().map(|m| 1.0 / m[0] as f64).collect();
-        let v = &w[k..];
-        let ratio = (v[0] - v[1]) / (v[1] - v[2]);
-        let g = |p: f64| (h[0].powf(p) - h[1].powf(p)) / (h[1].powf(p) - h[2].powf(p)) - ratio;
-        let (mut lo, mut hi) = (0.1, 8.0);
-        for _ in 0..100 {
-            let mid = 0.5 * (lo + hi);
-            if g(lo) * g(mid) <= 0.0 {
-                hi = mid;
-            } else {
-                lo = mid;
-            }
-        }
-        let p = 0.5 * (lo + hi);
-        let extrapolated = v[2] - (v[1] - v[2]) * h[2].powf(p) / (h[1].powf(p) - h[2].powf(p));
+        let h = [0, 1, 2].map(|i| 1.0 / meshes[k + i][0] as f64);
+        let (p, extrapolated) = crate::numerics::three_mesh_order(h, [w[k], w[k + 1], w[k + 2]]);
         let error = (extrapolated / sanders - 1.0).abs();
         let falling = w.windows(2).all(|x| x[1] < x[0]);
         let apart = donnell - extrapolated > 0.5 * (donnell - sanders);
@@ -1361,8 +1348,7 @@ pub fn static_check(
                 unreachable!("read_case asks for three decks at least")
             };
             let ratio = (a - b) / (b - c);
-            let p = ratio.abs().log2();
-            let extrapolated = c + (c - b) / (ratio.abs() - 1.0) * ratio.signum();
+            let (p, extrapolated) = crate::numerics::three_mesh_order([4.0, 2.0, 1.0], [a, b, c]);
             Ok(CheckResult::new(
                 case,
                 "static_order".into(),
