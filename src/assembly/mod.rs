@@ -247,9 +247,13 @@ impl LowerRows {
 /// symmetric eigenproblem M^(-1/2) K_c M^(-1/2) in the DOFs with mass. For verification
 /// models of a few thousand DOFs; None when the massless block is singular.
 pub fn lowest_frequencies(model: &Model, count: usize) -> Option<Vec<f64>> {
+    frequencies_of(&model.elements, model.n(), count)
+}
+
+/// [`lowest_frequencies`] of elements over `n` solved DOFs.
+pub fn frequencies_of(elements: &[crate::elements::Element], n: usize, count: usize) -> Option<Vec<f64>> {
     use nalgebra::{DMatrix, DVector};
-    let sys = assemble(model);
-    let n = sys.n;
+    let sys = assemble_elements(elements, n);
     let mut k = DMatrix::<f64>::zeros(n, n);
     for t in &sys.k {
         k[(t.row, t.col)] += t.val;

@@ -171,6 +171,63 @@ pub struct Connection {
     pub orientation: Orientation,
     /// Where THETA/MCID was written.
     pub orientation_at: Option<FieldRef>,
+    /// A shell's ZOFFS: its reference plane this far along its normal from its grids
+    /// (0.0 for other kinds).
+    pub zoffs: f64,
+    /// A bar's orientation, offsets and pin flags (CBAR, CBEAM).
+    pub bar: Option<BarCard>,
+    /// The card.
+    pub at: CardRef,
+}
+
+/// The fields of a CBAR or CBEAM after its grids.
+#[derive(Debug, Clone)]
+pub struct BarCard {
+    /// The orientation vector v or the grid G0 it points to from GA.
+    pub orientation: BarOrientation,
+    /// v is in the basic system (OFFT's first letter B) rather than in GA's
+    /// displacement frame (G).
+    pub orientation_basic: bool,
+    /// The offsets WA, WB are in the basic system (OFFT's second and third letters B)
+    /// rather than in their grids' displacement frames (G).
+    pub offsets_basic: [bool; 2],
+    /// Pin flags PA, PB: the components released at each end, in element axes.
+    pub released: [Components; 2],
+    /// Offsets WA, WB from GA and GB to the bar's ends.
+    pub offsets: [[f64; 3]; 2],
+    /// Where X1/G0 was written.
+    pub orientation_at: FieldRef,
+}
+
+/// How a bar's plane 1 is given.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum BarOrientation {
+    /// The vector (X1, X2, X3).
+    Vector([f64; 3]),
+    /// From GA to grid G0.
+    Grid(i64),
+}
+
+/// A bar's section as a property card gives it.
+#[derive(Debug, Clone, PartialEq)]
+pub enum BarDims {
+    /// PBAR, PBEAM: the constants themselves.
+    Constants(crate::elements::section::Constants),
+    /// PBARL, PBEAML: a section type and its dimensions.
+    Shape(crate::elements::section::Shape, Vec<f64>),
+}
+
+/// PBAR, PBARL, PBEAM or PBEAML (one constant section).
+#[derive(Debug, Clone)]
+pub struct BarProperty {
+    /// Property id (field 2).
+    pub pid: i64,
+    /// MAT1 id (field 3).
+    pub mid: i64,
+    /// The section.
+    pub dims: BarDims,
+    /// Non-structural mass per unit length.
+    pub nsm: f64,
     /// The card.
     pub at: CardRef,
 }
@@ -356,6 +413,12 @@ pub struct Conm2 {
     pub mass: f64,
     /// I11, I21, I22, I31, I32, I33.
     pub inertia: [f64; 6],
+    /// Coordinate system CID of the offset and inertia (0: basic; −1: the offset is
+    /// the mass's basic location, not an offset).
+    pub cid: i64,
+    /// Offset (X1, X2, X3) of the mass from its grid, in CID (basic when CID = −1: its
+    /// location).
+    pub offset: [f64; 3],
     /// The card.
     pub at: CardRef,
 }
@@ -545,6 +608,8 @@ pub struct Bulk {
     pub elements: Vec<Connection>,
     /// PROD cards.
     pub prods: Vec<Prod>,
+    /// PBAR, PBARL, PBEAM and PBEAML cards.
+    pub bar_properties: Vec<BarProperty>,
     /// PSHELL cards.
     pub pshells: Vec<Pshell>,
     /// MAT1 cards.
@@ -852,10 +917,10 @@ impl<'a> Reader<'a> {
 
 /// Cards the reader knows. `PARAM` is accepted and ignored with a warning.
 /// Element cards are those of [`crate::elements::KINDS`] besides these.
-pub const KNOWN_CARDS: [&str; 32] = [
-    "GRID", "GRDSET", "CORD1R", "CORD1C", "CORD1S", "CORD2R", "CORD2C", "CORD2S", "EPOINT", "SPOINT", "PROD", "PSHELL",
-    "PCOMP", "MAT1", "MAT2", "MAT8", "CONM2", "SPC1", "SPC", "SPCADD", "TF", "TSTEP", "NOLIN3", "TIC", "FORCE",
-    "MOMENT", "PLOAD4", "GRAV", "LOAD", "PARAM", "INCLUDE", "ENDDATA",
+pub const KNOWN_CARDS: [&str; 36] = [
+    "GRID", "GRDSET", "CORD1R", "CORD1C", "CORD1S", "CORD2R", "CORD2C", "CORD2S", "EPOINT", "SPOINT", "PROD", "PBAR",
+    "PBARL", "PBEAM", "PBEAML", "PSHELL", "PCOMP", "MAT1", "MAT2", "MAT8", "CONM2", "SPC1", "SPC", "SPCADD", "TF",
+    "TSTEP", "NOLIN3", "TIC", "FORCE", "MOMENT", "PLOAD4", "GRAV", "LOAD", "PARAM", "INCLUDE", "ENDDATA",
 ];
 
 /// Every card the reader types: the element cards of [`crate::elements::KINDS`], then
@@ -882,6 +947,8 @@ pub fn type_cards(raw: &[RawCard], ids_left: &mut usize, diags: &mut Diagnostics
             "CORD2R" | "CORD2C" | "CORD2S" => card_cord2(&mut r, &mut b),
             "EPOINT" | "SPOINT" => card_points(&mut r, &mut b, card),
             "PROD" => card_prod(&mut r, &mut b),
+            "PBAR" | "PBEAM" => card_pbar(&mut r, &mut b),
+            "PBARL" | "PBEAML" => card_pbarl(&mut r, &mut b),
             "PSHELL" => card_pshell(&mut r, &mut b),
             "MAT1" => card_mat1(&mut r, &mut b),
             "MAT2" => card_mat2(&mut r, &mut b),
@@ -1251,8 +1318,8 @@ fn card_points(r: &mut Reader, b: &mut Bulk, card: &RawCard) {
 }
 
 /// An element card of the kinds' table: EID, PID (blank: EID), G1..Gn; a shell's
-/// THETA/MCID after its grids (a real: THETA in degrees, an integer: MCID), and its
-/// ZOFFS, which must be blank or zero.
+/// THETA/MCID after its grids (a real: THETA in degrees, an integer: MCID) and its
+/// ZOFFS; a bar's orientation, offsets and pin flags ([`card_bar`]).
 fn card_element(r: &mut Reader, b: &mut Bulk, kind: &'static crate::elements::Kind) {
     let n = kind.grids;
     let shell = matches!(kind.build, crate::elements::Build::Shell(_));
@@ -1263,6 +1330,8 @@ fn card_element(r: &mut Reader, b: &mut Bulk, kind: &'static crate::elements::Ki
         g: (0..n).map(|k| r.id(2 + k, &format!("G{}", k + 1))).collect(),
         orientation: Orientation::Theta(0.0),
         orientation_at: shell.then(|| r.field_ref(2 + n, "THETA/MCID")),
+        zoffs: 0.0,
+        bar: None,
         at: r.at(),
     };
     let pid = if r.text(1).is_empty() { c.eid } else { c.pid };
@@ -1279,15 +1348,7 @@ fn card_element(r: &mut Reader, b: &mut Bulk, kind: &'static crate::elements::Ki
             }
             _ => Orientation::Theta(r.real_or(2 + n, "THETA/MCID", 0.0)),
         };
-        let zoffs = r.real_or(3 + n, "ZOFFS", 0.0);
-        if zoffs != 0.0 {
-            r.fail(
-                3 + n,
-                "ZOFFS",
-                "an offset shell (its reference plane off its grids) is not supported yet: it comes with \
-                 the beams and offsets of stiffened panels; leave ZOFFS blank or 0.0",
-            );
-        }
+        c.zoffs = r.real_or(3 + n, "ZOFFS", 0.0);
     }
     let mut gs = c.g.clone();
     gs.sort();
@@ -1299,11 +1360,236 @@ fn card_element(r: &mut Reader, b: &mut Bulk, kind: &'static crate::elements::Ki
             r.fail(2, &format!("G1-G{n}"), "the corner grids must be distinct");
         }
     }
-    if !shell {
+    if matches!(kind.build, crate::elements::Build::Bar(_)) {
+        c.bar = Some(card_bar(r));
+    } else if !shell {
         r.extra_fields(2 + n);
     }
     if r.ok {
         b.elements.push(Connection { pid, ..c });
+    }
+}
+
+/// CBAR and CBEAM after their grids: X1/G0 X2 X3 OFFT, PA PB W1A W2A W3A W1B W2B
+/// W3B (a CBEAM's SA, SB, its warping grids, must be blank). X1 an integer with X2,
+/// X3 blank is G0. OFFT's letters say in which frame v, WA and WB are given: G (the
+/// grid's displacement frame, GA's for v) or B (basic); O (element) is refused.
+fn card_bar(r: &mut Reader) -> BarCard {
+    let orientation_at = r.field_ref(4, "X1/G0");
+    let orientation = match parse_real(r.text(4)) {
+        Some(RealToken::Integer(_)) if r.text(5).is_empty() && r.text(6).is_empty() => {
+            BarOrientation::Grid(r.id(4, "G0"))
+        }
+        _ => {
+            let v = [r.real(4, "X1"), r.real_or(5, "X2", 0.0), r.real_or(6, "X3", 0.0)];
+            if r.ok && v.iter().all(|&x| x == 0.0) {
+                r.fail(
+                    4,
+                    "X1",
+                    "the orientation vector (X1, X2, X3) is zero: it gives no plane 1",
+                );
+            }
+            BarOrientation::Vector(v)
+        }
+    };
+    let offt = match r.text(7) {
+        "" => "GGG".to_string(),
+        t => t.to_ascii_uppercase(),
+    };
+    let letters: Vec<char> = offt.chars().collect();
+    let valid = letters.len() == 3 && letters.iter().all(|&c| c == 'G' || c == 'B' || c == 'O');
+    if !valid || letters[0] == 'O' {
+        r.fail(
+            7,
+            "OFFT",
+            "is not an offset type: three letters, the first G or B (the orientation vector), the others \
+             G, B or O (the offsets)",
+        );
+    } else if letters[1..].contains(&'O') {
+        r.fail(
+            7,
+            "OFFT",
+            "offsets in the element's own system (O) are not supported: give WA and WB in the grids' \
+             displacement frames (G) or the basic system (B)",
+        );
+    }
+    let basic = |k: usize| letters.get(k) == Some(&'B');
+    let released = [r.components(8, "PA"), r.components(9, "PB")];
+    let w = |r: &mut Reader, k: usize, names: [&str; 3]| -> [f64; 3] {
+        std::array::from_fn(|i| r.real_or(k + i, names[i], 0.0))
+    };
+    let offsets = [w(r, 10, ["W1A", "W2A", "W3A"]), w(r, 13, ["W1B", "W2B", "W3B"])];
+    if r.card.name == "CBEAM" {
+        for (k, name) in [(16, "SA"), (17, "SB")] {
+            if !r.text(k).is_empty() {
+                r.fail(
+                    k,
+                    name,
+                    "warping scalar points are not supported: the beam has no warping DOF; leave SA, SB blank",
+                );
+            }
+        }
+        r.extra_fields(18);
+    } else {
+        r.extra_fields(16);
+    }
+    BarCard {
+        orientation,
+        orientation_basic: basic(0),
+        offsets_basic: [basic(1), basic(2)],
+        released,
+        offsets,
+        orientation_at,
+    }
+}
+
+/// Stress recovery points C1 C2 D1 D2 E1 E2 F1 F2 of PBAR and PBEAM, from field `k`.
+fn recovery_points(r: &mut Reader, k: usize) -> [[f64; 2]; 4] {
+    const NAMES: [&str; 8] = ["C1", "C2", "D1", "D2", "E1", "E2", "F1", "F2"];
+    std::array::from_fn(|p| std::array::from_fn(|i| r.real_or(k + 2 * p + i, NAMES[2 * p + i], 0.0)))
+}
+
+/// PBAR (PID MID A I1 I2 J NSM; C1..F2; K1 K2 I12) and a constant PBEAM (PID MID A
+/// I1 I2 I12 J NSM; C1..F2). K1, K2 (shear flexibility) and a PBEAM's further
+/// stations are refused: the element is Euler-Bernoulli and of one section.
+fn card_pbar(r: &mut Reader, b: &mut Bulk) {
+    let beam = r.card.name == "PBEAM";
+    let (pid, mid, a) = (r.id(0, "PID"), r.id(1, "MID"), r.real(2, "A"));
+    let (i1, i2) = (r.real_or(3, "I1", 0.0), r.real_or(4, "I2", 0.0));
+    let (i12, j, nsm) = if beam {
+        (
+            r.real_or(5, "I12", 0.0),
+            r.real_or(6, "J", 0.0),
+            r.real_or(7, "NSM", 0.0),
+        )
+    } else {
+        (
+            r.real_or(18, "I12", 0.0),
+            r.real_or(5, "J", 0.0),
+            r.real_or(6, "NSM", 0.0),
+        )
+    };
+    let points = recovery_points(r, 8);
+    r.positive(2, "A", a);
+    r.non_negative(3, "I1", i1);
+    r.non_negative(4, "I2", i2);
+    r.non_negative(if beam { 6 } else { 5 }, "J", j);
+    if r.ok && i1 * i2 < i12 * i12 {
+        r.fail(
+            if beam { 5 } else { 18 },
+            "I12",
+            format!(
+                "I1·I2 = {:e} is below I12² = {:e}: no section has these moments",
+                i1 * i2,
+                i12 * i12
+            ),
+        );
+    }
+    if beam {
+        if let Some(k) = (16..r.card.fields.len()).find(|&k| !r.text(k).is_empty()) {
+            r.fail(
+                k,
+                "SO",
+                "a PBEAM of more than one station (tapered), or with shear factors K1/K2, warping or \
+                 non-structural mass offsets, is not supported: give one constant section (its first two \
+                 lines) or a PBEAML",
+            );
+        }
+    } else {
+        for (k, name) in [(16, "K1"), (17, "K2")] {
+            if !r.text(k).is_empty() {
+                r.fail(
+                    k,
+                    name,
+                    "shear flexibility is not supported: the bar is Euler-Bernoulli; leave K1, K2 blank",
+                );
+            }
+        }
+        r.extra_fields(19);
+    }
+    let p = BarProperty {
+        pid,
+        mid,
+        dims: BarDims::Constants(crate::elements::section::Constants {
+            area: a,
+            i1,
+            i2,
+            i12,
+            j,
+            points,
+        }),
+        nsm,
+        at: r.at(),
+    };
+    if r.ok {
+        b.bar_properties.push(p);
+    }
+}
+
+/// PBARL (PID MID GROUP TYPE; DIM1 … DIMn NSM) and a constant PBEAML (the same, with
+/// an end B, if written, of the same dimensions: SO X/XB DIM1 … NSM).
+fn card_pbarl(r: &mut Reader, b: &mut Bulk) {
+    use crate::elements::section::Shape;
+    let (pid, mid) = (r.id(0, "PID"), r.id(1, "MID"));
+    let group = r.text(2);
+    if !group.is_empty() && !group.eq_ignore_ascii_case("MSCBML0") {
+        r.fail(
+            2,
+            "GROUP",
+            "only the standard section library (GROUP blank or MSCBML0) is supported",
+        );
+    }
+    let shape = Shape::named(r.text(3));
+    if shape.is_none() {
+        let list: Vec<&str> = Shape::ALL.iter().map(|s| s.1).collect();
+        r.fail(
+            3,
+            "TYPE",
+            format!("is not a supported section type: {}", list.join(", ")),
+        );
+    }
+    for k in 4..8 {
+        if !r.text(k).is_empty() {
+            r.fail(
+                k,
+                "unused",
+                format!("{} has no field here; this value would be ignored", r.card.name),
+            );
+        }
+    }
+    let Some(shape) = shape else { return };
+    let n = shape.dims();
+    let names: Vec<String> = (1..=n).map(|i| format!("DIM{i}")).collect();
+    let dims: Vec<f64> = (0..n).map(|i| r.real(8 + i, &names[i])).collect();
+    let nsm = r.real_or(8 + n, "NSM", 0.0);
+    let mut last = 9 + n;
+    if r.card.name == "PBEAML" && !r.text(last).is_empty() {
+        // End B: SO X/XB DIM1 … DIMn NSM, the same section.
+        let xb = r.real_or(last + 1, "X/XB", 1.0);
+        let end_b: Vec<f64> = (0..n).map(|i| r.real(last + 2 + i, &names[i])).collect();
+        let nsm_b = r.real_or(last + 2 + n, "NSM", nsm);
+        if r.ok && (xb != 1.0 || end_b != dims || nsm_b != nsm) {
+            r.fail(
+                last,
+                "SO",
+                "a tapered PBEAML (stations of other dimensions) is not supported: give one section",
+            );
+        }
+        last += 3 + n;
+    }
+    r.extra_fields(last);
+    if let (true, Err(e)) = (r.ok, crate::elements::section::constants(shape, &dims)) {
+        r.fail(8, "DIM1", format!("{} {}: {}", r.card.name, shape.name(), e.0));
+    }
+    let p = BarProperty {
+        pid,
+        mid,
+        dims: BarDims::Shape(shape, dims),
+        nsm,
+        at: r.at(),
+    };
+    if r.ok {
+        b.bar_properties.push(p);
     }
 }
 
@@ -1615,14 +1901,18 @@ fn card_pcomp(r: &mut Reader, b: &mut Bulk) {
 /// CONM2.
 fn card_conm2(r: &mut Reader, b: &mut Bulk) {
     let cid = r.int_or(2, "CID", 0);
-    if cid != 0 {
-        r.fail(2, "CID", "only the basic system (CID blank or 0) is supported");
+    if cid < -1 {
+        r.fail(
+            2,
+            "CID",
+            "must be −1 (X1-X3 the mass's basic location), 0 (basic) or a coordinate system id",
+        );
     }
-    for (k, name) in [(4, "X1"), (5, "X2"), (6, "X3")] {
-        if r.real_or(k, name, 0.0) != 0.0 {
-            r.fail(k, name, "mass offsets are not supported (must be blank or 0.0)");
-        }
-    }
+    let offset = [
+        r.real_or(4, "X1", 0.0),
+        r.real_or(5, "X2", 0.0),
+        r.real_or(6, "X3", 0.0),
+    ];
     let names = ["I11", "I21", "I22", "I31", "I32", "I33"];
     let mut inertia = [0.0; 6];
     for (i, name) in names.iter().enumerate() {
@@ -1633,6 +1923,8 @@ fn card_conm2(r: &mut Reader, b: &mut Bulk) {
         g: r.id(1, "G"),
         mass: r.real(3, "M"),
         inertia,
+        cid,
+        offset,
         at: r.at(),
     };
     r.positive(3, "M", c.mass);

@@ -14,12 +14,14 @@
 //! card of the table alike and the model builder builds it through the table: a new
 //! kind is a kernel file here and a line there.
 
+pub mod bar;
 pub mod dkmt;
 pub mod drill;
 pub mod mass;
 pub mod mitc4;
 pub mod quad4;
 pub mod rod;
+pub mod section;
 pub mod shell;
 pub mod tria3;
 
@@ -72,6 +74,65 @@ pub enum Measure {
     Strain,
     /// A transverse shear force resultant, Qx or Qy (force per length).
     ShearForce(Transverse),
+    /// A beam's force or moment resultant at one of its ends.
+    Force(Resultant),
+}
+
+/// A beam's resultants at a section (see [`bar`] for their signs).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Resultant {
+    /// Axial force N.
+    Axial,
+    /// Torque T.
+    Torque,
+    /// Shear V1 (plane 1).
+    Shear1,
+    /// Shear V2 (plane 2).
+    Shear2,
+    /// Bending moment M1 (plane 1).
+    Moment1,
+    /// Bending moment M2 (plane 2).
+    Moment2,
+}
+
+impl Resultant {
+    /// A moment (force × length) rather than a force.
+    pub fn is_moment(self) -> bool {
+        matches!(self, Resultant::Torque | Resultant::Moment1 | Resultant::Moment2)
+    }
+}
+
+/// A beam's end.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum End {
+    /// End A (at GA).
+    A,
+    /// End B (at GB).
+    B,
+}
+
+/// A beam section's stress recovery point.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum BarPoint {
+    /// Point C.
+    C,
+    /// Point D.
+    D,
+    /// Point E.
+    E,
+    /// Point F.
+    F,
+}
+
+/// Where in an element a recovered value is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum At {
+    /// A shell's fibre and in-plane component.
+    Fibre(Fibre, Plane),
+    /// A beam's recovery point at one end.
+    Point(End, BarPoint),
+    /// A beam's end (its resultants).
+    End(End),
 }
 
 /// The transverse shear force resultants of a shear-deformable shell.
@@ -103,29 +164,57 @@ pub enum Plane {
     Xy,
 }
 
-/// One recovered value of an element: axial (rods) or a fibre's in-plane component
-/// (shells).
+/// One recovered value of an element: axial (rods), a fibre's in-plane component
+/// (shells), a section point's value or an end's resultant (beams).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct Recovered {
-    /// Stress or strain.
+    /// Stress, strain or a resultant.
     pub measure: Measure,
-    /// Where in a shell (fibre, component); `None` for a rod's axial value.
-    pub at: Option<(Fibre, Plane)>,
+    /// Where in the element; `None` for a rod's axial value.
+    pub at: Option<At>,
 }
 
 impl Recovered {
     /// The name of the value of element `eid`: `strain_72`, `stress_2525_z1_xx`,
-    /// `shear_force_2525_qx`.
+    /// `shear_force_2525_qx`, `stress_9001_a_c`, `force_9001_b_m1`.
     pub fn name(&self, eid: i64) -> String {
+        let end = |e: End| match e {
+            End::A => "a",
+            End::B => "b",
+        };
         let m = match self.measure {
             Measure::Stress => "stress",
             Measure::Strain => "strain",
             Measure::ShearForce(Transverse::Qx) => return format!("shear_force_{eid}_qx"),
             Measure::ShearForce(Transverse::Qy) => return format!("shear_force_{eid}_qy"),
+            Measure::Force(r) => {
+                let e = match self.at {
+                    Some(At::End(e)) => end(e),
+                    _ => "",
+                };
+                let r = match r {
+                    Resultant::Axial => "axial",
+                    Resultant::Torque => "torque",
+                    Resultant::Shear1 => "v1",
+                    Resultant::Shear2 => "v2",
+                    Resultant::Moment1 => "m1",
+                    Resultant::Moment2 => "m2",
+                };
+                return format!("force_{eid}_{e}_{r}");
+            }
         };
         match self.at {
-            None => format!("{m}_{eid}"),
-            Some((f, c)) => {
+            None | Some(At::End(_)) => format!("{m}_{eid}"),
+            Some(At::Point(e, p)) => {
+                let p = match p {
+                    BarPoint::C => "c",
+                    BarPoint::D => "d",
+                    BarPoint::E => "e",
+                    BarPoint::F => "f",
+                };
+                format!("{m}_{eid}_{}_{p}", end(e))
+            }
+            Some(At::Fibre(f, c)) => {
                 let f = match f {
                     Fibre::Z1 => "z1",
                     Fibre::Z2 => "z2",
@@ -183,6 +272,9 @@ pub enum Build {
     /// From a PSHELL or a PCOMP and their materials (the material x axis of a
     /// laminate: the G1→G2 side).
     Shell(Builder<shell::ShellSection>),
+    /// From a PBAR, PBARL, PBEAM or PBEAML and its MAT1, with the pin flags; its ends
+    /// given in its own axes, after its offsets.
+    Bar(Builder<bar::BarSpec>),
 }
 
 /// An element card: its name, how many grids it connects (fields 4 on) and how it
@@ -199,7 +291,7 @@ pub struct Kind {
 
 /// Every element card, one line per kind (CONM2, a mass rather than an element
 /// connecting grids, is read on its own).
-pub static KINDS: [Kind; 3] = [
+pub static KINDS: [Kind; 5] = [
     Kind {
         card: "CROD",
         grids: 2,
@@ -214,6 +306,16 @@ pub static KINDS: [Kind; 3] = [
         card: "CTRIA3",
         grids: 3,
         build: Build::Shell(dkmt::ctria3),
+    },
+    Kind {
+        card: "CBAR",
+        grids: 2,
+        build: Build::Bar(|x, s| Ok(Box::new(bar::Bar::build(x, s)?))),
+    },
+    Kind {
+        card: "CBEAM",
+        grids: 2,
+        build: Build::Bar(|x, s| Ok(Box::new(bar::Bar::build(x, s)?))),
     },
 ];
 
@@ -290,6 +392,13 @@ pub enum Family<'a> {
     },
     /// A shell (CQUAD4, CTRIA3) of this section.
     Shell(&'a shell::ShellSection),
+    /// A beam (CBAR, CBEAM) of a section and a length.
+    Beam {
+        /// Its section.
+        section: &'a bar::BarSection,
+        /// Its length.
+        length: f64,
+    },
     /// A concentrated mass (CONM2) of this mass.
     Point {
         /// Its mass.
@@ -644,6 +753,30 @@ mod tests {
                     ..shell.clone()
                 },
             )),
+            // A bar with I12 and a pin flag.
+            Box::new(
+                bar::Bar::build(
+                    &[[0.0; 3], [1.7, 0.0, 0.0]],
+                    bar::BarSpec {
+                        card: "CBAR",
+                        section: bar::BarSection {
+                            e: 1.0e7,
+                            g: 3.8e6,
+                            area: 0.6,
+                            i1: 0.08,
+                            i2: 0.03,
+                            i12: 0.01,
+                            j: 0.02,
+                            rho: 2.5e-4,
+                            nsm: 0.0,
+                            points: [[0.5, 0.3], [-0.5, 0.3], [-0.5, -0.3], [0.5, -0.3]],
+                            torsional_inertia: 2.75e-5,
+                        },
+                        released: [0, 0b100000],
+                    },
+                )
+                .expect("a bar"),
+            ),
             Box::new(mass::PointMass {
                 x: [0.0; 3],
                 mass: 1e-4,
@@ -660,9 +793,11 @@ mod tests {
     /// it recovers, and each names the deck card it comes from.
     #[test]
     fn every_kernel_books_half_utku_and_recovers_what_it_names() {
-        for (kind, k) in ["CROD", "CQUAD4", "CQUAD4", "CTRIA3", "CTRIA3", "CQUAD4", "CONM2"]
-            .iter()
-            .zip(kernels())
+        for (kind, k) in [
+            "CROD", "CQUAD4", "CQUAD4", "CTRIA3", "CTRIA3", "CQUAD4", "CBAR", "CONM2",
+        ]
+        .iter()
+        .zip(kernels())
         {
             assert_eq!(k.card(), *kind);
             let n = 6 * k.points().len();
@@ -721,7 +856,7 @@ mod tests {
         assert_eq!(axial.name(72), "strain_72");
         let shell = Recovered {
             measure: Measure::Stress,
-            at: Some((Fibre::Z1, Plane::Xy)),
+            at: Some(At::Fibre(Fibre::Z1, Plane::Xy)),
         };
         assert_eq!(shell.name(2525), "stress_2525_z1_xy");
         let q = Recovered {

@@ -69,7 +69,7 @@ impl ShellSection {
                 for c in PLANE {
                     v.push(Recovered {
                         measure,
-                        at: Some((f, c)),
+                        at: Some(super::At::Fibre(f, c)),
                     });
                 }
             }

@@ -2,7 +2,7 @@
 
 use super::*;
 use crate::deck::cards::Connection;
-use crate::deck::cards::Orientation;
+use crate::deck::cards::{BarOrientation, Orientation};
 use crate::deck::case::{OutputSet, Selection};
 use crate::deck::{Deck, Diagnostic};
 use crate::elements::{drill::Drill, mass::PointMass, rod::RodSection, BadShape, Build, Family, Placement};
@@ -664,6 +664,20 @@ fn connected(cx: &mut Ctx, deck: &Deck, num: &Numbering, geo: &Geometry, out: &m
                     }
                     (build(&xyz, section), frames_only(&c.g, geo, &xyz))
                 }
+                Build::Bar(build) => {
+                    let section = props.bar(cx, c);
+                    let Some(placed) = ok.then(|| place_bar(cx, c, &xyz, geo)).flatten() else {
+                        continue;
+                    };
+                    let Some(section) = section else { continue };
+                    let card = c.bar.as_ref().expect("a bar's card keeps its bar fields");
+                    let spec = crate::elements::bar::BarSpec {
+                        card: kind.card,
+                        section,
+                        released: card.released.map(|r| r.0),
+                    };
+                    (build(&placed.0, spec), Some(placed.1))
+                }
                 Build::Shell(build) => {
                     let Some(placed) = ok.then(|| place_shell(cx, c, &xyz, geo)).flatten() else {
                         // The section is still resolved, so that its errors are reported.
@@ -700,6 +714,74 @@ fn connected(cx: &mut Ctx, deck: &Deck, num: &Numbering, geo: &Geometry, out: &m
     }
 }
 
+/// A bar's ends in its own axes (A at the origin, B along x) and its placement: its
+/// ends are its grids moved by their offsets WA, WB (in the grids' displacement frames
+/// or the basic system, as OFFT says); x runs from end A to end B, y is the part of
+/// the orientation vector v normal to x (v in GA's displacement frame or the basic
+/// system, or from GA to G0), z = x × y.
+fn place_bar(cx: &mut Ctx, c: &Connection, xyz: &[[f64; 3]], geo: &Geometry) -> Option<(Vec<[f64; 3]>, Placement)> {
+    let card = c.bar.as_ref().expect("a bar's card keeps its bar fields");
+    let frames = [geo.frame(c.g[0]), geo.frame(c.g[1])];
+    let offset = |k: usize| {
+        let w = Vector3::from(card.offsets[k]);
+        if card.offsets_basic[k] {
+            w
+        } else {
+            frames[k] * w
+        }
+    };
+    let (wa, wb) = (offset(0), offset(1));
+    let (a, b) = (Vector3::from(xyz[0]) + wa, Vector3::from(xyz[1]) + wb);
+    let l = (b - a).norm();
+    let size = (Vector3::from(xyz[0]).norm() + Vector3::from(xyz[1]).norm()).max(1e-300);
+    if l.is_nan() || l <= 1e-12 * size {
+        cx.err(c.at.error(format!(
+            "{} {} has zero length: its ends (its grids moved by WA and WB) coincide",
+            c.kind.card, c.eid
+        )));
+        return None;
+    }
+    let x = (b - a) / l;
+    let v = match card.orientation {
+        BarOrientation::Vector(v) if card.orientation_basic => Vector3::from(v),
+        BarOrientation::Vector(v) => frames[0] * Vector3::from(v),
+        BarOrientation::Grid(g0) => {
+            let Some(p) = geo.positions.get(&g0) else {
+                cx.err(c.at.field_error(
+                    &card.orientation_at,
+                    format!("{} {}: G0 = {g0} is not a grid of the deck", c.kind.card, c.eid),
+                ));
+                return None;
+            };
+            Vector3::from(*p) - Vector3::from(xyz[0])
+        }
+    };
+    let y = v - x * v.dot(&x);
+    if y.norm().is_nan() || y.norm() <= 1e-9 * v.norm() {
+        cx.err(c.at.field_error(
+            &card.orientation_at,
+            format!(
+                "{} {}: the orientation vector lies along the bar's axis, so it gives no plane 1",
+                c.kind.card, c.eid
+            ),
+        ));
+        return None;
+    }
+    let y = y.normalize();
+    let axes = Matrix3::from_columns(&[x, y, x.cross(&y)]);
+    let turn = vec![
+        Placement::turn_of(&axes, &frames[0], wa.into()),
+        Placement::turn_of(&axes, &frames[1], wb.into()),
+    ];
+    Some((
+        vec![[0.0; 3], [l, 0.0, 0.0]],
+        Placement {
+            turn,
+            points: xyz.to_vec(),
+        },
+    ))
+}
+
 /// Where a shell's kernel works and how its material axes lie.
 struct PlacedShell {
     /// The corners as its kernel takes them.
@@ -715,8 +797,22 @@ struct PlacedShell {
 /// its own frame ([`crate::geometry::shell_frame`]). The material x axis is the G1→G2
 /// side turned by THETA, or the x axis of system MCID projected onto the element.
 fn place_shell(cx: &mut Ctx, c: &Connection, xyz: &[[f64; 3]], geo: &Geometry) -> Option<PlacedShell> {
-    let (frame, corners, placement) = if in_basic_xy(xyz) {
+    let (frame, corners, placement) = if in_basic_xy(xyz) && c.zoffs == 0.0 {
         (Matrix3::identity(), xyz.to_vec(), frames_only(&c.g, geo, xyz))
+    } else if in_basic_xy(xyz) {
+        // Offset: the reference plane ZOFFS along +z, tied rigidly to the grids.
+        let turn =
+            c.g.iter()
+                .map(|&g| Placement::turn_of(&Matrix3::identity(), &geo.frame(g), [0.0, 0.0, c.zoffs]))
+                .collect();
+        (
+            Matrix3::identity(),
+            xyz.to_vec(),
+            Some(Placement {
+                turn,
+                points: xyz.to_vec(),
+            }),
+        )
     } else {
         let f = match crate::geometry::shell_frame(xyz) {
             Ok(f) => f,
@@ -741,7 +837,10 @@ fn place_shell(cx: &mut Ctx, c: &Connection, xyz: &[[f64; 3]], geo: &Geometry) -
         let turn =
             c.g.iter()
                 .zip(&f.offsets)
-                .map(|(&g, &d)| Placement::turn_of(&f.axes, &geo.frame(g), d))
+                .map(|(&g, &d)| {
+                    let d = Vector3::from(d) + f.axes.column(2) * c.zoffs;
+                    Placement::turn_of(&f.axes, &geo.frame(g), d.into())
+                })
                 .collect();
         let placement = Placement {
             turn,
@@ -803,6 +902,7 @@ struct Properties<'d> {
     bulk: &'d crate::deck::cards::Bulk,
     mat1: HashMap<i64, &'d crate::deck::cards::Mat1>,
     prod: HashMap<i64, &'d crate::deck::cards::Prod>,
+    bars: HashMap<i64, &'d crate::deck::cards::BarProperty>,
     pshell: HashMap<i64, &'d crate::deck::cards::Pshell>,
     pcomp: HashMap<i64, &'d crate::deck::cards::Pcomp>,
     shells: HashMap<i64, Option<ShellSection>>,
@@ -819,6 +919,7 @@ impl<'d> Properties<'d> {
             bulk: b,
             mat1: b.mat1s.iter().map(|m| (m.mid, m)).collect(),
             prod: b.prods.iter().map(|p| (p.pid, p)).collect(),
+            bars: b.bar_properties.iter().map(|p| (p.pid, p)).collect(),
             pshell,
             pcomp: b.pcomps.iter().map(|p| (p.pid, p)).collect(),
             shells: HashMap::new(),
@@ -849,6 +950,60 @@ impl<'d> Properties<'d> {
             torsion: p.j,
             rho: m.rho,
             nsm: p.nsm,
+        })
+    }
+
+    /// A bar's property (a CBAR's PBAR or PBARL, a CBEAM's PBEAM or PBEAML) and MAT1:
+    /// its section's constants, given or computed from its dimensions.
+    fn bar(&self, cx: &mut Ctx, c: &Connection) -> Option<crate::elements::bar::BarSection> {
+        let (names, beam) = match c.kind.card {
+            "CBEAM" => ("PBEAM or PBEAML", true),
+            _ => ("PBAR or PBARL", false),
+        };
+        let p = match self.bars.get(&c.pid) {
+            Some(p) if p.at.name.starts_with("PBEAM") == beam => p,
+            other => {
+                let but = match other {
+                    Some(p) => format!(
+                        ": property {} is a {}, which a {} takes",
+                        c.pid,
+                        p.at.name,
+                        if beam { "CBAR" } else { "CBEAM" }
+                    ),
+                    None => String::new(),
+                };
+                cx.err(c.at.error(format!(
+                    "{} {} references {names} {}, which does not exist{but}",
+                    c.kind.card, c.eid, c.pid
+                )));
+                return None;
+            }
+        };
+        let Some(m) = self.mat1.get(&p.mid) else {
+            cx.err(p.at.error(format!(
+                "{} {} references MAT1 {}, which does not exist",
+                p.at.name, p.pid, p.mid
+            )));
+            return None;
+        };
+        let k = match &p.dims {
+            crate::deck::cards::BarDims::Constants(k) => *k,
+            crate::deck::cards::BarDims::Shape(shape, dims) => {
+                crate::elements::section::constants(*shape, dims).expect("the reader checked the section's dimensions")
+            }
+        };
+        Some(crate::elements::bar::BarSection {
+            e: m.e,
+            g: m.g,
+            area: k.area,
+            i1: k.i1,
+            i2: k.i2,
+            i12: k.i12,
+            j: k.j,
+            rho: m.rho,
+            nsm: p.nsm,
+            points: k.points,
+            torsional_inertia: if beam { m.rho * (k.i1 + k.i2) } else { 0.0 },
         })
     }
 
@@ -923,8 +1078,10 @@ fn turned_section(s: &ShellSection, angle: f64) -> ShellSection {
     }
 }
 
-/// CONM2s, located where their grids are in the basic system (their mass and
-/// inertia are in the basic system, CID 0) and turned to their grids' frames.
+/// CONM2s: the mass at its grid moved by its offset (X1, X2, X3 in system CID's axes
+/// at the grid; CID = −1: X1-X3 are the mass's basic location), its inertia in CID's
+/// axes (basic for CID 0 and −1), tied rigidly to its grid and turned to the grid's
+/// displacement frame.
 fn point_masses(cx: &mut Ctx, deck: &Deck, num: &Numbering, geo: &Geometry, out: &mut Elements) {
     let b = &deck.bulk;
     for m in &b.conm2s {
@@ -933,13 +1090,40 @@ fn point_masses(cx: &mut Ctx, deck: &Deck, num: &Numbering, geo: &Geometry, out:
             continue;
         }
         let Some(&x) = geo.positions.get(&m.g) else { continue };
+        let axes = match m.cid {
+            -1 | 0 => Matrix3::identity(),
+            cid => match geo.systems.get(&cid).and_then(|s| s.frame_at(&Vector3::from(x))) {
+                Some(f) => f,
+                None => {
+                    cx.err(m.at.error(format!(
+                        "CONM2 {}: CID = {cid} names a coordinate system that no CORD card defines (or one \
+                         undefined at its grid)",
+                        m.eid
+                    )));
+                    continue;
+                }
+            },
+        };
+        let offset = match m.cid {
+            -1 => Vector3::from(m.offset) - Vector3::from(x),
+            _ => axes * Vector3::from(m.offset),
+        };
+        let at = Vector3::from(x) + offset;
         let point = PointMass {
-            x,
+            x: at.into(),
             mass: m.mass,
             inertia: m.inertia,
         };
         let e = Element::new(m.eid, vec![m.g], vec![num.grid_dofs(m.g)], point);
-        out.list.push(match frames_only(&[m.g], geo, &[x]) {
+        let placed = if offset == Vector3::zeros() && m.cid <= 0 {
+            frames_only(&[m.g], geo, &[x])
+        } else {
+            Some(Placement {
+                turn: vec![Placement::turn_of(&axes, &geo.frame(m.g), offset.into())],
+                points: vec![x],
+            })
+        };
+        out.list.push(match placed {
             Some(p) => e.placed(p),
             None => e,
         });

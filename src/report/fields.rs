@@ -13,7 +13,7 @@
 //! `time_unit`, `displacement_unit`, `velocity_unit`, with the model's name and the
 //! deck's SHA-256.
 
-use crate::elements::{Element, Fibre, Plane, Recovered};
+use crate::elements::{At, Element, Fibre, Plane, Recovered};
 use crate::model::{DofLabel, Model};
 use crate::run::{Column, RunResult, Snapshot, UnitSystem};
 use quick_xml::events::{BytesDecl, BytesText, Event};
@@ -415,13 +415,15 @@ struct StrainArray {
 /// The strain arrays over all cells, in the order the elements recover them.
 fn strain_layout(cells: &[&Element]) -> Vec<StrainArray> {
     const PLANE: [&str; 3] = ["xx", "yy", "xy"];
+    const BAR: [&str; 8] = ["a_c", "a_d", "a_e", "a_f", "b_c", "b_d", "b_e", "b_f"];
     let mut out: Vec<StrainArray> = Vec::new();
     for (k, e) in cells.iter().enumerate() {
         let rec: Vec<Recovered> = e.kernel.recovered(false);
         for (j, r) in rec.iter().enumerate() {
             let (name, components, c): (&str, &'static [&'static str], usize) = match r.at {
-                None => ("axial_strain", &[], 0),
-                Some((f, p)) => (
+                None | Some(At::End(_)) => ("axial_strain", &[], 0),
+                Some(At::Point(end, p)) => ("bar_strain", &BAR, 4 * end as usize + p as usize),
+                Some(At::Fibre(f, p)) => (
                     match f {
                         Fibre::Z1 => "strain_z1",
                         Fibre::Z2 => "strain_z2",

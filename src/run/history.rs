@@ -1,7 +1,7 @@
 //! The columns of `history.csv`: typed, turned into header text only when written.
 
 use super::UnitSystem;
-use crate::elements::{Fibre, Measure, Plane, Recovered};
+use crate::elements::{At, Fibre, Measure, Plane, Recovered};
 use crate::model::DofLabel;
 
 /// One column of a run's history.
@@ -145,7 +145,7 @@ impl Column {
             eid,
             value: Recovered {
                 measure: Measure::Strain,
-                at: Some((fibre, component)),
+                at: Some(At::Fibre(fibre, component)),
             },
         }
     }
@@ -184,6 +184,7 @@ impl Column {
                     Measure::Stress => "stress",
                     Measure::Strain => "strain",
                     Measure::ShearForce(_) => "shear_force",
+                    Measure::Force(_) => "force",
                 },
                 match face {
                     Face::Bottom => "bot",
@@ -225,6 +226,8 @@ impl Column {
                 Measure::Stress => format!("{f}/{l}^2"),
                 Measure::Strain => "-".into(),
                 Measure::ShearForce(_) => format!("{f}/{l}"),
+                Measure::Force(r) if r.is_moment() => format!("{f}*{l}"),
+                Measure::Force(_) => f.clone(),
             },
         }
     }
@@ -260,7 +263,7 @@ mod tests {
             eid: 3,
             value: Recovered {
                 measure: Measure::Stress,
-                at: Some((Fibre::Z2, Plane::Xx)),
+                at: Some(At::Fibre(Fibre::Z2, Plane::Xx)),
             },
         };
         assert_eq!(stress.header(&u), "stress_3_z2_xx [kN/mm^2]");

@@ -477,7 +477,7 @@ fn ply_outputs(e: &crate::elements::Element, plies: &[crate::laminate::PlyLayer]
         nalgebra::Vector3::from_fn(|i, _| {
             value(Recovered {
                 measure: Measure::Strain,
-                at: Some((f, [Plane::Xx, Plane::Yy, Plane::Xy][i])),
+                at: Some(crate::elements::At::Fibre(f, [Plane::Xx, Plane::Yy, Plane::Xy][i])),
             })
         })
     };

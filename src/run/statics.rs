@@ -39,6 +39,9 @@ pub struct GridDisplacement {
     pub position: [f64; 3],
     /// Its translation in the basic system.
     pub basic: [f64; 3],
+    /// Its rotation in the basic system.
+    #[serde(skip)]
+    pub rotation: [f64; 3],
 }
 
 /// What a static solution gives.
@@ -165,6 +168,7 @@ fn displacements(deck: &Deck, s: &Structure, u: &[f64]) -> Vec<GridDisplacement>
             u: [0.0; 6],
             position: s.geometry.positions.get(&g.id).copied().unwrap_or_default(),
             basic: [0.0; 3],
+            rotation: [0.0; 3],
         })
         .collect();
     out.sort_by_key(|d| d.grid);
@@ -177,7 +181,9 @@ fn displacements(deck: &Deck, s: &Structure, u: &[f64]) -> Vec<GridDisplacement>
         }
     }
     for d in &mut out {
-        d.basic = (s.geometry.frame(d.grid) * nalgebra::Vector3::new(d.u[0], d.u[1], d.u[2])).into();
+        let t = s.geometry.frame(d.grid);
+        d.basic = (t * nalgebra::Vector3::new(d.u[0], d.u[1], d.u[2])).into();
+        d.rotation = (t * nalgebra::Vector3::new(d.u[3], d.u[4], d.u[5])).into();
     }
     out
 }

@@ -71,16 +71,18 @@ pub fn evaluate(case: &Case) -> Result<CaseOutcome, StudyError> {
 fn evaluate_static(case: &Case) -> Result<CaseOutcome, StudyError> {
     let t0 = Instant::now();
     let mut solutions = Vec::new();
+    let mut decks = Vec::new();
     for d in &case.statics {
         let deck = crate::deck::read_deck(&crate::verify::case::rel(case, d), Default::default())
             .map_err(crate::model::LoadError::from)?;
         solutions.push(crate::run::statics::solve(&deck)?.0);
+        decks.push(deck);
     }
     let wall_s = t0.elapsed().as_secs_f64();
     let mut checks = Vec::new();
     for spec in &case.checks {
         let t = Instant::now();
-        let mut r = crate::verify::checks::static_check(case, &solutions, spec)?;
+        let mut r = crate::verify::checks::static_check(case, &decks, &solutions, spec)?;
         r.time_s = t.elapsed().as_secs_f64();
         checks.push(r);
     }

@@ -261,6 +261,9 @@ pub enum CheckSpec {
         /// deck is exact up to round-off (a patch test).
         #[serde(default = "yes")]
         falling: bool,
+        /// Read the grid's rotation (basic components) rather than its translation.
+        #[serde(default)]
+        rotation: bool,
     },
     /// A static case's observed order of convergence at `point` along `direction`
     /// from its last three meshes (h halving): p = log₂(|w₁ − w₂| / |w₂ − w₃|) ≥ min;
@@ -274,6 +277,21 @@ pub enum CheckSpec {
         reference: f64,
         /// Smallest order accepted.
         min: f64,
+    },
+    /// A static case's beams (its decks: one straight line of CBARs or CBEAMs of one
+    /// section, simply supported, on a sequence of meshes each halving the element):
+    /// their lowest `modes` frequencies of bending in plane 1 and in plane 2 and, for a
+    /// CBEAM (which has torsional inertia), of torsion, against the closed forms
+    /// ω = (kπ/L)² √(EI/m′) and ω = (kπ/L) √(GJ/ρ(I1 + I2)), each matched to the nearest
+    /// computed frequency: the finest deck's largest relative error ≤ max, and each
+    /// mode's order of convergence from the last two decks ≥ min_order.
+    BeamFrequencies {
+        /// Modes of each family.
+        modes: usize,
+        /// Largest relative error on the finest deck.
+        max: f64,
+        /// Smallest order of convergence of any mode.
+        min_order: f64,
     },
     /// The lowest `modes` natural frequencies of a simply supported square plate of the
     /// case's size and shell section (bending), on two meshes (n × n, the second
@@ -503,7 +521,10 @@ pub fn read_case(path: &Path) -> Result<Case, CaseError> {
 impl CheckSpec {
     /// True for the kinds that judge a case's static decks.
     pub fn is_static(&self) -> bool {
-        matches!(self, CheckSpec::StaticDeflection { .. } | CheckSpec::StaticOrder { .. })
+        matches!(
+            self,
+            CheckSpec::StaticDeflection { .. } | CheckSpec::StaticOrder { .. } | CheckSpec::BeamFrequencies { .. }
+        )
     }
 }
 

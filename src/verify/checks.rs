@@ -209,7 +209,7 @@ pub fn check(case: &Case, model: &Model, run: &RunResult, spec: &CheckSpec) -> R
         CheckSpec::DtConvergence { .. }
         | CheckSpec::MeshConvergence { .. }
         | CheckSpec::ConvergesToReference { .. } => return Ok(None),
-        CheckSpec::StaticDeflection { .. } | CheckSpec::StaticOrder { .. } => {
+        CheckSpec::StaticDeflection { .. } | CheckSpec::StaticOrder { .. } | CheckSpec::BeamFrequencies { .. } => {
             return Err(CheckError::Failed {
                 case: case.name.clone(),
                 check: "static",
@@ -1263,6 +1263,7 @@ fn static_deflections(
     solutions: &[crate::run::statics::StaticSolution],
     point: [f64; 3],
     direction: [f64; 3],
+    rotation: bool,
 ) -> Result<Vec<f64>, CheckError> {
     let d = nalgebra::Vector3::from(direction);
     if d.norm() == 0.0 {
@@ -1287,19 +1288,106 @@ fn static_deflections(
                 check: "static",
                 message: format!("{}: no grid at {point:?}", s.deck),
             })?;
-            Ok(nalgebra::Vector3::from(g.basic).dot(&d))
+            Ok(nalgebra::Vector3::from(if rotation { g.rotation } else { g.basic }).dot(&d))
         })
         .collect()
 }
 
-/// Judges a static case's check on its decks' solutions (in the case's order).
+/// The natural frequencies of a static case's beams against their closed forms (see
+/// [`CheckSpec::BeamFrequencies`]).
+fn beam_frequencies(
+    case: &Case,
+    decks: &[crate::deck::Deck],
+    modes: usize,
+    max: f64,
+    min_order: f64,
+) -> Result<CheckResult, CheckError> {
+    let failed = |message: String| CheckError::Failed {
+        case: case.name.clone(),
+        check: "beam_frequencies",
+        message,
+    };
+    let mut errors: Vec<Vec<f64>> = Vec::new();
+    let mut names = Vec::new();
+    for deck in decks {
+        let (s, _) = crate::model::build_structure(deck).map_err(|e| failed(e.to_string()))?;
+        let beams: Vec<_> = s
+            .elements
+            .iter()
+            .filter_map(|e| match e.kernel.family() {
+                crate::elements::Family::Beam { section, length } => Some((*section, length)),
+                _ => None,
+            })
+            .collect();
+        let Some(&(sec, _)) = beams.first() else {
+            return Err(failed(format!("{}: no CBAR or CBEAM", deck.name)));
+        };
+        let l: f64 = beams.iter().map(|b| b.1).sum();
+        let m = sec.rho * sec.area + sec.nsm;
+        let mut exact = Vec::new();
+        for k in 1..=modes {
+            let kl = k as f64 * std::f64::consts::PI / l;
+            exact.push(("plane 1", k, kl * kl * (sec.e * sec.i1 / m).sqrt()));
+            exact.push(("plane 2", k, kl * kl * (sec.e * sec.i2 / m).sqrt()));
+            if sec.torsional_inertia > 0.0 {
+                exact.push(("torsion", k, kl * (sec.g * sec.j / sec.torsional_inertia).sqrt()));
+            }
+        }
+        let fem = crate::assembly::frequencies_of(&s.elements, s.dofs.len(), usize::MAX)
+            .ok_or_else(|| failed(format!("{}: the massless DOFs' stiffness is singular", deck.name)))?;
+        errors.push(
+            exact
+                .iter()
+                .map(|&(_, _, w)| fem.iter().map(|f| (f / w - 1.0).abs()).fold(f64::INFINITY, f64::min))
+                .collect(),
+        );
+        if names.is_empty() {
+            names = exact.iter().map(|(p, k, _)| format!("{p} {k}")).collect();
+        }
+    }
+    let finest = errors.last().cloned().unwrap_or_default();
+    let worst = finest.iter().fold(0.0f64, |m, &e| m.max(e));
+    let orders: Vec<f64> = match &errors[..] {
+        [.., a, b] => a.iter().zip(b).map(|(a, b)| (a / b).log2()).collect(),
+        _ => Vec::new(),
+    };
+    let lowest = orders.iter().fold(f64::INFINITY, |m, &p| m.min(p));
+    let list = |v: &[f64], f: &dyn Fn(f64) -> String| {
+        names
+            .iter()
+            .zip(v)
+            .map(|(n, x)| format!("{n}: {}", f(*x)))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    Ok(CheckResult::new(
+        case,
+        format!("beam_frequencies {modes} modes a family"),
+        worst,
+        None,
+        Bound {
+            text: format!("≤ {max:.1e}, every order ≥ {min_order}"),
+            ..Bound::at_most(max)
+        },
+        worst <= max && lowest >= min_order,
+        format!(
+            "finest deck's relative errors {}; orders {}",
+            list(&finest, &|x| format!("{x:.2e}")),
+            list(&orders, &|x| format!("{x:.2}"))
+        ),
+    ))
+}
+
+/// Judges a static case's check on its decks and their solutions (in the case's
+/// order).
 pub fn static_check(
     case: &Case,
+    decks: &[crate::deck::Deck],
     solutions: &[crate::run::statics::StaticSolution],
     spec: &CheckSpec,
 ) -> Result<CheckResult, CheckError> {
     let list = |v: &[f64]| v.iter().map(|x| format!("{x:.6e}")).collect::<Vec<_>>().join(", ");
-    let decks = solutions.iter().map(|s| s.deck.as_str()).collect::<Vec<_>>().join(", ");
+    let names = solutions.iter().map(|s| s.deck.as_str()).collect::<Vec<_>>().join(", ");
     match spec {
         CheckSpec::StaticDeflection {
             point,
@@ -1308,8 +1396,9 @@ pub fn static_check(
             source,
             max,
             falling: sequence,
+            rotation,
         } => {
-            let w = static_deflections(case, solutions, *point, *direction)?;
+            let w = static_deflections(case, solutions, *point, *direction, *rotation)?;
             let err: Vec<f64> = w.iter().map(|x| (x / reference - 1.0).abs()).collect();
             let (value, falling, text) = if *sequence {
                 let finest = *err.last().unwrap_or(&f64::NAN);
@@ -1330,7 +1419,7 @@ pub fn static_check(
                 },
                 value <= *max && falling,
                 format!(
-                    "{decks}: {} against {reference:e} ({source}); relative errors {}{}",
+                    "{names}: {} against {reference:e} ({source}); relative errors {}{}",
                     list(&w),
                     list(&err),
                     if falling { "" } else { ": not falling mesh by mesh" }
@@ -1343,7 +1432,7 @@ pub fn static_check(
             reference,
             min,
         } => {
-            let w = static_deflections(case, solutions, *point, *direction)?;
+            let w = static_deflections(case, solutions, *point, *direction, false)?;
             let [a, b, c] = w[w.len() - 3..] else {
                 unreachable!("read_case asks for three decks at least")
             };
@@ -1360,7 +1449,7 @@ pub fn static_check(
                 },
                 p >= *min && ratio > 0.0,
                 format!(
-                    "{decks}: {}; Richardson's extrapolation {extrapolated:.6e}, {:.2e} from {reference:e}{}",
+                    "{names}: {}; Richardson's extrapolation {extrapolated:.6e}, {:.2e} from {reference:e}{}",
                     list(&w),
                     (extrapolated / reference - 1.0).abs(),
                     if ratio > 0.0 {
@@ -1371,6 +1460,7 @@ pub fn static_check(
                 ),
             ))
         }
+        CheckSpec::BeamFrequencies { modes, max, min_order } => beam_frequencies(case, decks, *modes, *max, *min_order),
         _ => Err(CheckError::Failed {
             case: case.name.clone(),
             check: "static",

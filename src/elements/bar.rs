@@ -1,0 +1,430 @@
+//! CBAR and CBEAM: two-node Euler-Bernoulli beam, axial, torsion and bending in two
+//! planes, in the element's own axes between its (offset) ends.
+//!
+//! Formulation: element x from end A to end B, y the orientation vector's part
+//! normal to x (plane 1 is x-y), z = x × y; DOFs u, v, w, θx, θy, θz at each end.
+//! Axial u and twist θx linear; v (with θz = v′) and w (with θy = −w′) cubic Hermite.
+//! Strain at a section point (y, z): ε = u′ − y v″ − z w″; strain energy
+//! ½∫ EA u′² + GJ θx′² + E (I1 v″² + 2 I12 v″ w″ + I2 w″²) dx, integrated by two-point
+//! Gauss (exact: the curvatures are linear), so the stiffness is the exact
+//! Euler-Bernoulli stiffness; no shear flexibility (PBAR's K1, K2 blank). The shape
+//! functions are exact for end loads, so static solutions under nodal loads are exact
+//! at the nodes. Free vibration with the lumped mass below (verification case
+//! beam-frequencies, a simply supported beam on 8, 16, 32 elements): bending
+//! frequencies converge at order 4 in the element length (the rotations, massless,
+//! condensed exactly), torsional frequencies at order 2 (linear twist, lumped
+//! inertia).
+//!
+//! Pin flags (PA, PB) release end DOFs in element axes: the released DOFs are
+//! condensed out statically, u_r = −K_rr⁻¹ K_rc u_c, so no force acts on them; a set of
+//! releases that leaves a mechanism within the element (the same DOF at both ends of
+//! an unsupported motion) is refused.
+//!
+//! Mass (NASTRAN's default, lumped, PARAM COUPMASS off): (ρA + NSM)·L/2 on the three
+//! translations of each end; a CBEAM adds its torsional inertia ρ(I1 + I2)·L/2 about
+//! the axis at each end, a CBAR none. The mass sits at the bar's ends (its offset
+//! ends), whatever the pin flags.
+//!
+//! Recovery at ends A and B: the strains and stresses (σ = Eε) at the section's
+//! points C, D, E, F; and the resultants: axial force N = EA u′, torque T = GJ θx′,
+//! bending moments M1 = E(I1 v″ + I12 w″) (plane 1) and M2 = E(I12 v″ + I2 w″)
+//! (plane 2), shears V1 = M1′, V2 = M2′.
+
+use super::{BadShape, Cell, Kernel, LocalMatrix, Measure, Recovered};
+use nalgebra::{DMatrix, SMatrix, SVector};
+
+type M12 = SMatrix<f64, 12, 12>;
+type V12 = SVector<f64, 12>;
+
+/// A bar's section and material (PBAR, PBARL, PBEAM or PBEAML with its MAT1).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BarSection {
+    /// Young's modulus E.
+    pub e: f64,
+    /// Shear modulus G.
+    pub g: f64,
+    /// Area A.
+    pub area: f64,
+    /// I1 = ∫y² dA (plane 1).
+    pub i1: f64,
+    /// I2 = ∫z² dA (plane 2).
+    pub i2: f64,
+    /// I12 = ∫yz dA.
+    pub i12: f64,
+    /// Torsion constant J.
+    pub j: f64,
+    /// Mass density ρ.
+    pub rho: f64,
+    /// Non-structural mass per unit length.
+    pub nsm: f64,
+    /// Stress recovery points C, D, E, F as (y, z).
+    pub points: [[f64; 2]; 4],
+    /// Mass moment of inertia about the axis per unit length (ρ(I1 + I2) for a
+    /// CBEAM, 0 for a CBAR).
+    pub torsional_inertia: f64,
+}
+
+/// What a bar's kernel is built from: its section and its pin flags (components
+/// 1..6 released at end A, at end B, as bit sets: bit c for component c + 1).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BarSpec {
+    /// The card (CBAR or CBEAM).
+    pub card: &'static str,
+    /// Section and material.
+    pub section: BarSection,
+    /// Released components at end A and end B.
+    pub released: [u8; 2],
+}
+
+/// A CBAR or CBEAM in its own axes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Bar {
+    /// CBAR or CBEAM.
+    pub card: &'static str,
+    /// End A and end B in the element's axes (B − A along x).
+    pub x: [[f64; 3]; 2],
+    /// Section and material.
+    pub section: BarSection,
+    /// Its length.
+    pub length: f64,
+    /// u_full = P u: the released DOFs from the others (identity without pin flags).
+    pub release: M12,
+    /// The stiffness, condensed: Pᵀ K P.
+    pub k: M12,
+}
+
+/// The generalised strains (u′, θx′, v″, w″) at ξ = x/L as rows over the 12 DOFs.
+fn strain_rows(l: f64, xi: f64) -> SMatrix<f64, 4, 12> {
+    let mut b = SMatrix::<f64, 4, 12>::zeros();
+    b[(0, 0)] = -1.0 / l;
+    b[(0, 6)] = 1.0 / l;
+    b[(1, 3)] = -1.0 / l;
+    b[(1, 9)] = 1.0 / l;
+    let n = [
+        -6.0 + 12.0 * xi,
+        l * (-4.0 + 6.0 * xi),
+        6.0 - 12.0 * xi,
+        l * (-2.0 + 6.0 * xi),
+    ];
+    let l2 = l * l;
+    for (k, (v, w)) in [(1, 2), (5, 4), (7, 8), (11, 10)].into_iter().enumerate() {
+        b[(2, v)] = n[k] / l2;
+        // θy = −w′: the rotations enter w with the opposite sign.
+        b[(3, w)] = if k % 2 == 1 { -n[k] / l2 } else { n[k] / l2 };
+    }
+    b
+}
+
+/// The section's rigidities: diag(EA, GJ) and E·[[I1, I12], [I12, I2]].
+fn rigidity(s: &BarSection) -> SMatrix<f64, 4, 4> {
+    let mut d = SMatrix::<f64, 4, 4>::zeros();
+    d[(0, 0)] = s.e * s.area;
+    d[(1, 1)] = s.g * s.j;
+    d[(2, 2)] = s.e * s.i1;
+    d[(2, 3)] = s.e * s.i12;
+    d[(3, 2)] = s.e * s.i12;
+    d[(3, 3)] = s.e * s.i2;
+    d
+}
+
+/// The unreleased element stiffness (two-point Gauss, exact).
+pub fn stiffness(l: f64, s: &BarSection) -> M12 {
+    let d = rigidity(s);
+    let g = 0.5 / 3f64.sqrt();
+    [0.5 - g, 0.5 + g]
+        .iter()
+        .map(|&xi| {
+            let b = strain_rows(l, xi);
+            b.transpose() * d * b * (0.5 * l)
+        })
+        .sum()
+}
+
+impl Bar {
+    /// The bar between its ends (in its axes, along x): refused when they coincide or
+    /// when the pin flags release a mechanism.
+    pub fn build(points: &[[f64; 3]], spec: BarSpec) -> Result<Self, BadShape> {
+        let x = [points[0], points[1]];
+        let l = (0..3).map(|k| (x[1][k] - x[0][k]).powi(2)).sum::<f64>().sqrt();
+        if l.is_nan() || l <= 0.0 {
+            return Err(BadShape("has zero length (its ends coincide)"));
+        }
+        let s = spec.section;
+        let k = stiffness(l, &s);
+        let released: Vec<usize> = (0..12)
+            .filter(|&i| spec.released[i / 6] & (1 << (i % 6)) != 0)
+            .collect();
+        let mut p = M12::identity();
+        if !released.is_empty() {
+            let kept: Vec<usize> = (0..12).filter(|i| !released.contains(i)).collect();
+            let krr = DMatrix::from_fn(released.len(), released.len(), |a, b| k[(released[a], released[b])]);
+            let krc = DMatrix::from_fn(released.len(), kept.len(), |a, b| k[(released[a], kept[b])]);
+            let scale = krr.diagonal().amax();
+            let Some(chol) = (scale > 0.0)
+                .then(|| nalgebra::Cholesky::new(krr.clone()))
+                .flatten()
+                .filter(|c| c.l().diagonal().min() > 1e-7 * scale.sqrt())
+            else {
+                return Err(BadShape(
+                    "has pin flags (PA, PB) that free a motion of the bar itself: the same component \
+                     released at both ends, or a rotation and the deflection it carries",
+                ));
+            };
+            let back = -chol.solve(&krc);
+            for &r in &released {
+                p[(r, r)] = 0.0;
+            }
+            for (a, &r) in released.iter().enumerate() {
+                for (b, &c) in kept.iter().enumerate() {
+                    p[(r, c)] = back[(a, b)];
+                }
+            }
+        }
+        Ok(Bar {
+            card: spec.card,
+            x,
+            section: s,
+            length: l,
+            release: p,
+            k: p.transpose() * k * p,
+        })
+    }
+
+    fn full(&self, ue: &[f64]) -> V12 {
+        self.release * V12::from_column_slice(&ue[..12])
+    }
+
+    /// Strains at the points C, D, E, F of end A, then of end B.
+    fn point_strains(&self, u: &V12) -> [f64; 8] {
+        let mut out = [0.0; 8];
+        for (end, xi) in [0.0, 1.0].into_iter().enumerate() {
+            let g = strain_rows(self.length, xi) * u;
+            for (k, [y, z]) in self.section.points.iter().enumerate() {
+                out[4 * end + k] = g[0] - y * g[2] - z * g[3];
+            }
+        }
+        out
+    }
+
+    /// N, T, V1, V2, M1, M2 at end A, then at end B.
+    fn resultants(&self, u: &V12) -> [f64; 12] {
+        let d = rigidity(&self.section);
+        let (a, b) = (
+            d * strain_rows(self.length, 0.0) * u,
+            d * strain_rows(self.length, 1.0) * u,
+        );
+        let (v1, v2) = ((b[2] - a[2]) / self.length, (b[3] - a[3]) / self.length);
+        let mut out = [0.0; 12];
+        for (end, r) in [a, b].iter().enumerate() {
+            out[6 * end..6 * end + 6].copy_from_slice(&[r[0], r[1], v1, v2, r[2], r[3]]);
+        }
+        out
+    }
+}
+
+const POINTS: [super::BarPoint; 4] = [
+    super::BarPoint::C,
+    super::BarPoint::D,
+    super::BarPoint::E,
+    super::BarPoint::F,
+];
+const ENDS: [super::End; 2] = [super::End::A, super::End::B];
+const RESULTANTS: [super::Resultant; 6] = [
+    super::Resultant::Axial,
+    super::Resultant::Torque,
+    super::Resultant::Shear1,
+    super::Resultant::Shear2,
+    super::Resultant::Moment1,
+    super::Resultant::Moment2,
+];
+
+impl Kernel for Bar {
+    fn card(&self) -> &'static str {
+        self.card
+    }
+    fn family(&self) -> super::Family<'_> {
+        super::Family::Beam {
+            section: &self.section,
+            length: self.length,
+        }
+    }
+    fn stiffness(&self) -> Vec<LocalMatrix> {
+        vec![LocalMatrix {
+            at: (0..12).map(|i| (i / 6, i % 6)).collect(),
+            values: DMatrix::from_fn(12, 12, |i, j| self.k[(i, j)]),
+        }]
+    }
+    fn mass(&self) -> Vec<LocalMatrix> {
+        let s = &self.section;
+        let m = 0.5 * (s.rho * s.area + s.nsm) * self.length;
+        let it = 0.5 * s.torsional_inertia * self.length;
+        vec![LocalMatrix::diagonal(
+            (0..2)
+                .flat_map(|g| (0..3).map(move |c| ((g, c), m)).chain([((g, 3), it)]))
+                .filter(|&(_, v)| v != 0.0),
+        )]
+    }
+    fn strain_energy(&self, ue: &[f64]) -> f64 {
+        let u = V12::from_column_slice(&ue[..12]);
+        0.5 * (u.transpose() * self.k * u)[(0, 0)]
+    }
+    fn recovered(&self, stress: bool) -> Vec<Recovered> {
+        let at_points = |measure| {
+            ENDS.iter().flat_map(move |&end| {
+                POINTS.iter().map(move |&p| Recovered {
+                    measure,
+                    at: Some(super::At::Point(end, p)),
+                })
+            })
+        };
+        if !stress {
+            return at_points(Measure::Strain).collect();
+        }
+        at_points(Measure::Stress)
+            .chain(at_points(Measure::Strain))
+            .chain(ENDS.iter().flat_map(|&end| {
+                RESULTANTS.iter().map(move |&r| Recovered {
+                    measure: Measure::Force(r),
+                    at: Some(super::At::End(end)),
+                })
+            }))
+            .collect()
+    }
+    fn recover(&self, ue: &[f64], stress: bool) -> Vec<f64> {
+        let u = self.full(ue);
+        let strains = self.point_strains(&u);
+        if !stress {
+            return strains.to_vec();
+        }
+        let e = self.section.e;
+        strains
+            .iter()
+            .map(|s| e * s)
+            .chain(strains)
+            .chain(self.resultants(&u))
+            .collect()
+    }
+    fn material_law(&self, strains: &[f64]) -> Option<Vec<f64>> {
+        Some(strains.iter().map(|s| self.section.e * s).collect())
+    }
+    fn eq16_mass(&self) -> Option<f64> {
+        let s = &self.section;
+        Some((s.rho * s.area + s.nsm) * self.length)
+    }
+    fn points(&self) -> Vec<[f64; 3]> {
+        self.x.to_vec()
+    }
+    fn cell(&self) -> Option<Cell> {
+        Some(Cell::Line)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn section() -> BarSection {
+        BarSection {
+            e: 1.0e7,
+            g: 3.8e6,
+            area: 0.6,
+            i1: 0.08,
+            i2: 0.03,
+            i12: 0.01,
+            j: 0.02,
+            rho: 2.5e-4,
+            nsm: 1e-5,
+            points: [[0.5, 0.3], [-0.5, 0.3], [-0.5, -0.3], [0.5, -0.3]],
+            torsional_inertia: 0.0,
+        }
+    }
+
+    fn bar(released: [u8; 2]) -> Result<Bar, BadShape> {
+        Bar::build(
+            &[[0.0; 3], [2.5, 0.0, 0.0]],
+            BarSpec {
+                card: "CBAR",
+                section: BarSection { i12: 0.0, ..section() },
+                released,
+            },
+        )
+    }
+
+    /// Goal: the stiffness is the textbook Euler-Bernoulli one. Model: one bar,
+    /// I12 = 0. Reference: a cantilever (end A clamped) under a tip force P in plane 1
+    /// deflects PL³/3EI1 and turns PL²/2EI1; in plane 2 with I2; under an axial force
+    /// PL/EA; under a torque TL/GJ. Tolerance: round-off (the element is exact for end
+    /// loads).
+    #[test]
+    fn cantilever_tip_under_end_loads_is_exact() {
+        let b = bar([0, 0]).unwrap();
+        let (s, l) = (b.section, b.length);
+        let kff = b.k.fixed_view::<6, 6>(6, 6).into_owned();
+        let solve = |f: SVector<f64, 6>| kff.lu().solve(&f).unwrap();
+        let p = 3.0;
+        let u = solve(SVector::<f64, 6>::from_column_slice(&[0.0, p, 0.0, 0.0, 0.0, 0.0]));
+        assert!((u[1] / (p * l.powi(3) / (3.0 * s.e * s.i1)) - 1.0).abs() < 1e-12);
+        assert!((u[5] / (p * l * l / (2.0 * s.e * s.i1)) - 1.0).abs() < 1e-12);
+        let u = solve(SVector::<f64, 6>::from_column_slice(&[0.0, 0.0, p, 0.0, 0.0, 0.0]));
+        assert!((u[2] / (p * l.powi(3) / (3.0 * s.e * s.i2)) - 1.0).abs() < 1e-12);
+        assert!((u[4] / (-p * l * l / (2.0 * s.e * s.i2)) - 1.0).abs() < 1e-12);
+        let u = solve(SVector::<f64, 6>::from_column_slice(&[p, 0.0, 0.0, p, 0.0, 0.0]));
+        assert!((u[0] / (p * l / (s.e * s.area)) - 1.0).abs() < 1e-12);
+        assert!((u[3] / (p * l / (s.g * s.j)) - 1.0).abs() < 1e-12);
+    }
+
+    /// Goal: a rigid motion stores nothing and stresses nothing, with and without pin
+    /// flags and with I12. Model: one bar, every rigid translation and rotation.
+    /// Tolerance: round-off.
+    #[test]
+    fn rigid_motion_is_strain_free() {
+        for released in [[0, 0], [0b110000, 0], [0, 0b001000]] {
+            let b = Bar::build(
+                &[[0.0; 3], [2.5, 0.0, 0.0]],
+                BarSpec {
+                    card: "CBAR",
+                    section: section(),
+                    released,
+                },
+            )
+            .unwrap();
+            for k in 0..6 {
+                let mut u = V12::zeros();
+                let (mut t, mut r) = ([0.0; 3], [0.0; 3]);
+                if k < 3 {
+                    t[k] = 1e-3;
+                } else {
+                    r[k - 3] = 1e-3;
+                }
+                for (end, x) in b.x.iter().enumerate() {
+                    let rx = nalgebra::Vector3::from(r).cross(&nalgebra::Vector3::from(*x));
+                    for c in 0..3 {
+                        u[6 * end + c] = t[c] + rx[c];
+                        u[6 * end + 3 + c] = r[c];
+                    }
+                }
+                assert!((b.k * u).norm() < 1e-9 * b.k.norm() * 1e-3, "{released:?} {k}");
+                let rec = b.recover(u.as_slice(), true);
+                assert!(rec.iter().all(|v| v.abs() < 1e-6), "{released:?} {k}: {rec:?}");
+            }
+        }
+    }
+
+    /// Goal: a pin flag frees what it names. Model: a bar clamped at A whose end B's
+    /// rotation about z (plane 1) is released: a moment there meets no stiffness, and
+    /// a tip force deflects it as before while M1 at B is zero. And releasing the
+    /// axial DOF at both ends is a mechanism, refused.
+    #[test]
+    fn pin_flag_releases_its_component() {
+        let b = bar([0, 1 << 5]).unwrap();
+        assert_eq!(b.k.row(11).norm(), 0.0);
+        let mut u = V12::zeros();
+        u[7] = 1e-3;
+        let forces = b.recover(u.as_slice(), true);
+        let m1_b = forces[16 + 6 + 4];
+        assert!(m1_b.abs() < 1e-9 * forces[16 + 4].abs(), "{m1_b} vs {}", forces[16 + 4]);
+        assert!(bar([1, 1]).is_err());
+        assert!(bar([0b100, 0b100]).is_err(), "w free at both ends: the bar translates");
+        assert!(bar([0b10000, 0b10000]).is_ok(), "pinned-pinned in plane 2");
+    }
+}
