@@ -180,21 +180,23 @@ def box_constants(b, h, t1, t2):
 ES, TS, ZO, FS = 1.0e7, 0.2, 0.3, 100.0
 
 
-def shell_offset():
+def shell_offset(turn=0.0):
     # A strip of 4 x 1 CQUAD4 (length 10, width 1, t = 0.2, NU = 0) with ZOFFS = +0.3 (its
     # reference plane above its grids), clamped at x = 0, pulled along x at the tip grids
     # (50 each): with NU = 0 it is a beam of section 1 x 0.2, so u = FL(1/EA + e^2/EI) and
     # w = +e F L^2 / 2EI; the membrane and DKQ bending are exact for its constant strain
     # and curvature.
     bulk = [f"MAT1,2,{ES!r},,0.0,{RHO!r}", f"PSHELL,1,2,{TS!r},2"]
+    # Turned by `turn` degrees about the x axis (the grid line stays where it is).
+    c, s = math.cos(math.radians(turn)), math.sin(math.radians(turn))
     for k in range(N + 1):
-        bulk += [f"GRID,{100 + k},,{L * k / N!r},0.0,0.0", f"GRID,{200 + k},,{L * k / N!r},1.0,0.0"]
+        bulk += [f"GRID,{100 + k},,{L * k / N!r},0.0,0.0", f"GRID,{200 + k},,{L * k / N!r},{c!r},{s!r}"]
     bulk += [f"CQUAD4,{k + 1},1,{100 + k},{101 + k},{201 + k},{200 + k},,{ZO!r}" for k in range(N)]
     bulk += ["SPC1,1,123456,100,200", f"FORCE,1,{100 + N},,{FS / 2!r},1.0,0.0,0.0",
              f"FORCE,1,{200 + N},,{FS / 2!r},1.0,0.0,0.0"]
     write(
-        "shell-offset",
-        [
+        "shell-offset" if turn == 0.0 else "shell-offset-turned",
+        [f"Turned {turn} degrees about x (its normal along (0, -sin, cos))."] * (turn != 0.0) + [
             f"A strip of 4 CQUAD4 (10 x 1, t = {TS}, NU = 0) with ZOFFS = +{ZO}, clamped at x = 0, pulled by",
             f"{FS} along its grid line at the tip: u = FL(1/EA + e^2/EI), w = +e F L^2/2EI (a beam of 1 x {TS}).",
         ],
@@ -204,6 +206,7 @@ def shell_offset():
 
 os.makedirs(OUT, exist_ok=True)
 shell_offset()
+shell_offset(30.0)
 cantilever()
 turned()
 offset()
@@ -215,6 +218,6 @@ print("cantilever tip: u", FX * L / (E * A), "v", FY * L**3 / (3 * E * I2), "w",
 print("offset tip: u", FX * L * (1 / (E * A) + E_OFF**2 / (E * I1)), "w", -E_OFF * FX * L**2 / (2 * E * I1))
 print("hinge: w", 10.0 * L1**3 / (3 * E * B * H**3 / 12))
 ia = TS**3 / 12
-print("shell offset: u", FS * L * (1 / (ES * TS) + ZO**2 / (ES * ia)), "w", ZO * FS * L**2 / (2 * ES * ia))
+print("shell offset (turned 30: w along (0, -0.5, 0.866...)): u", FS * L * (1 / (ES * TS) + ZO**2 / (ES * ia)), "w", ZO * FS * L**2 / (2 * ES * ia))
 a, i1, i2, j = box_constants(*BOX)
 print("ss beam: A", a, "I1", i1, "I2", i2, "J", j, "midspan w", 100.0 * LS**3 / (48 * E * i1))
