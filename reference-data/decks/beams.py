@@ -204,7 +204,37 @@ def shell_offset(turn=0.0):
     )
 
 
+LK1, GAP, LK2, EK, FK = 4.0, 2.0, 4.0, 0.5, 20.0
+
+
+def rigid_link():
+    # A cantilever of two CBAR pieces joined by an RBE2 (GN the end of the first piece,
+    # GM the start of the second, 2 along and 0.5 across, displaced in a turned CORD2R):
+    # a crank. A tip force along z bends both pieces (plane 1) and twists the first by
+    # F e: w = F[(L^3 - (L - L1)^3)/3 + L2^3/3]/EI1 + F e^2 L1/GJ (unit-load method;
+    # the link stores nothing).
+    L_ = LK1 + GAP + LK2
+    bulk = [f"PBAR,1,1,{A!r},{I1!r},{I2!r},{J!r}",
+            "CORD2R,7,,0.0,0.0,0.0,0.3,0.2,1.0,\n,1.0,-0.4,0.1"]
+    pts = {1: (0.0, 0.0), 11: (LK1 / 2, 0.0), 2: (LK1, 0.0), 3: (LK1 + GAP, EK), 12: (LK1 + GAP + LK2 / 2, EK),
+           4: (L_, EK)}
+    for g, (x, y) in pts.items():
+        bulk.append(f"GRID,{g},,{x!r},{y!r},0.0" + (",7" if g == 3 else ""))
+    bulk += ["CBAR,1,1,1,11,0.0,0.0,1.0", "CBAR,2,1,11,2,0.0,0.0,1.0",
+             "CBAR,3,1,3,12,0.0,0.0,1.0,BGG", "CBAR,4,1,12,4,0.0,0.0,1.0",
+             "RBE2,9,2,123456,3", "SPC1,1,123456,1", f"FORCE,1,4,,{FK!r},0.0,0.0,1.0"]
+    write(
+        "rigid-link",
+        [
+            "A cantilever of two CBAR pieces (4 and 4) joined across a gap of 2 and a step of 0.5 by an RBE2",
+            "(GN 2, GM 3 in a turned CORD2R), a tip force 20 along z: w = F[(L^3-(L-L1)^3)/3 + L2^3/3]/EI1 + F e^2 L1/GJ.",
+        ],
+        bulk,
+    )
+
+
 os.makedirs(OUT, exist_ok=True)
+rigid_link()
 shell_offset()
 shell_offset(30.0)
 cantilever()
@@ -217,6 +247,8 @@ print("cantilever tip: u", FX * L / (E * A), "v", FY * L**3 / (3 * E * I2), "w",
       "thx", MX * L / (G * J), "thy", -FZ * L**2 / (2 * E * I1))
 print("offset tip: u", FX * L * (1 / (E * A) + E_OFF**2 / (E * I1)), "w", -E_OFF * FX * L**2 / (2 * E * I1))
 print("hinge: w", 10.0 * L1**3 / (3 * E * B * H**3 / 12))
+LL = LK1 + GAP + LK2
+print("rigid link: w", FK * ((LL**3 - (LL - LK1) ** 3) / 3 + LK2**3 / 3) / (E * I1) + FK * EK**2 * LK1 / (G * J))
 ia = TS**3 / 12
 print("shell offset (turned 30: w along (0, -0.5, 0.866...)): u", FS * L * (1 / (ES * TS) + ZO**2 / (ES * ia)), "w", ZO * FS * L**2 / (2 * ES * ia))
 a, i1, i2, j = box_constants(*BOX)

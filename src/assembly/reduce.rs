@@ -54,7 +54,7 @@ fn live_dofs(model: &Model, sys: &System) -> Vec<bool> {
         }
         seeds.extend(group);
     }
-    for d in &model.dependent {
+    for d in model.dependent.iter().filter(|d| !d.tied) {
         for w in d.functional.windows(2) {
             uf.union(w[0].0, w[1].0);
         }
@@ -89,7 +89,12 @@ pub fn drop_inert(model: &Model, sys: &System) -> Option<(Model, System)> {
     m.u0 = keep(&model.u0, &live);
     m.v0 = keep(&model.v0, &live);
     for d in &mut m.dependent {
-        d.functional = re_fun(&d.functional);
+        d.functional = if d.tied {
+            // An inert DOF stays zero: its term drops out.
+            d.functional.iter().filter_map(|&(j, c)| Some((map[j]?, c))).collect()
+        } else {
+            re_fun(&d.functional)
+        };
     }
     for e in std::sync::Arc::make_mut(&mut m.elements).iter_mut() {
         e.dofs.iter_mut().flatten().for_each(|d| *d = re_opt(*d));

@@ -26,6 +26,13 @@ impl CardRef {
             .quote(&self.source)
     }
 
+    /// A warning about this card, quoting it.
+    pub fn warning(&self, message: impl Into<String>) -> Diagnostic {
+        Diagnostic::warning(Some(self.pos.clone()), message)
+            .card(&self.name)
+            .quote(&self.source)
+    }
+
     /// An error about one field of this card, pointing at it.
     pub fn field_error(&self, f: &FieldRef, message: impl Into<String>) -> Diagnostic {
         let d = Diagnostic::error(Some(f.pos.clone()), message)
@@ -447,6 +454,22 @@ pub struct SpcAdd {
     pub at: CardRef,
 }
 
+/// RBE2: a rigid element; the components CM of each dependent grid GMi follow the
+/// independent grid GN's motion as a rigid body.
+#[derive(Debug, Clone)]
+pub struct Rbe2 {
+    /// Element id (field 2).
+    pub eid: i64,
+    /// Independent grid GN (field 3).
+    pub gn: i64,
+    /// Dependent components CM (field 4).
+    pub cm: Components,
+    /// Dependent grids GM1, GM2, … (fields 5 on; THRU ranges allowed).
+    pub gm: Vec<i64>,
+    /// The card.
+    pub at: CardRef,
+}
+
 /// One term of a TF card's continuation: a coefficient polynomial on an input DOF.
 #[derive(Debug, Clone)]
 pub struct TfTerm {
@@ -626,6 +649,8 @@ pub struct Bulk {
     pub spc1s: Vec<Spc1>,
     /// SPCADD cards.
     pub spcadds: Vec<SpcAdd>,
+    /// RBE2 cards.
+    pub rbe2s: Vec<Rbe2>,
     /// TF cards.
     pub tfs: Vec<Tf>,
     /// TSTEP cards.
@@ -917,10 +942,10 @@ impl<'a> Reader<'a> {
 
 /// Cards the reader knows. `PARAM` is accepted and ignored with a warning.
 /// Element cards are those of [`crate::elements::KINDS`] besides these.
-pub const KNOWN_CARDS: [&str; 36] = [
+pub const KNOWN_CARDS: [&str; 37] = [
     "GRID", "GRDSET", "CORD1R", "CORD1C", "CORD1S", "CORD2R", "CORD2C", "CORD2S", "EPOINT", "SPOINT", "PROD", "PBAR",
-    "PBARL", "PBEAM", "PBEAML", "PSHELL", "PCOMP", "MAT1", "MAT2", "MAT8", "CONM2", "SPC1", "SPC", "SPCADD", "TF",
-    "TSTEP", "NOLIN3", "TIC", "FORCE", "MOMENT", "PLOAD4", "GRAV", "LOAD", "PARAM", "INCLUDE", "ENDDATA",
+    "PBARL", "PBEAM", "PBEAML", "PSHELL", "PCOMP", "MAT1", "MAT2", "MAT8", "CONM2", "RBE2", "SPC1", "SPC", "SPCADD",
+    "TF", "TSTEP", "NOLIN3", "TIC", "FORCE", "MOMENT", "PLOAD4", "GRAV", "LOAD", "PARAM", "INCLUDE", "ENDDATA",
 ];
 
 /// Every card the reader types: the element cards of [`crate::elements::KINDS`], then
@@ -958,6 +983,7 @@ pub fn type_cards(raw: &[RawCard], ids_left: &mut usize, diags: &mut Diagnostics
             "SPC1" => card_spc1(&mut r, &mut b),
             "SPC" => card_spc(&mut r, &mut b),
             "SPCADD" => card_spcadd(&mut r, &mut b),
+            "RBE2" => card_rbe2(&mut r, &mut b),
             "TF" => card_tf(&mut r, &mut b, card),
             "TSTEP" => card_tstep(&mut r, &mut b, card),
             "NOLIN3" => card_nolin3(&mut r, &mut b),
@@ -2012,6 +2038,79 @@ fn card_spcadd(r: &mut Reader, b: &mut Bulk) {
     }
     if r.ok {
         b.spcadds.push(a);
+    }
+}
+
+/// RBE2: EID GN CM GM1 GM2 … (THRU ranges allowed), then ALPHA (a real, the thermal
+/// expansion coefficient: no temperature load is applied, so it has no effect).
+fn card_rbe2(r: &mut Reader, b: &mut Bulk) {
+    let (eid, gn, cm) = (r.id(0, "EID"), r.id(1, "GN"), r.components(2, "CM"));
+    if r.ok && cm.0 == 0 {
+        r.fail(
+            2,
+            "CM",
+            "names no component: an RBE2 makes components of its GMi dependent",
+        );
+    }
+    // ALPHA: a real in the last written field.
+    let last = (3..r.card.fields.len()).rev().find(|&k| !r.text(k).is_empty());
+    let alpha = last.filter(|&k| matches!(parse_real(r.text(k)), Some(RealToken::Real(_))));
+    let mut gm = Vec::new();
+    let mut k = 3;
+    while let Some(end) = last {
+        if k > end || Some(k) == alpha {
+            break;
+        }
+        let t = r.text(k);
+        if t.is_empty() {
+            k += 1;
+            continue;
+        }
+        if t.eq_ignore_ascii_case("THRU") {
+            let (Some(&a), bound) = (gm.last(), r.id(k + 1, "GM")) else {
+                r.fail(k, "GM", "THRU has no start id before it");
+                break;
+            };
+            if r.ok && bound < a {
+                r.fail(
+                    k + 1,
+                    "GM",
+                    format!("ends a THRU range that is reversed ({a} THRU {bound})"),
+                );
+            }
+            if r.ok {
+                if let Err(e) = super::take_ids(r.ids_left, (bound - a) as u128) {
+                    r.fail(k + 1, "GM", e);
+                } else {
+                    gm.extend(a + 1..=bound);
+                }
+            }
+            k += 2;
+            continue;
+        }
+        gm.push(r.id(k, "GM"));
+        k += 1;
+    }
+    if r.ok && gm.is_empty() {
+        r.fail(3, "GM1", "names no dependent grid");
+    }
+    if r.ok {
+        if let Some(&g) = gm.iter().find(|&&g| g == gn) {
+            r.fail(
+                3,
+                "GM",
+                format!("grid {g} is both the independent grid GN and a dependent grid"),
+            );
+        }
+    }
+    if r.ok {
+        b.rbe2s.push(Rbe2 {
+            eid,
+            gn,
+            cm,
+            gm,
+            at: r.at(),
+        });
     }
 }
 

@@ -118,6 +118,8 @@ struct Numbering<'d> {
     scalar: BTreeMap<i64, &'d CardRef>,
     dofs: Vec<DofLabel>,
     index: HashMap<DofLabel, usize>,
+    /// Grids an RBE2 makes dependent, with their independent grid.
+    ties: BTreeMap<i64, i64>,
 }
 
 impl Numbering<'_> {
@@ -154,9 +156,16 @@ impl Numbering<'_> {
             point: g,
             comp: if is_scalar { 0 } else { c as u8 },
         };
-        match self.index.get(&l) {
-            Some(&i) => Some(i),
-            None => {
+        match (self.index.get(&l), self.ties.get(&g)) {
+            (Some(&i), _) => Some(i),
+            (None, Some(gn)) => {
+                cx.err(at.error(format!(
+                    "{what} uses {l}, a DOF an RBE2 makes dependent (its motion is grid {gn}'s): name grid {gn} \
+                     instead"
+                )));
+                None
+            }
+            (None, None) => {
                 cx.err(at.error(format!("{what} uses {l}, which is constrained (SPC1 or PS)")));
                 None
             }
@@ -196,11 +205,14 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
     for d in geo_errors {
         cx.err(d);
     }
-    let constrained = constrained_grids(&mut cx, deck, &sel);
+    let mut constrained = constrained_grids(&mut cx, deck, &sel);
+    let rigid = rigid_elements(&mut cx, deck, &geo, &sel, &mut constrained);
     let tf_of = transfer_functions(&mut cx, &sel, deck);
-    let num = number_dofs(deck, &constrained, &tf_of);
-    let dependent = dependent_points(&mut cx, &tf_of, &num);
-    let elements = build_elements(&mut cx, deck, &num, &geo);
+    let mut num = number_dofs(deck, &constrained, &tf_of);
+    num.ties = rigid.ties.iter().map(|(&m, t)| (m, t.gn)).collect();
+    let mut dependent = dependent_points(&mut cx, &tf_of, &num);
+    let elements = build_elements(&mut cx, deck, &num, &geo, &rigid);
+    let tied = tied_points(&rigid, &num, &mut dependent);
     let time = time_control(&sel);
     let (u0, v0) = initial_conditions(&mut cx, &sel, &dependent, &num);
     let refs = ContactRefs {
@@ -213,7 +225,7 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
     let contact = build_contact(&mut cx, &sel.nolins, &refs, |cx, at, w, g, c| {
         num.lookup(cx, at, w, g, c)
     });
-    let outputs = output_plan(&mut cx, deck, &num, &dependent, &elements, contact.as_ref());
+    let outputs = output_plan(&mut cx, deck, &num, (&dependent, &tied), &elements, contact.as_ref());
     let rod = rod_info(&elements.list);
     let model = Model {
         name: deck.name.clone(),
@@ -269,6 +281,10 @@ pub struct Structure {
     pub free_dofs: usize,
     /// The grid DOFs they constrain.
     pub constrained_dofs: usize,
+    /// The grid DOFs RBE2s make dependent.
+    pub dependent_dofs: usize,
+    /// The RBE2s' dependent grids and their ties.
+    pub rigid: crate::model::rigid::Rigid,
     /// Scalar points (EPOINT, SPOINT).
     pub scalar_points: usize,
     /// The solved DOFs, in the order the elements' DOF indices count them.
@@ -304,17 +320,21 @@ pub fn build_structure(deck: &Deck) -> Result<(Structure, Vec<Diagnostic>), Mode
         tics: Vec::new(),
         tsteps: Vec::new(),
     };
-    let constrained = constrained_grids(&mut cx, deck, &sel);
-    let num = number_dofs(deck, &constrained, &BTreeMap::new());
-    let elements = build_elements(&mut cx, deck, &num, &geometry);
+    let mut constrained = constrained_grids(&mut cx, deck, &sel);
+    let rigid = rigid_elements(&mut cx, deck, &geometry, &sel, &mut constrained);
+    let mut num = number_dofs(deck, &constrained, &BTreeMap::new());
+    num.ties = rigid.ties.iter().map(|(&m, t)| (m, t.gn)).collect();
+    let elements = build_elements(&mut cx, deck, &num, &geometry, &rigid);
     let grid_dofs = num.dofs.iter().filter(|d| d.comp != 0).count();
     let structure = Structure {
         geometry,
         elements: elements.list,
         free_dofs: grid_dofs,
-        constrained_dofs: 6 * num.grids.len() - grid_dofs,
+        constrained_dofs: 6 * (num.grids.len() - rigid.ties.len()) - grid_dofs,
+        dependent_dofs: 6 * rigid.ties.len(),
         scalar_points: num.scalar.len(),
         dofs: num.dofs,
+        rigid,
     };
     if cx.diags.iter().any(|d| d.is_error()) {
         Err(ModelError { diagnostics: cx.diags })
@@ -507,7 +527,51 @@ fn number_dofs<'d>(
         scalar,
         dofs,
         index,
+        ties: BTreeMap::new(),
     }
+}
+
+/// The RBE2s resolved, their dependent grids' DOFs left out of the solved ones: an SPC
+/// on a dependent DOF is an error naming both cards; a PS (GRID or GRDSET) on it
+/// yields to the tie, with a warning when the independent grid is not held alike.
+fn rigid_elements(
+    cx: &mut Ctx,
+    deck: &Deck,
+    geo: &Geometry,
+    sel: &Selected,
+    constrained: &mut HashMap<i64, u8>,
+) -> crate::model::rigid::Rigid {
+    let mut errors = Vec::new();
+    let rigid = crate::model::rigid::resolve(&deck.bulk, geo, &mut errors);
+    for d in errors {
+        cx.err(d);
+    }
+    let b = &deck.bulk;
+    for (gm, t) in &rigid.ties {
+        for s in sel.spcs.iter().filter(|s| s.grids.contains(gm)) {
+            cx.err(s.at.error(format!(
+                "SPC1 constrains grid {gm}, which the RBE2 at {} makes dependent: constrain its independent grid \
+                 {} instead",
+                t.at.pos, t.gn
+            )));
+        }
+        let ps = |g: i64| {
+            b.grids
+                .iter()
+                .find(|x| x.id == g)
+                .map_or(0, |x| x.ps.unwrap_or(b.grdset.ps).0)
+        };
+        let (own, theirs) = (ps(*gm), ps(t.gn));
+        if own & !theirs != 0 {
+            cx.warn(t.at.warning(format!(
+                "grid {gm}'s PS holds components its independent grid {} does not: the RBE2 ties them to grid \
+                 {}'s motion instead",
+                t.gn, t.gn
+            )));
+        }
+        constrained.insert(*gm, 0b111111);
+    }
+    rigid
 }
 
 /// Each TF's dependent point as a functional of the solved DOFs.
@@ -537,6 +601,7 @@ fn dependent_points(cx: &mut Ctx, tf_of: &BTreeMap<i64, &crate::deck::cards::Tf>
                 label: DofLabel { point: gd, comp: 0 },
                 functional: f,
                 at: t.at.clone(),
+                tied: false,
             });
         }
     }
@@ -549,7 +614,13 @@ fn dependent_points(cx: &mut Ctx, tf_of: &BTreeMap<i64, &crate::deck::cards::Tf>
 
 /// The element cards and CONM2s with their materials and sections resolved, then
 /// the drilling supports their grids need.
-fn build_elements(cx: &mut Ctx, deck: &Deck, num: &Numbering, geo: &Geometry) -> Elements {
+fn build_elements(
+    cx: &mut Ctx,
+    deck: &Deck,
+    num: &Numbering,
+    geo: &Geometry,
+    rigid: &crate::model::rigid::Rigid,
+) -> Elements {
     let mut out = Elements {
         list: Vec::new(),
         on_element: HashMap::new(),
@@ -557,7 +628,47 @@ fn build_elements(cx: &mut Ctx, deck: &Deck, num: &Numbering, geo: &Geometry) ->
     };
     connected(cx, deck, num, geo, &mut out);
     point_masses(cx, deck, num, geo, &mut out);
+    // Elements and masses on RBE2-dependent grids, attached through their ties.
+    // An independent grid carries the elements of its dependent grids.
+    if !rigid.ties.is_empty() {
+        out.list = std::mem::take(&mut out.list)
+            .into_iter()
+            .map(|e| {
+                if !matches!(e.kernel.family(), Family::Point { .. }) {
+                    for g in e.grids.iter().filter_map(|g| rigid.ties.get(g)) {
+                        *out.on_element.entry(g.gn).or_default() += 1;
+                    }
+                }
+                rigid.attach(e, |g| num.grid_dofs(g))
+            })
+            .collect();
+    }
     drilling_supports(num, geo, &mut out);
+    out
+}
+
+/// The RBE2-dependent grids' six components as dependent points (functionals of their
+/// independent grids' solved DOFs: the rows of Λ), appended to `dependent` after the
+/// TF points, for the output requests: grid → the index of its T1 there.
+fn tied_points(rigid: &crate::model::rigid::Rigid, num: &Numbering, dependent: &mut Dependent) -> BTreeMap<i64, usize> {
+    let mut out = BTreeMap::new();
+    for (&gm, t) in &rigid.ties {
+        out.insert(gm, dependent.points.len());
+        let dofs = num.grid_dofs(t.gn);
+        for c in 0..6 {
+            dependent.points.push(DependentPoint {
+                label: DofLabel {
+                    point: gm,
+                    comp: c as u8 + 1,
+                },
+                functional: (0..6)
+                    .filter_map(|k| Some((dofs[k]?, t.map[(c, k)])).filter(|&(_, a)| a != 0.0))
+                    .collect(),
+                at: t.at.clone(),
+                tied: true,
+            });
+        }
+    }
     out
 }
 
@@ -1173,7 +1284,7 @@ fn output_plan(
     cx: &mut Ctx,
     deck: &Deck,
     num: &Numbering,
-    dependent: &Dependent,
+    (dependent, tied): (&Dependent, &BTreeMap<i64, usize>),
     built: &Elements,
     contact: Option<&Contact>,
 ) -> OutputPlan {
@@ -1200,6 +1311,8 @@ fn output_plan(
         for p in members {
             if let Some(&j) = dep_index.get(&p) {
                 list.push((dependent[j].label, Source::Dependent(j)));
+            } else if let Some(&j) = tied.get(&p) {
+                list.extend((j..j + 6).map(|j| (dependent[j].label, Source::Dependent(j))));
             } else if grids.contains_key(&p) || scalar.contains_key(&p) {
                 let comps: Vec<u8> = if scalar.contains_key(&p) {
                     vec![0]

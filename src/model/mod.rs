@@ -10,6 +10,7 @@ mod build;
 pub mod check;
 pub mod loads;
 mod modify;
+pub mod rigid;
 mod weight;
 
 pub use build::{build_model, build_structure, ModelError, Structure};
@@ -77,8 +78,11 @@ pub struct DependentPoint {
     pub label: DofLabel,
     /// Its value as a functional of the solved DOFs.
     pub functional: Functional,
-    /// The TF card defining it.
+    /// The card defining it (a TF, or an RBE2 for a dependent grid's component).
     pub at: CardRef,
+    /// An RBE2-dependent grid's component, read for output requests only: the contact
+    /// and the inert-DOF grouping do not see it.
+    pub tied: bool,
 }
 
 /// One NOLIN3 load: P = S·x^A on a solved DOF.

@@ -418,6 +418,15 @@ pub enum CheckSpec {
         /// Largest difference allowed, relative to the peak.
         max: f64,
     },
+    /// A rigid region stores no strain: the written strains of `elements` (every
+    /// corner tied to one grid by an RBE2) stay below `max` of the largest written
+    /// strain of any element, at every output time.
+    RigidStrain {
+        /// The elements inside the rigid region.
+        elements: Vec<i64>,
+        /// Largest |strain| allowed there, relative to the largest written strain.
+        max: f64,
+    },
     /// The run's history against a stored gold CSV, every column with the same
     /// relative tolerance and a floor relative to the column's peak.
     Gold {

@@ -205,6 +205,7 @@ pub fn check(case: &Case, model: &Model, run: &RunResult, spec: &CheckSpec) -> R
             max,
         } => external_history(&cx, file, solver, what, time, columns, *max)?,
         CheckSpec::Superposition { max } => superposition(&cx, *max)?,
+        CheckSpec::RigidStrain { elements, max } => rigid_strain(&cx, elements, *max)?,
         CheckSpec::FailureIndices { allowables, sb } => failure_indices(&cx, *allowables, *sb),
         CheckSpec::DtConvergence { .. }
         | CheckSpec::MeshConvergence { .. }
@@ -309,6 +310,50 @@ fn superposition(cx: &Cx, max: f64) -> Result<CheckResult, CheckError> {
         Bound::of_peak(max),
         v <= max,
         format!("largest: {what} at t = {t:.4e} {}", units.time),
+    ))
+}
+
+/// The written strains of elements inside a rigid region against the largest written
+/// strain (see [`CheckSpec::RigidStrain`]).
+fn rigid_strain(cx: &Cx, elements: &[i64], max: f64) -> Result<CheckResult, CheckError> {
+    let strain = |eid: Option<i64>| -> Vec<usize> {
+        cx.run
+            .history_columns
+            .iter()
+            .enumerate()
+            .filter(|(_, c)| match c {
+                Column::Element { eid: e, value } => {
+                    value.measure == crate::elements::Measure::Strain && eid.is_none_or(|x| x == *e)
+                }
+                _ => false,
+            })
+            .map(|(j, _)| j)
+            .collect()
+    };
+    let peak_of = |cols: &[usize]| {
+        cx.run
+            .history
+            .iter()
+            .flat_map(|row| cols.iter().map(move |&j| row[j].abs()))
+            .fold(0.0f64, f64::max)
+    };
+    let inside: Vec<usize> = elements.iter().flat_map(|&e| strain(Some(e))).collect();
+    if inside.is_empty() {
+        return Err(CheckError::Failed {
+            case: cx.case.name.clone(),
+            check: "rigid_strain",
+            message: format!("no strain of elements {elements:?} is written: add them to the deck's STRESS set"),
+        });
+    }
+    let (peak, worst) = (peak_of(&strain(None)), peak_of(&inside));
+    let value = if peak > 0.0 { worst / peak } else { 0.0 };
+    Ok(cx.result(
+        "rigid_strain".into(),
+        value,
+        None,
+        Bound::of_peak(max),
+        value <= max,
+        format!("elements {elements:?}: largest |strain| {worst:.3e} against {peak:.3e} over the written elements"),
     ))
 }
 
