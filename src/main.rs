@@ -161,6 +161,21 @@ pub enum StudyKind {
         #[arg(long)]
         redraw: bool,
     },
+    /// The stiffened plate (three blade stiffeners) struck on a stiffener and between
+    /// stiffeners, beside the unstiffened plate: contact, where the energy goes, the
+    /// threshold speed of each.
+    Stiffened {
+        /// Mesh sizes (elements per side, odd).
+        #[arg(long, value_delimiter = ',', default_values_t = impactlab::study::stiffened::MESHES)]
+        n: Vec<usize>,
+        /// Output directory: stiffened-study.csv, stiffened-histories.csv,
+        /// stiffened-thresholds.csv, README.md and the figure.
+        #[arg(long, default_value = "reports/stiffened")]
+        out: PathBuf,
+        /// Remake README.md and the figure from the CSVs in the output directory; run nothing.
+        #[arg(long)]
+        redraw: bool,
+    },
     /// The mutation campaign's page (reports/mutants): made from campaign.toml and each
     /// run's CSV; with --from, a cargo-mutants output directory is first recorded as a run.
     Mutants {
@@ -212,6 +227,10 @@ pub enum MeshKind {
         /// cut into two CTRIA3).
         #[arg(long, default_value = "quad4", value_parser = cells_parser())]
         cells: impactlab::mesh::Cells,
+        /// Blade stiffeners under the plate (0.15 × 0.5 in CBARs of the skin's G11,
+        /// offset to its back face), equally spaced along x under grid rows.
+        #[arg(long, default_value_t = 0)]
+        stiffeners: usize,
         /// Where to write the deck [default: stdout].
         #[arg(long)]
         out: Option<PathBuf>,

@@ -35,9 +35,68 @@ pub enum MeshError {
     /// A generated plate deck without the PSHELL a variant replaces.
     #[error("the generated plate deck has no {0}")]
     NoPshell(String),
+    /// Stiffeners that do not fit the mesh.
+    #[error("{0}")]
+    Stiffeners(String),
     /// The generated deck's model could not be built.
     #[error("{0}")]
     Load(#[from] crate::model::LoadError),
+}
+
+/// Blade stiffeners under a square plate: `count` CBARs lines along x, each under the
+/// grid row nearest to y = side·(k/(count + 1) − ½), k = 1..count (equally spaced,
+/// edge to edge), on the plate's back face (+z, away from the impactor, which comes
+/// from −z): each bar's axis (its section's centroid) offset by WA = WB =
+/// (0, 0, T/2 + height/2) from the skin's grids, plane 1 the x-z plane, a PBARL BAR of
+/// `width` × `height` of an isotropic material.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Stiffeners {
+    /// Number of stiffeners.
+    pub count: usize,
+    /// Blade thickness (across, along y).
+    pub width: f64,
+    /// Blade height (along z).
+    pub height: f64,
+    /// Young's modulus.
+    pub e: f64,
+    /// Poisson's ratio.
+    pub nu: f64,
+    /// Mass density.
+    pub rho: f64,
+}
+
+impl Stiffeners {
+    /// `count` blades of the paper's plate's thickness (0.15 in) and 0.5 in high, of an
+    /// isotropic material with the skin's membrane modulus G11 (4.3e6 psi) and density
+    /// (1.8e-4 lbf·s²/in⁴): blades of the skin's material, laid along their length.
+    pub fn blade(count: usize) -> Self {
+        Stiffeners {
+            count,
+            width: 0.15,
+            height: 0.5,
+            e: 4.3e6,
+            nu: 0.3,
+            rho: 1.8e-4,
+        }
+    }
+
+    /// The grid rows (1-based) the stiffeners run under, on an N×N plate mesh.
+    pub fn rows(&self, m: &PlateMesh) -> Vec<usize> {
+        (1..=self.count)
+            .map(|k| {
+                let y = k as f64 / (self.count + 1) as f64 - 0.5; // in plate sides
+                                                                  // Row r is at (r − (N+2)/2)/N sides.
+                (y * m.n as f64 + (m.n as f64 + 2.0) / 2.0).round() as usize
+            })
+            .collect()
+    }
+}
+
+/// The first element id of the stiffeners' CBARs on a mesh: 2·base², above every
+/// shell and grid id and the indentation's EPOINT (base² + 1).
+pub fn stiffener_ids(m: &PlateMesh) -> usize {
+    2 * m.base * m.base
 }
 
 /// What a generated square is laid on.
@@ -106,6 +165,64 @@ impl PlateMesh {
     /// centred on the origin: (k − (N+2)/2)·side/N.
     fn coord(&self, k: usize, side: f64) -> f64 {
         (k as f64 - (self.n as f64 + 2.0) / 2.0) * side / self.n as f64
+    }
+
+    /// The stiffeners' cards (MAT1 401, PBARL 401, and one CBAR per element length
+    /// along each stiffened row: id [`stiffener_ids`] + base·row + col) under a plate
+    /// of `thickness` (see [`Stiffeners`]).
+    pub fn write_stiffeners(&self, w: &mut String, thickness: f64, s: &Stiffeners) -> Result<(), MeshError> {
+        let rows = s.rows(self);
+        let ok = |x: f64| x.is_finite() && x > 0.0;
+        if !(ok(s.width) && ok(s.height) && ok(s.e) && s.rho >= 0.0 && s.nu > -1.0 && s.nu < 0.5) {
+            return Err(MeshError::Stiffeners(format!(
+                "a stiffener needs a positive width, height and E, ρ ≥ 0 and −1 < ν < 0.5, not {s:?}"
+            )));
+        }
+        let mut distinct = rows.clone();
+        distinct.dedup();
+        if s.count > 0 && (distinct.len() != rows.len() || rows[0] < 2 || rows[rows.len() - 1] > self.n) {
+            return Err(MeshError::Stiffeners(format!(
+                "{} stiffeners do not fit a {}×{} mesh: each needs its own interior grid row",
+                s.count, self.n, self.n
+            )));
+        }
+        if s.count == 0 {
+            return Ok(());
+        }
+        let z = format_real(0.5 * thickness + 0.5 * s.height);
+        let _ = writeln!(
+            w,
+            "$ Stiffeners: {} blades {} x {} under grid rows {} (offset {z} to the back face)",
+            s.count,
+            format_real(s.width),
+            format_real(s.height),
+            rows.iter().map(|r| r.to_string()).collect::<Vec<_>>().join(", ")
+        );
+        let _ = writeln!(
+            w,
+            "MAT1,401,{},,{},{}",
+            format_real(s.e),
+            format_real(s.nu),
+            format_real(s.rho)
+        );
+        let _ = writeln!(
+            w,
+            "PBARL,401,401,,BAR\n,{},{}",
+            format_real(s.width),
+            format_real(s.height)
+        );
+        let first = stiffener_ids(self);
+        for &r in &rows {
+            for c in 1..=self.n {
+                let (a, b) = (self.grid(r, c), self.grid(r, c + 1));
+                let _ = writeln!(
+                    w,
+                    "CBAR,{},401,{a},{b},0.0,0.0,1.0\n,,,0.0,0.0,{z},0.0,0.0,{z}",
+                    first + self.base * r + c
+                );
+            }
+        }
+        Ok(())
     }
 
     /// The four corners of the centre element, which the impactor loads.
@@ -270,7 +387,13 @@ pub fn plate_deck(n: usize) -> Result<String, MeshError> {
 /// The paper's plate deck on an N×N mesh with its edges held as `edges` says, meshed
 /// in `cells`.
 pub fn plate_deck_with(n: usize, edges: Edges, cells: Cells) -> Result<String, MeshError> {
-    surface_deck(n, edges, cells, Surface::Flat)
+    surface_deck(n, edges, cells, Surface::Flat, None)
+}
+
+/// The paper's plate deck on an N×N mesh with blade stiffeners under it (see
+/// [`Stiffeners`]; none when their count is 0: [`plate_deck_with`]).
+pub fn stiffened_plate_deck(n: usize, cells: Cells, stiffeners: &Stiffeners) -> Result<String, MeshError> {
+    surface_deck(n, Edges::Clamped, cells, Surface::Flat, Some(stiffeners))
 }
 
 /// The paper's plate wrapped onto a cylinder of radius `radius` ([`Surface::Cylinder`])
@@ -283,11 +406,17 @@ pub fn panel_deck(n: usize, radius: f64, cells: Cells) -> Result<String, MeshErr
     if !(radius.is_finite() && radius > PLATE_SIDE / std::f64::consts::PI) {
         return Err(MeshError::Radius(radius));
     }
-    surface_deck(n, Edges::Clamped, cells, Surface::Cylinder { radius })
+    surface_deck(n, Edges::Clamped, cells, Surface::Cylinder { radius }, None)
 }
 
-/// The paper's plate deck laid on `surface`.
-fn surface_deck(n: usize, edges: Edges, cells: Cells, surface: Surface) -> Result<String, MeshError> {
+/// The paper's plate deck laid on `surface`, with stiffeners under it if given.
+fn surface_deck(
+    n: usize,
+    edges: Edges,
+    cells: Cells,
+    surface: Surface,
+    stiffeners: Option<&Stiffeners>,
+) -> Result<String, MeshError> {
     let m = PlateMesh::new(n)?;
     let (e, base) = (m.centre_element(), m.base);
     let contact = m.contact_grids();
@@ -303,8 +432,12 @@ fn surface_deck(n: usize, edges: Edges, cells: Cells, surface: Surface) -> Resul
         Cells::Quad4 => ("", "CQUAD4 id = lower-left grid"),
         Cells::Tria3 => (" --cells tria3", "CTRIA3 ids = 2*(lower-left grid) + 0, 1"),
     };
+    let stiffened = match stiffeners {
+        Some(s) if s.count > 0 => format!(" --stiffeners {}", s.count),
+        _ => String::new(),
+    };
     let command = match surface {
-        Surface::Flat => format!("plate --n {n}{option}"),
+        Surface::Flat => format!("plate --n {n}{option}{stiffened}"),
         Surface::Cylinder { radius } => format!("panel --n {n} --radius {}{option}", format_real(radius)),
     };
     let _ = writeln!(
@@ -347,7 +480,17 @@ fn surface_deck(n: usize, edges: Edges, cells: Cells, surface: Surface) -> Resul
         contact[0], contact[1], contact[2], contact[3]
     );
     let _ = writeln!(w, "  NLLOAD = 15\n  DISP = 15");
-    let _ = writeln!(w, "  SET 20 = {e},{ga},{gb}\n  STRESS = 20");
+    // The stiffener nearest the centre: its bar at the centre column.
+    let bar = stiffeners
+        .filter(|s| s.count > 0)
+        .map(|s| {
+            let rows = s.rows(&m);
+            let c = n.div_ceil(2);
+            let r = rows[(rows.len() - 1) / 2];
+            format!(",{}", stiffener_ids(&m) + m.base * r + c)
+        })
+        .unwrap_or_default();
+    let _ = writeln!(w, "  SET 20 = {e},{ga},{gb}{bar}\n  STRESS = 20");
     let _ = writeln!(w, "BEGIN BULK");
     let ep = m.indentation_point();
     let _ = writeln!(w, "EPOINT,{ep}\nGRID,999,,0.0,0.0,-0.1875");
@@ -356,6 +499,9 @@ fn surface_deck(n: usize, edges: Edges, cells: Cells, surface: Surface) -> Resul
         "CONM2,200,999,0,8.096-5,0.0,0.0,0.0,,+CON2-2\n+CON2-2,7.459-6,,7.459-6,,,1.423-6"
     );
     m.write_surface(w, PLATE_SIDE, surface, cells);
+    if let Some(s) = stiffeners {
+        m.write_stiffeners(w, 0.15, s)?;
+    }
     let _ = writeln!(w, "{PAPER_PSHELL}");
     let _ = writeln!(
         w,

@@ -97,6 +97,62 @@ fn panel_study_page_and_figures_are_current() {
     assert_svgs_current(&figs, &dir);
 }
 
+/// Goal: `reports/stiffened/README.md` and its figure are what `impactlab study
+/// stiffened` makes from the committed CSVs, which hold the three strikes on each of
+/// the study's meshes and a threshold search for each strike on the paper's mesh.
+#[test]
+fn stiffened_study_page_and_figure_are_current() {
+    use impactlab::study::stiffened::{self, Struck};
+    let dir = root().join("reports/stiffened");
+    let read = |f: &str| std::fs::read(dir.join(f)).unwrap();
+    let (rows_csv, hist_csv, thr_csv) = (
+        read("stiffened-study.csv"),
+        read("stiffened-histories.csv"),
+        read("stiffened-thresholds.csv"),
+    );
+    let rows: Vec<stiffened::StiffenedRow> = stiffened::read_csv(&rows_csv).unwrap();
+    let samples: Vec<stiffened::StiffenedSample> = stiffened::read_csv(&hist_csv).unwrap();
+    let thresholds: Vec<stiffened::ThresholdRow> = stiffened::read_csv(&thr_csv).unwrap();
+    let expected: Vec<(usize, Struck)> = stiffened::MESHES
+        .iter()
+        .flat_map(|&n| Struck::ALL.map(|s| (n, s)))
+        .collect();
+    assert_eq!(
+        rows.iter().map(|r| (r.n, r.struck)).collect::<Vec<_>>(),
+        expected,
+        "the study's runs"
+    );
+    assert_eq!(
+        thresholds.iter().map(|t| (t.n, t.struck)).collect::<Vec<_>>(),
+        Struck::ALL.map(|s| (49, s)).to_vec(),
+        "the threshold searches"
+    );
+    assert_eq!(
+        stiffened::csv(&rows),
+        rows_csv,
+        "stiffened-study.csv reads back to itself"
+    );
+    assert_eq!(
+        stiffened::csv(&samples),
+        hist_csv,
+        "stiffened-histories.csv reads back to itself"
+    );
+    assert_eq!(
+        stiffened::csv(&thresholds),
+        thr_csv,
+        "stiffened-thresholds.csv reads back to itself"
+    );
+    assert_eq!(
+        stiffened::readme(&rows, &thresholds),
+        std::fs::read_to_string(dir.join("README.md")).unwrap(),
+        "reports/stiffened/README.md is stale: `impactlab study stiffened --redraw`"
+    );
+    let tmp = tempfile::tempdir().unwrap();
+    let figs = stiffened::figures(&samples, tmp.path()).unwrap();
+    assert_eq!(figs.len(), 2, "one figure, PNG and SVG");
+    assert_svgs_current(&figs, &dir);
+}
+
 /// Goal: `reports/mutants/README.md` is what `impactlab study mutants` makes from the
 /// committed `campaign.toml` and runs' CSVs (which refuses a survivor without a verdict
 /// that holds), and every run the campaign names has its CSV.

@@ -360,6 +360,8 @@ fn threshold(a: SweepArgs) -> Result<u8, Error> {
         "direct_check": t.direct_check,
         "direct_check_max": impactlab::study::sweep::DIRECT_CHECK_MAX,
         "evaluations": t.evaluations,
+        "search_engine": if t.direct_reason.is_some() { "direct" } else { "convolution" },
+        "direct_reason": t.direct_reason,
         "kernel_pass_s": t.times_s[0],
         "search_s": t.times_s[1],
         "direct_checks_s": t.times_s[2],
@@ -369,8 +371,19 @@ fn threshold(a: SweepArgs) -> Result<u8, Error> {
     let u = &model.units;
     sayln(&format!("{}: {}", model.name, t.target));
     sayln(&format!(
-        "  threshold speed {:.7e} {}/{} (bracket {:.7e}..{:.7e}, {} runs on the convolution engine)",
-        t.velocity, u.length, u.time, t.bracket[0], t.bracket[1], t.evaluations
+        "  threshold speed {:.7e} {}/{} (bracket {:.7e}..{:.7e}, {} runs on the {} engine{})",
+        t.velocity,
+        u.length,
+        u.time,
+        t.bracket[0],
+        t.bracket[1],
+        t.evaluations,
+        if t.direct_reason.is_some() {
+            "direct"
+        } else {
+            "convolution"
+        },
+        t.direct_reason.as_ref().map_or(String::new(), |why| format!(": {why}"))
     ));
     sayln(&format!(
         "  impact energy ½mv² = {:.6e} {}{}",
@@ -528,8 +541,22 @@ fn check_text(r: &impactlab::model::check::CheckReport) -> String {
 /// `impactlab mesh plate|panel`: a generated deck.
 pub fn mesh(what: MeshKind) -> Result<u8, Error> {
     let (text, out) = match what {
-        MeshKind::Plate { n, cells, out } => (
+        MeshKind::Plate {
+            n,
+            cells,
+            stiffeners: 0,
+            out,
+        } => (
             impactlab::mesh::plate_deck_with(n, impactlab::mesh::Edges::Clamped, cells)?,
+            out,
+        ),
+        MeshKind::Plate {
+            n,
+            cells,
+            stiffeners,
+            out,
+        } => (
+            impactlab::mesh::stiffened_plate_deck(n, cells, &impactlab::mesh::Stiffeners::blade(stiffeners))?,
             out,
         ),
         MeshKind::Panel { n, radius, cells, out } => (impactlab::mesh::panel_deck(n, radius, cells)?, out),
@@ -580,6 +607,19 @@ pub fn study(what: StudyKind) -> Result<u8, Error> {
             let (rows, samples) = panel::run(&n, &panel::options(progress("panel study".into())))?;
             panel::write(&out, &rows, &samples)?;
             say(&String::from_utf8_lossy(&panel::csv(&rows)));
+            sayln(&format!("outputs: {}", out.display()));
+        }
+        StudyKind::Stiffened { out, redraw: true, .. } => {
+            impactlab::study::stiffened::redraw(&out)?;
+            sayln(&format!("redrawn from its CSVs: {}", out.display()));
+        }
+        StudyKind::Stiffened { n, out, .. } => {
+            use impactlab::study::stiffened;
+            let (rows, samples, thresholds) =
+                stiffened::run(&n, &stiffened::options(progress("stiffened plate study".into())))?;
+            stiffened::write(&out, &rows, &samples, &thresholds)?;
+            say(&String::from_utf8_lossy(&stiffened::csv(&rows)));
+            say(&String::from_utf8_lossy(&stiffened::csv(&thresholds)));
             sayln(&format!("outputs: {}", out.display()));
         }
         StudyKind::Mutants { from, run, out } => {

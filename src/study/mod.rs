@@ -6,6 +6,7 @@
 pub mod cases;
 pub mod mesh;
 pub mod panel;
+pub mod stiffened;
 
 use crate::run::{Column, RunResult};
 use serde::{de::DeserializeOwned, Serialize};
@@ -45,6 +46,9 @@ pub enum StudyError {
     /// A figure could not be drawn.
     #[error("{0}")]
     Plot(#[from] crate::plot::PlotError),
+    /// A scene could not be made into a model.
+    #[error("{0}")]
+    Scene(#[from] crate::scene::SceneError),
     /// The mutation campaign's page could not be made.
     #[error("{0}")]
     Mutants(#[from] mutants::MutantsError),

@@ -14,7 +14,9 @@
 //! finds. From the deck's speed the
 //! bracket is found by halving or doubling, then bisected until its width is below
 //! 1e-6 of v_hi: each evaluation is one run on the convolution engine (the kernels are
-//! computed once), so the whole search costs about one direct run. Both ends of the
+//! computed once), so the whole search costs about one direct run. A model the
+//! convolution engine cannot run (its mass matrix not lumped: offset beams or
+//! masses) is searched on the direct engine instead, a full run per evaluation. Both ends of the
 //! final bracket are then run on the direct engine, which must agree with the
 //! convolution engine to [`super::sweep::DIRECT_CHECK_MAX`] and put the target (force or index)
 //! between them.
@@ -116,8 +118,13 @@ pub struct Threshold {
     pub direct_values: [f64; 2],
     /// The engines' largest difference at the two ends, relative to each quantity's peak.
     pub direct_check: f64,
-    /// Runs on the convolution engine.
+    /// Runs of the search (on the convolution engine, or on the direct engine when
+    /// `direct_reason` says why the convolution engine cannot run the model).
     pub evaluations: usize,
+    /// Why the search ran on the direct engine; `None`: it ran on the convolution
+    /// engine, and `direct_check` compares the two at the bracket's ends (0 when the
+    /// search itself was direct).
+    pub direct_reason: Option<String>,
     /// Seconds: kernel pass, search, direct checks.
     pub times_s: [f64; 3],
 }
@@ -159,14 +166,20 @@ pub fn find_velocity(base: &Model, run: &RunOptions, until: Until, bar: &Progres
     let (model, sys) = (prepared.model.as_ref(), &prepared.system);
     let dt = run.dt.unwrap_or(model.time.dt);
     let steps = run.steps.unwrap_or(model.time.steps);
-    let (kernels, _) = Kernels::for_run(
+    // A model the convolution engine cannot run (a mass matrix that is not lumped:
+    // offset beams or masses) is searched on the direct engine, run by run.
+    let (kernels, direct_reason) = match Kernels::for_run(
         model,
         sys,
         dt,
         steps,
         run.kernel_cache.as_deref(),
         &ProgressBar::hidden(),
-    )?;
+    ) {
+        Ok((k, _)) => (Some(k), None),
+        Err(RunError::Engine(why)) => (None, Some(why)),
+        Err(e) => return Err(e.into()),
+    };
     let pass_s = t0.elapsed().as_secs_f64();
     let t1 = std::time::Instant::now();
     let point = |v: f64| {
@@ -183,7 +196,11 @@ pub fn find_velocity(base: &Model, run: &RunOptions, until: Until, bar: &Progres
     let mut peak = |v: f64| -> Result<f64, StudyError> {
         evaluations += 1;
         bar.inc(1);
-        until.measure(&guarded(kernels.run(&point(v)?, &conv_opts, &ProgressBar::hidden()))?)
+        let m = point(v)?;
+        until.measure(&guarded(match &kernels {
+            Some(k) => k.run(&m, &conv_opts, &ProgressBar::hidden()),
+            None => run_model(&m, &direct_opts),
+        })?)
     };
     let reached = |f: f64| f >= target_value;
     let (mut lo, mut hi) = (v_deck, v_deck);
@@ -229,8 +246,10 @@ pub fn find_velocity(base: &Model, run: &RunOptions, until: Until, bar: &Progres
     for (k, v) in [lo, hi].into_iter().enumerate() {
         let m = point(v)?;
         let direct = guarded(run_model(&m, &direct_opts))?;
-        let conv = guarded(kernels.run(&m, &conv_opts, &ProgressBar::hidden()))?;
-        direct_check = direct_check.max(engine_difference(&direct, &conv).map_or(f64::INFINITY, |w| w.0));
+        if let Some(kernels) = &kernels {
+            let conv = guarded(kernels.run(&m, &conv_opts, &ProgressBar::hidden()))?;
+            direct_check = direct_check.max(engine_difference(&direct, &conv).map_or(f64::INFINITY, |w| w.0));
+        }
         direct_values[k] = until.measure(&direct)?;
     }
     if direct_check > DIRECT_CHECK_MAX || reached(direct_values[0]) || !reached(direct_values[1]) {
@@ -251,6 +270,7 @@ pub fn find_velocity(base: &Model, run: &RunOptions, until: Until, bar: &Progres
         direct_values,
         direct_check,
         evaluations,
+        direct_reason,
         times_s: [pass_s, search_s, t2.elapsed().as_secs_f64()],
     })
 }
