@@ -180,6 +180,29 @@ def box_constants(b, h, t1, t2):
 ES, TS, ZO, FS = 1.0e7, 0.2, 0.3, 100.0
 
 
+def shell_offset_twin():
+    # The strip of shell_offset() modelled without ZOFFS: its shells on grids 0.3 above,
+    # each tied back to the grid below it by an RBE2 (NASTRAN's offset is that rigid
+    # link), the clamp and the load on the grids below.
+    bulk = [f"MAT1,2,{ES!r},,0.0,{RHO!r}", f"PSHELL,1,2,{TS!r},2"]
+    for k in range(N + 1):
+        x = L * k / N
+        bulk += [f"GRID,{100 + k},,{x!r},0.0,0.0", f"GRID,{200 + k},,{x!r},1.0,0.0",
+                 f"GRID,{300 + k},,{x!r},0.0,{ZO!r}", f"GRID,{400 + k},,{x!r},1.0,{ZO!r}",
+                 f"RBE2,{500 + k},{100 + k},123456,{300 + k}", f"RBE2,{600 + k},{200 + k},123456,{400 + k}"]
+    bulk += [f"CQUAD4,{k + 1},1,{300 + k},{301 + k},{401 + k},{400 + k}" for k in range(N)]
+    bulk += ["SPC1,1,123456,100,200", f"FORCE,1,{100 + N},,{FS / 2!r},1.0,0.0,0.0",
+             f"FORCE,1,{200 + N},,{FS / 2!r},1.0,0.0,0.0"]
+    write(
+        "shell-offset-twin",
+        [
+            f"The strip of shell-offset.bdf without ZOFFS: its CQUAD4s on grids {ZO} above, each tied to the grid",
+            "below by an RBE2; clamped and pulled at the grids below, as the offset strip.",
+        ],
+        bulk,
+    )
+
+
 def shell_offset(turn=0.0):
     # A strip of 4 x 1 CQUAD4 (length 10, width 1, t = 0.2, NU = 0) with ZOFFS = +0.3 (its
     # reference plane above its grids), clamped at x = 0, pulled along x at the tip grids
@@ -237,6 +260,7 @@ os.makedirs(OUT, exist_ok=True)
 rigid_link()
 shell_offset()
 shell_offset(30.0)
+shell_offset_twin()
 cantilever()
 turned()
 offset()
