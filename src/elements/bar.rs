@@ -319,32 +319,37 @@ impl Kernel for Bar {
     }
 }
 
+/// A section with every constant distinct (I12 too) and a mass, for tests.
+#[cfg(test)]
+pub(crate) fn sample_section() -> BarSection {
+    BarSection {
+        e: 1.0e7,
+        g: 3.8e6,
+        area: 0.6,
+        i1: 0.08,
+        i2: 0.03,
+        i12: 0.01,
+        j: 0.02,
+        rho: 2.5e-4,
+        nsm: 1e-5,
+        points: [[0.5, 0.3], [-0.5, 0.3], [-0.5, -0.3], [0.5, -0.3]],
+        torsional_inertia: 0.0,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn section() -> BarSection {
-        BarSection {
-            e: 1.0e7,
-            g: 3.8e6,
-            area: 0.6,
-            i1: 0.08,
-            i2: 0.03,
-            i12: 0.01,
-            j: 0.02,
-            rho: 2.5e-4,
-            nsm: 1e-5,
-            points: [[0.5, 0.3], [-0.5, 0.3], [-0.5, -0.3], [0.5, -0.3]],
-            torsional_inertia: 0.0,
-        }
-    }
 
     fn bar(released: [u8; 2]) -> Result<Bar, BadShape> {
         Bar::build(
             &[[0.0; 3], [2.5, 0.0, 0.0]],
             BarSpec {
                 card: "CBAR",
-                section: BarSection { i12: 0.0, ..section() },
+                section: BarSection {
+                    i12: 0.0,
+                    ..sample_section()
+                },
                 released,
             },
         )
@@ -383,7 +388,7 @@ mod tests {
                 &[[0.0; 3], [2.5, 0.0, 0.0]],
                 BarSpec {
                     card: "CBAR",
-                    section: section(),
+                    section: sample_section(),
                     released,
                 },
             )

@@ -760,17 +760,8 @@ mod tests {
                     bar::BarSpec {
                         card: "CBAR",
                         section: bar::BarSection {
-                            e: 1.0e7,
-                            g: 3.8e6,
-                            area: 0.6,
-                            i1: 0.08,
-                            i2: 0.03,
-                            i12: 0.01,
-                            j: 0.02,
-                            rho: 2.5e-4,
-                            nsm: 0.0,
-                            points: [[0.5, 0.3], [-0.5, 0.3], [-0.5, -0.3], [0.5, -0.3]],
                             torsional_inertia: 2.75e-5,
+                            ..bar::sample_section()
                         },
                         released: [0, 0b100000],
                     },

@@ -144,7 +144,7 @@ impl Rect {
 }
 
 /// Why a section's dimensions make no section: the rest of the sentence after
-/// "PBARL <pid> <TYPE>".
+/// `PBARL <pid> <TYPE>`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BadSection(pub String);
 
