@@ -879,8 +879,12 @@ impl<'a> Reader<'a> {
 
     /// Reads ids from field k on, with `THRU` ranges.
     fn id_list(&mut self, from: usize, name: &str) -> Vec<i64> {
+        self.id_list_in(from, self.card.fields.len(), name)
+    }
+
+    /// Reads ids from field `from` up to (not including) field `n`, with `THRU` ranges.
+    fn id_list_in(&mut self, from: usize, n: usize, name: &str) -> Vec<i64> {
         let mut out = Vec::new();
-        let n = self.card.fields.len();
         let mut k = from;
         while k < n {
             let t = self.text(k);
@@ -2052,45 +2056,11 @@ fn card_rbe2(r: &mut Reader, b: &mut Bulk) {
             "names no component: an RBE2 makes components of its GMi dependent",
         );
     }
-    // ALPHA: a real in the last written field.
-    let last = (3..r.card.fields.len()).rev().find(|&k| !r.text(k).is_empty());
+    // ALPHA: a real in the last written field; the grids come before it.
+    let n = r.card.fields.len();
+    let last = (3..n).rev().find(|&k| !r.text(k).is_empty());
     let alpha = last.filter(|&k| matches!(parse_real(r.text(k)), Some(RealToken::Real(_))));
-    let mut gm = Vec::new();
-    let mut k = 3;
-    while let Some(end) = last {
-        if k > end || Some(k) == alpha {
-            break;
-        }
-        let t = r.text(k);
-        if t.is_empty() {
-            k += 1;
-            continue;
-        }
-        if t.eq_ignore_ascii_case("THRU") {
-            let (Some(&a), bound) = (gm.last(), r.id(k + 1, "GM")) else {
-                r.fail(k, "GM", "THRU has no start id before it");
-                break;
-            };
-            if r.ok && bound < a {
-                r.fail(
-                    k + 1,
-                    "GM",
-                    format!("ends a THRU range that is reversed ({a} THRU {bound})"),
-                );
-            }
-            if r.ok {
-                if let Err(e) = super::take_ids(r.ids_left, (bound - a) as u128) {
-                    r.fail(k + 1, "GM", e);
-                } else {
-                    gm.extend(a + 1..=bound);
-                }
-            }
-            k += 2;
-            continue;
-        }
-        gm.push(r.id(k, "GM"));
-        k += 1;
-    }
+    let gm = r.id_list_in(3, alpha.unwrap_or(n), "GM");
     if r.ok && gm.is_empty() {
         r.fail(3, "GM1", "names no dependent grid");
     }

@@ -668,6 +668,23 @@ impl Element {
         self.kernel.strain_energy(&ue[..n])
     }
 
+    /// Kinetic energy ½ vᵀ M_e v at the velocities `v` of the solved DOFs (its mass
+    /// matrices as they act on its grids' DOFs; unsolved DOFs at rest).
+    pub fn kinetic_energy(&self, v: &[f64]) -> f64 {
+        let mut ke = 0.0;
+        for l in self.mass() {
+            let at: Vec<Option<usize>> = l.at.iter().map(|&(g, c)| self.dofs[g][c]).collect();
+            for (a, ia) in at.iter().enumerate() {
+                for (b, ib) in at.iter().enumerate() {
+                    if let (Some(i), Some(j)) = (ia, ib) {
+                        ke += 0.5 * v[*i] * l.values[(a, b)] * v[*j];
+                    }
+                }
+            }
+        }
+        ke
+    }
+
     /// Recovered values at `u` (see [`Kernel::recover`]).
     pub fn recover(&self, u: &[f64], stress: bool) -> Vec<f64> {
         let (ue, n) = self.gather(u);

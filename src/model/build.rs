@@ -205,11 +205,10 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
     for d in geo_errors {
         cx.err(d);
     }
-    let mut constrained = constrained_grids(&mut cx, deck, &sel);
-    let rigid = rigid_elements(&mut cx, deck, &geo, &sel, &mut constrained);
+    let constrained = constrained_grids(&mut cx, deck, &sel);
+    let rigid = rigid_elements(&mut cx, deck, &geo, &sel);
     let tf_of = transfer_functions(&mut cx, &sel, deck);
-    let mut num = number_dofs(deck, &constrained, &tf_of);
-    num.ties = rigid.ties.iter().map(|(&m, t)| (m, t.gn)).collect();
+    let num = number_dofs(deck, &constrained, &tf_of, &rigid);
     let mut dependent = dependent_points(&mut cx, &tf_of, &num);
     let elements = build_elements(&mut cx, deck, &num, &geo, &rigid);
     let tied = tied_points(&rigid, &num, &mut dependent);
@@ -320,10 +319,9 @@ pub fn build_structure(deck: &Deck) -> Result<(Structure, Vec<Diagnostic>), Mode
         tics: Vec::new(),
         tsteps: Vec::new(),
     };
-    let mut constrained = constrained_grids(&mut cx, deck, &sel);
-    let rigid = rigid_elements(&mut cx, deck, &geometry, &sel, &mut constrained);
-    let mut num = number_dofs(deck, &constrained, &BTreeMap::new());
-    num.ties = rigid.ties.iter().map(|(&m, t)| (m, t.gn)).collect();
+    let constrained = constrained_grids(&mut cx, deck, &sel);
+    let rigid = rigid_elements(&mut cx, deck, &geometry, &sel);
+    let num = number_dofs(deck, &constrained, &BTreeMap::new(), &rigid);
     let elements = build_elements(&mut cx, deck, &num, &geometry, &rigid);
     let grid_dofs = num.dofs.iter().filter(|d| d.comp != 0).count();
     let structure = Structure {
@@ -494,18 +492,19 @@ fn constrained_grids(cx: &mut Ctx, deck: &Deck, sel: &Selected) -> HashMap<i64, 
     constrained
 }
 
-/// The numbering of the solved DOFs: grid components in id order, then the scalar
-/// points no TF defines.
+/// The numbering of the solved DOFs: the components of each grid no RBE2 makes
+/// dependent, in id order, then the scalar points no TF defines.
 fn number_dofs<'d>(
     deck: &'d Deck,
     constrained: &HashMap<i64, u8>,
     tf_of: &BTreeMap<i64, &crate::deck::cards::Tf>,
+    rigid: &crate::model::rigid::Rigid,
 ) -> Numbering<'d> {
     let grids: BTreeMap<i64, &crate::deck::cards::Grid> = deck.bulk.grids.iter().map(|g| (g.id, g)).collect();
     let scalar = scalar_points(deck);
     let mut dofs = Vec::new();
     let mut index: HashMap<DofLabel, usize> = HashMap::new();
-    for &id in grids.keys() {
+    for &id in grids.keys().filter(|g| !rigid.ties.contains_key(g)) {
         let c = constrained[&id];
         for comp in 1..=6u8 {
             if c & (1 << (comp - 1)) == 0 {
@@ -527,49 +526,40 @@ fn number_dofs<'d>(
         scalar,
         dofs,
         index,
-        ties: BTreeMap::new(),
+        ties: rigid.ties.iter().map(|(&m, t)| (m, t.gn)).collect(),
     }
 }
 
-/// The RBE2s resolved, their dependent grids' DOFs left out of the solved ones: an SPC
-/// on a dependent DOF is an error naming both cards; a PS (GRID or GRDSET) on it
-/// yields to the tie, with a warning when the independent grid is not held alike.
-fn rigid_elements(
-    cx: &mut Ctx,
-    deck: &Deck,
-    geo: &Geometry,
-    sel: &Selected,
-    constrained: &mut HashMap<i64, u8>,
-) -> crate::model::rigid::Rigid {
+/// The RBE2s resolved (their dependent grids are left out of the solved DOFs by
+/// [`number_dofs`]): an SPC on a dependent DOF is an error naming both cards; a PS
+/// (GRID or GRDSET) on it yields to the tie, with a warning when the independent grid
+/// is not held alike.
+fn rigid_elements(cx: &mut Ctx, deck: &Deck, geo: &Geometry, sel: &Selected) -> crate::model::rigid::Rigid {
     let mut errors = Vec::new();
     let rigid = crate::model::rigid::resolve(&deck.bulk, geo, &mut errors);
     for d in errors {
         cx.err(d);
     }
-    let b = &deck.bulk;
-    for (gm, t) in &rigid.ties {
-        for s in sel.spcs.iter().filter(|s| s.grids.contains(gm)) {
+    for s in &sel.spcs {
+        for (gm, t) in s.grids.iter().filter_map(|g| Some((g, rigid.ties.get(g)?))) {
             cx.err(s.at.error(format!(
                 "SPC1 constrains grid {gm}, which the RBE2 at {} makes dependent: constrain its independent grid \
                  {} instead",
                 t.at.pos, t.gn
             )));
         }
-        let ps = |g: i64| {
-            b.grids
-                .iter()
-                .find(|x| x.id == g)
-                .map_or(0, |x| x.ps.unwrap_or(b.grdset.ps).0)
-        };
-        let (own, theirs) = (ps(*gm), ps(t.gn));
-        if own & !theirs != 0 {
+    }
+    let b = &deck.bulk;
+    let ps: HashMap<i64, u8> = b.grids.iter().map(|g| (g.id, g.ps.unwrap_or(b.grdset.ps).0)).collect();
+    for (gm, t) in &rigid.ties {
+        let held = |g: &i64| ps.get(g).copied().unwrap_or(0);
+        if held(gm) & !held(&t.gn) != 0 {
             cx.warn(t.at.warning(format!(
                 "grid {gm}'s PS holds components its independent grid {} does not: the RBE2 ties them to grid \
                  {}'s motion instead",
                 t.gn, t.gn
             )));
         }
-        constrained.insert(*gm, 0b111111);
     }
     rigid
 }
@@ -676,10 +666,17 @@ fn tied_points(rigid: &crate::model::rigid::Rigid, num: &Numbering, dependent: &
 /// shell in the basic XY plane), needed only when one of its grids is displaced in
 /// another frame.
 fn frames_only(grids: &[i64], geo: &Geometry, points: &[[f64; 3]]) -> Option<Placement> {
-    grids.iter().any(|g| geo.frames.contains_key(g)).then(|| Placement {
+    offset_in_basic(grids, geo, points, [0.0; 3])
+}
+
+/// [`frames_only`] with the kernel's corners at the grids moved by `offset` (basic),
+/// tied to them rigidly: needed when a grid is displaced in another frame or the
+/// offset is not zero.
+fn offset_in_basic(grids: &[i64], geo: &Geometry, points: &[[f64; 3]], offset: [f64; 3]) -> Option<Placement> {
+    (offset != [0.0; 3] || grids.iter().any(|g| geo.frames.contains_key(g))).then(|| Placement {
         turn: grids
             .iter()
-            .map(|&g| Placement::turn_of(&Matrix3::identity(), &geo.frame(g), [0.0; 3]))
+            .map(|&g| Placement::turn_of(&Matrix3::identity(), &geo.frame(g), offset))
             .collect(),
         points: points.to_vec(),
     })
@@ -908,22 +905,10 @@ struct PlacedShell {
 /// its own frame ([`crate::geometry::shell_frame`]). The material x axis is the G1→G2
 /// side turned by THETA, or the x axis of system MCID projected onto the element.
 fn place_shell(cx: &mut Ctx, c: &Connection, xyz: &[[f64; 3]], geo: &Geometry) -> Option<PlacedShell> {
-    let (frame, corners, placement) = if in_basic_xy(xyz) && c.zoffs == 0.0 {
-        (Matrix3::identity(), xyz.to_vec(), frames_only(&c.g, geo, xyz))
-    } else if in_basic_xy(xyz) {
-        // Offset: the reference plane ZOFFS along +z, tied rigidly to the grids.
-        let turn =
-            c.g.iter()
-                .map(|&g| Placement::turn_of(&Matrix3::identity(), &geo.frame(g), [0.0, 0.0, c.zoffs]))
-                .collect();
-        (
-            Matrix3::identity(),
-            xyz.to_vec(),
-            Some(Placement {
-                turn,
-                points: xyz.to_vec(),
-            }),
-        )
+    let (frame, corners, placement) = if in_basic_xy(xyz) {
+        // The reference plane ZOFFS along +z.
+        let placement = offset_in_basic(&c.g, geo, xyz, [0.0, 0.0, c.zoffs]);
+        (Matrix3::identity(), xyz.to_vec(), placement)
     } else {
         let f = match crate::geometry::shell_frame(xyz) {
             Ok(f) => f,
@@ -1226,8 +1211,8 @@ fn point_masses(cx: &mut Ctx, deck: &Deck, num: &Numbering, geo: &Geometry, out:
             inertia: m.inertia,
         };
         let e = Element::new(m.eid, vec![m.g], vec![num.grid_dofs(m.g)], point);
-        let placed = if offset == Vector3::zeros() && m.cid <= 0 {
-            frames_only(&[m.g], geo, &[x])
+        let placed = if m.cid <= 0 {
+            offset_in_basic(&[m.g], geo, &[x], offset.into())
         } else {
             Some(Placement {
                 turn: vec![Placement::turn_of(&axes, &geo.frame(m.g), offset.into())],

@@ -494,12 +494,10 @@ pub fn readme(rows: &[MeshRow], samples: &[Sample]) -> String {
 
 /// Writes the study's CSVs, then its page and figures made from them as written.
 pub fn write(dir: &Path, rows: &[MeshRow], samples: &[Sample]) -> Result<(), StudyError> {
-    let (rows_csv, hist_csv) = (csv(rows), csv(samples));
-    crate::output::write_dir_atomically(dir, &[("mesh-study.csv", rows_csv), ("mesh-histories.csv", hist_csv)])
-        .map_err(|source| StudyError::Io {
-            path: dir.display().to_string(),
-            source,
-        })?;
+    super::write_data(
+        dir,
+        &[("mesh-study.csv", csv(rows)), ("mesh-histories.csv", csv(samples))],
+    )?;
     redraw(dir)
 }
 

@@ -94,6 +94,15 @@ pub fn read_rows_file<T: DeserializeOwned>(path: &Path) -> Result<Vec<T>, StudyE
     read_rows(&bytes).map_err(|e| io(std::io::Error::new(std::io::ErrorKind::InvalidData, e)))
 }
 
+/// Writes a study's data files as its output directory `dir`, atomically (the
+/// directory replaced whole); an error names the directory.
+pub fn write_data(dir: &Path, files: &[(&str, Vec<u8>)]) -> Result<(), StudyError> {
+    crate::output::write_dir_atomically(dir, files).map_err(|source| StudyError::Io {
+        path: dir.display().to_string(),
+        source,
+    })
+}
+
 /// Writes a generated page atomically; an error names the file.
 pub fn write_page(path: &Path, text: &str) -> Result<(), StudyError> {
     crate::output::write_file_atomically(path, text.as_bytes()).map_err(|source| StudyError::Io {

@@ -298,14 +298,10 @@ pub fn readme(rows: &[PanelRow]) -> String {
 
 /// Writes the study's CSVs, then its page and figures made from them as written.
 pub fn write(dir: &Path, rows: &[PanelRow], samples: &[PanelSample]) -> Result<(), StudyError> {
-    crate::output::write_dir_atomically(
+    super::write_data(
         dir,
         &[("panel-study.csv", csv(rows)), ("panel-histories.csv", csv(samples))],
-    )
-    .map_err(|source| StudyError::Io {
-        path: dir.display().to_string(),
-        source,
-    })?;
+    )?;
     redraw(dir)
 }
 

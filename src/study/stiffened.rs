@@ -197,18 +197,7 @@ fn parts(model: &crate::model::Model, u: &[f64], v: &[f64]) -> [f64; 4] {
             Family::Beam { .. } => 2,
             _ => continue,
         };
-        let mut ke = 0.0;
-        for l in e.mass() {
-            let at: Vec<Option<usize>> = l.at.iter().map(|&(g, c)| e.dofs[g][c]).collect();
-            for (a, ia) in at.iter().enumerate() {
-                for (b, ib) in at.iter().enumerate() {
-                    if let (Some(i), Some(j)) = (ia, ib) {
-                        ke += 0.5 * v[*i] * l.values[(a, b)] * v[*j];
-                    }
-                }
-            }
-        }
-        out[k] += ke;
+        out[k] += e.kinetic_energy(v);
         out[k + 1] += e.strain_energy(u);
     }
     out
@@ -434,18 +423,14 @@ pub fn write(
     samples: &[StiffenedSample],
     thresholds: &[ThresholdRow],
 ) -> Result<(), StudyError> {
-    crate::output::write_dir_atomically(
+    super::write_data(
         dir,
         &[
             ("stiffened-study.csv", csv(rows)),
             ("stiffened-histories.csv", csv(samples)),
             ("stiffened-thresholds.csv", csv(thresholds)),
         ],
-    )
-    .map_err(|source| StudyError::Io {
-        path: dir.display().to_string(),
-        source,
-    })?;
+    )?;
     redraw(dir)
 }
 
