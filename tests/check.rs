@@ -142,7 +142,7 @@ fn check_answers_for_a_structural_deck_as_pynastran_weighs_it() {
     }
 }
 
-/// Goal: `check` says no, and why, to a deck it does not take: an RBE3 (which would
+/// Goal: `check` says no, and why, to a deck it does not take: an RBAR (which would
 /// change the structure) is listed as not supported with its count and first line,
 /// and the exit code is 2; a property that does not exist is an error naming the
 /// card, exit 2, with the report of what was read.
@@ -151,15 +151,15 @@ fn check_refuses_what_it_cannot_take_and_names_it() {
     let dir = tempfile::tempdir().unwrap();
     let deck = structural_deck(true).replace(
         "ENDDATA",
-        "RBE3,77,,1,123456,1.0,123,2,3\nRBE3,78,,2,123456,1.0,123,3,4\nCHEXA,79,1,1,2,3,4,5,6,\n,7,8\nENDDATA",
+        "RBAR,77,1,2,123456\nRBAR,78,2,3,123456\nCHEXA,79,1,1,2,3,4,5,6,\n,7,8\nENDDATA",
     );
     let path = dir.path().join("rigid.bdf");
     std::fs::write(&path, &deck).unwrap();
     let o = impactlab(&["check", path.to_str().unwrap()]);
     let out = String::from_utf8_lossy(&o.stdout);
     assert_eq!(o.status.code(), Some(2), "{out}");
-    assert!(out.contains("not supported   RBE3 ×2 (first at "), "{out}");
-    assert!(out.contains("RBE3,77,,1,123456,1.0,123,2,3"), "{out}");
+    assert!(out.contains("not supported   RBAR ×2 (first at "), "{out}");
+    assert!(out.contains("RBAR,77,1,2,123456"), "{out}");
     assert!(out.contains("not supported   CHEXA ×1"), "{out}");
     assert!(
         out.contains("impactlab does not take this deck: 2 kind(s) of card"),

@@ -147,6 +147,26 @@ def hinge():
     )
 
 
+def hinge_twin():
+    # The hinge of hinge() made by a rigid element instead of a pin flag: the link's
+    # CBAR starts at grid 22, on grid 2, which an RBE2 ties to grid 2 in every
+    # component but R2 (CM = 12346), the rotation in plane 1 (about -y, the element's
+    # z). The same closed form.
+    bulk = [f"PBARL,1,1,,BAR\n,{B!r},{H!r}"]
+    bulk += ["GRID,1,,0.0,0.0,0.0", f"GRID,2,,{L1!r},0.0,0.0", f"GRID,22,,{L1!r},0.0,0.0",
+             f"GRID,3,,{L1 + L2!r},0.0,0.0"]
+    bulk += ["CBAR,1,1,1,2,0.0,0.0,1.0", "CBAR,2,1,22,3,0.0,0.0,1.0", "RBE2,9,2,12346,22"]
+    bulk += ["SPC1,1,123456,1", "SPC1,1,3,3", "FORCE,1,2,,10.0,0.0,0.0,1.0"]
+    write(
+        "hinge-rbe2",
+        [
+            "The hinge of hinge.bdf made by an RBE2 of some components: grid 22 on grid 2 follows it in all",
+            "but R2 (CM = 12346), the link's CBAR on 22 without a pin flag: w = F L1^3 / 3EI1.",
+        ],
+        bulk,
+    )
+
+
 LS = 20.0
 BOX = [2.0, 1.0, 0.1, 0.15]
 
@@ -265,6 +285,7 @@ cantilever()
 turned()
 offset()
 hinge()
+hinge_twin()
 for n in (8, 16, 32):
     ss_beam(n)
 print("cantilever tip: u", FX * L / (E * A), "v", FY * L**3 / (3 * E * I2), "w", FZ * L**3 / (3 * E * I1),

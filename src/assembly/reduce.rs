@@ -98,6 +98,12 @@ pub fn drop_inert(model: &Model, sys: &System) -> Option<(Model, System)> {
     }
     for e in std::sync::Arc::make_mut(&mut m.elements).iter_mut() {
         e.dofs.iter_mut().flatten().for_each(|d| *d = re_opt(*d));
+        if let Some(links) = &mut e.links {
+            // An inert DOF stays zero: its term drops out.
+            for terms in std::sync::Arc::make_mut(links).iter_mut().flatten() {
+                *terms = terms.iter().filter_map(|&(j, a)| Some((map[j]?, a))).collect();
+            }
+        }
     }
     if let Some(c) = &mut m.contact {
         c.driver = re_fun(&c.driver);

@@ -476,10 +476,21 @@ fn check_text(r: &impactlab::model::check::CheckReport) -> String {
             kinds.join(", ")
         }
     );
+    if !r.rigid.is_empty() {
+        let kinds: Vec<String> = r.rigid.iter().map(|(k, n)| format!("{k} {n}")).collect();
+        let _ = writeln!(s, "  rigid elements  {}", kinds.join(", "));
+    }
     let _ = writeln!(
         s,
-        "  DOFs            {} free, {} constrained; {} scalar points",
-        r.free_dofs, r.constrained_dofs, r.scalar_points
+        "  DOFs            {} free, {} constrained{}; {} scalar points",
+        r.free_dofs,
+        r.constrained_dofs,
+        if r.dependent_dofs > 0 {
+            format!(", {} dependent", r.dependent_dofs)
+        } else {
+            String::new()
+        },
+        r.scalar_points
     );
     if let Some(w) = &r.weight {
         let _ = writeln!(

@@ -470,6 +470,33 @@ pub struct Rbe2 {
     pub at: CardRef,
 }
 
+/// RBE3: an interpolation element; the components REFC of the reference grid move as
+/// the weighted least-squares rigid fit of the components Ci of its independent grids.
+#[derive(Debug, Clone)]
+pub struct Rbe3 {
+    /// Element id (field 2).
+    pub eid: i64,
+    /// The reference (dependent) grid, REFGRID (field 4).
+    pub refgrid: i64,
+    /// Its dependent components, REFC (field 5).
+    pub refc: Components,
+    /// The weighted groups of independent grids: WTi, Ci, Gi,j.
+    pub groups: Vec<Rbe3Group>,
+    /// The card.
+    pub at: CardRef,
+}
+
+/// One group of an RBE3: a weight, the components it applies to and its grids.
+#[derive(Debug, Clone)]
+pub struct Rbe3Group {
+    /// Weight WTi.
+    pub weight: f64,
+    /// Components Ci, in each grid's displacement frame.
+    pub c: Components,
+    /// Grids Gi,1, Gi,2, …
+    pub grids: Vec<i64>,
+}
+
 /// One term of a TF card's continuation: a coefficient polynomial on an input DOF.
 #[derive(Debug, Clone)]
 pub struct TfTerm {
@@ -651,6 +678,8 @@ pub struct Bulk {
     pub spcadds: Vec<SpcAdd>,
     /// RBE2 cards.
     pub rbe2s: Vec<Rbe2>,
+    /// RBE3 cards.
+    pub rbe3s: Vec<Rbe3>,
     /// TF cards.
     pub tfs: Vec<Tf>,
     /// TSTEP cards.
@@ -946,10 +975,11 @@ impl<'a> Reader<'a> {
 
 /// Cards the reader knows. `PARAM` is accepted and ignored with a warning.
 /// Element cards are those of [`crate::elements::KINDS`] besides these.
-pub const KNOWN_CARDS: [&str; 37] = [
+pub const KNOWN_CARDS: [&str; 38] = [
     "GRID", "GRDSET", "CORD1R", "CORD1C", "CORD1S", "CORD2R", "CORD2C", "CORD2S", "EPOINT", "SPOINT", "PROD", "PBAR",
-    "PBARL", "PBEAM", "PBEAML", "PSHELL", "PCOMP", "MAT1", "MAT2", "MAT8", "CONM2", "RBE2", "SPC1", "SPC", "SPCADD",
-    "TF", "TSTEP", "NOLIN3", "TIC", "FORCE", "MOMENT", "PLOAD4", "GRAV", "LOAD", "PARAM", "INCLUDE", "ENDDATA",
+    "PBARL", "PBEAM", "PBEAML", "PSHELL", "PCOMP", "MAT1", "MAT2", "MAT8", "CONM2", "RBE2", "RBE3", "SPC1", "SPC",
+    "SPCADD", "TF", "TSTEP", "NOLIN3", "TIC", "FORCE", "MOMENT", "PLOAD4", "GRAV", "LOAD", "PARAM", "INCLUDE",
+    "ENDDATA",
 ];
 
 /// Every card the reader types: the element cards of [`crate::elements::KINDS`], then
@@ -988,6 +1018,7 @@ pub fn type_cards(raw: &[RawCard], ids_left: &mut usize, diags: &mut Diagnostics
             "SPC" => card_spc(&mut r, &mut b),
             "SPCADD" => card_spcadd(&mut r, &mut b),
             "RBE2" => card_rbe2(&mut r, &mut b),
+            "RBE3" => card_rbe3(&mut r, &mut b),
             "TF" => card_tf(&mut r, &mut b, card),
             "TSTEP" => card_tstep(&mut r, &mut b, card),
             "NOLIN3" => card_nolin3(&mut r, &mut b),
@@ -2079,6 +2110,105 @@ fn card_rbe2(r: &mut Reader, b: &mut Bulk) {
             gn,
             cm,
             gm,
+            at: r.at(),
+        });
+    }
+}
+
+/// RBE3: EID, blank, REFGRID, REFC, then groups WTi Ci Gi,1 Gi,2 … (a real starts a
+/// group; THRU ranges allowed), then ALPHA and its value (no temperature load is
+/// applied, so it has no effect). UM, which moves the dependency to other DOFs, is
+/// refused.
+fn card_rbe3(r: &mut Reader, b: &mut Bulk) {
+    let (eid, refgrid, refc) = (r.id(0, "EID"), r.id(2, "REFGRID"), r.components(3, "REFC"));
+    if r.ok && refc.0 == 0 {
+        r.fail(
+            3,
+            "REFC",
+            "names no component: an RBE3 makes components of its REFGRID dependent",
+        );
+    }
+    let n = r.card.fields.len();
+    let mut groups: Vec<Rbe3Group> = Vec::new();
+    let mut k = 4;
+    while r.ok && k < n {
+        let t = r.text(k);
+        if t.is_empty() {
+            k += 1;
+            continue;
+        }
+        if t.eq_ignore_ascii_case("UM") {
+            r.fail(
+                k,
+                "UM",
+                "moves the dependent DOFs off the reference grid, which is not supported: REFGRID's REFC \
+                 components are the dependent ones",
+            );
+            return;
+        }
+        if t.eq_ignore_ascii_case("ALPHA") {
+            r.real_or(k + 1, "ALPHA", 0.0);
+            r.extra_fields(k + 2);
+            break;
+        }
+        if !matches!(parse_real(t), Some(RealToken::Real(_))) {
+            r.fail(
+                k,
+                "WT",
+                "is not a real weight: each group starts with its weight WTi (a real)",
+            );
+            return;
+        }
+        let weight = r.real(k, "WT");
+        if r.ok && weight <= 0.0 {
+            r.fail(k, "WT", "must be positive");
+        }
+        let c = r.components(k + 1, "C");
+        if r.ok && c.0 == 0 {
+            r.fail(
+                k + 1,
+                "C",
+                "names no component: a group weights some components of its grids",
+            );
+        }
+        // The group's grids run to the next real, UM or ALPHA.
+        let end = (k + 2..n)
+            .find(|&j| {
+                let t = r.text(j);
+                t.eq_ignore_ascii_case("UM")
+                    || t.eq_ignore_ascii_case("ALPHA")
+                    || matches!(parse_real(t), Some(RealToken::Real(_)))
+            })
+            .unwrap_or(n);
+        let grids = r.id_list_in(k + 2, end, "G");
+        if r.ok && grids.is_empty() {
+            r.fail(k + 2, "G", "names no grid: each weighted group needs one");
+        }
+        if let Some(&g) = grids.iter().find(|&&g| g == refgrid) {
+            if r.ok {
+                r.fail(
+                    k + 2,
+                    "G",
+                    format!("grid {g} is the reference grid REFGRID: it cannot also be independent"),
+                );
+            }
+        }
+        groups.push(Rbe3Group { weight, c, grids });
+        k = end;
+    }
+    if r.ok && groups.is_empty() {
+        r.fail(
+            4,
+            "WT1",
+            "is blank: an RBE3 needs a weighted group of independent grids",
+        );
+    }
+    if r.ok {
+        b.rbe3s.push(Rbe3 {
+            eid,
+            refgrid,
+            refc,
+            groups,
             at: r.at(),
         });
     }

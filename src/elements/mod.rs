@@ -500,7 +500,16 @@ pub struct Element {
     /// the same (a shell in the basic XY plane, numbered counter-clockwise about +z,
     /// on grids displaced in the basic system; any rod or mass on such grids).
     pub placement: Option<Arc<Placement>>,
+    /// Terms each grid's components gain from other grids' solved DOFs, `Σ a·u[i]`
+    /// per (grid, component), before the turn: a grid a rigid element ties to several
+    /// grids (an RBE3's reference grid, an RBE2 of some components). `None` when no
+    /// grid is so tied.
+    pub links: Option<Arc<Links>>,
 }
+
+/// Per grid of an element, per component T1..R3: the solved DOFs and coefficients
+/// it is the sum of besides its own DOF.
+pub type Links = Vec<[Vec<(usize, f64)>; 6]>;
 
 impl Clone for Element {
     fn clone(&self) -> Self {
@@ -510,6 +519,7 @@ impl Clone for Element {
             dofs: self.dofs.clone(),
             kernel: self.kernel.clone_box(),
             placement: self.placement.clone(),
+            links: self.links.clone(),
         }
     }
 }
@@ -530,6 +540,7 @@ impl Element {
             dofs,
             kernel,
             placement: None,
+            links: None,
         }
     }
 
@@ -537,6 +548,13 @@ impl Element {
     pub fn placed(mut self, placement: Placement) -> Self {
         debug_assert_eq!(placement.turn.len(), self.grids.len());
         self.placement = Some(Arc::new(placement));
+        self
+    }
+
+    /// The element with its grids' links (see [`Element::links`]).
+    pub fn linked(mut self, links: Links) -> Self {
+        debug_assert_eq!(links.len(), self.grids.len());
+        self.links = Some(Arc::new(links));
         self
     }
 
@@ -566,6 +584,13 @@ impl Element {
             for (c, i) in d.iter().enumerate() {
                 if let Some(i) = i {
                     ue[6 * g + c] = u[*i];
+                }
+            }
+        }
+        if let Some(links) = &self.links {
+            for (g, l) in links.iter().enumerate() {
+                for (c, terms) in l.iter().enumerate() {
+                    ue[6 * g + c] += terms.iter().map(|&(i, a)| a * u[i]).sum::<f64>();
                 }
             }
         }
@@ -648,7 +673,31 @@ impl Element {
             .collect()
     }
 
+    /// The solved DOFs and coefficients a local (grid, component) is the sum of.
+    fn terms(&self, g: usize, c: usize) -> Vec<(usize, f64)> {
+        let own = self.dofs[g][c].map(|i| (i, 1.0));
+        let linked = self.links.iter().flat_map(|l| l[g][c].iter().copied());
+        own.into_iter().chain(linked).collect()
+    }
+
     fn scatter_one(&self, l: &LocalMatrix, out: &mut Vec<(usize, usize, f64)>) {
+        if self.links.is_some() {
+            let terms: Vec<Vec<(usize, f64)>> = l.at.iter().map(|&(g, c)| self.terms(g, c)).collect();
+            for (a, ta) in terms.iter().enumerate() {
+                for (b, tb) in terms.iter().enumerate() {
+                    let v = l.values[(a, b)];
+                    if v == 0.0 {
+                        continue;
+                    }
+                    for &(i, ca) in ta {
+                        for &(j, cb) in tb {
+                            out.push((i, j, ca * v * cb));
+                        }
+                    }
+                }
+            }
+            return;
+        }
         let global: Vec<Option<usize>> = l.at.iter().map(|&(g, c)| self.dofs[g][c]).collect();
         for (a, ga) in global.iter().enumerate() {
             let Some(i) = ga else { continue };
@@ -672,6 +721,20 @@ impl Element {
     /// matrices as they act on its grids' DOFs; unsolved DOFs at rest).
     pub fn kinetic_energy(&self, v: &[f64]) -> f64 {
         let mut ke = 0.0;
+        if self.links.is_some() {
+            for l in self.mass() {
+                let ve: Vec<f64> =
+                    l.at.iter()
+                        .map(|&(g, c)| self.terms(g, c).iter().map(|&(i, a)| a * v[i]).sum())
+                        .collect();
+                for (a, va) in ve.iter().enumerate() {
+                    for (b, vb) in ve.iter().enumerate() {
+                        ke += 0.5 * va * l.values[(a, b)] * vb;
+                    }
+                }
+            }
+            return ke;
+        }
         for l in self.mass() {
             let at: Vec<Option<usize>> = l.at.iter().map(|&(g, c)| self.dofs[g][c]).collect();
             for (a, ia) in at.iter().enumerate() {

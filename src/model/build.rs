@@ -118,8 +118,9 @@ struct Numbering<'d> {
     scalar: BTreeMap<i64, &'d CardRef>,
     dofs: Vec<DofLabel>,
     index: HashMap<DofLabel, usize>,
-    /// Grids an RBE2 makes dependent, with their independent grid.
-    ties: BTreeMap<i64, i64>,
+    /// Grids a rigid element makes dependent: their dependent components, the
+    /// independent grid when the whole grid follows one, and the card.
+    ties: BTreeMap<i64, (u8, Option<i64>, String)>,
 }
 
 impl Numbering<'_> {
@@ -158,14 +159,17 @@ impl Numbering<'_> {
         };
         match (self.index.get(&l), self.ties.get(&g)) {
             (Some(&i), _) => Some(i),
-            (None, Some(gn)) => {
-                cx.err(at.error(format!(
-                    "{what} uses {l}, a DOF an RBE2 makes dependent (its motion is grid {gn}'s): name grid {gn} \
-                     instead"
-                )));
+            (None, Some((mask, whole, card))) if is_grid && mask & (1 << (c - 1)) != 0 => {
+                cx.err(at.error(match whole {
+                    Some(gn) => format!(
+                        "{what} uses {l}, a DOF an RBE2 makes dependent (its motion is grid {gn}'s): name grid {gn} \
+                         instead"
+                    ),
+                    None => format!("{what} uses {l}, a DOF {card} makes dependent: name an independent DOF instead"),
+                }));
                 None
             }
-            (None, None) => {
+            (None, _) => {
                 cx.err(at.error(format!("{what} uses {l}, which is constrained (SPC1 or PS)")));
                 None
             }
@@ -328,8 +332,8 @@ pub fn build_structure(deck: &Deck) -> Result<(Structure, Vec<Diagnostic>), Mode
         geometry,
         elements: elements.list,
         free_dofs: grid_dofs,
-        constrained_dofs: 6 * (num.grids.len() - rigid.ties.len()) - grid_dofs,
-        dependent_dofs: 6 * rigid.ties.len(),
+        constrained_dofs: 6 * num.grids.len() - rigid.dependent_dofs() - grid_dofs,
+        dependent_dofs: rigid.dependent_dofs(),
         scalar_points: num.scalar.len(),
         dofs: num.dofs,
         rigid,
@@ -492,8 +496,8 @@ fn constrained_grids(cx: &mut Ctx, deck: &Deck, sel: &Selected) -> HashMap<i64, 
     constrained
 }
 
-/// The numbering of the solved DOFs: the components of each grid no RBE2 makes
-/// dependent, in id order, then the scalar points no TF defines.
+/// The numbering of the solved DOFs: the components of each grid that no SPC
+/// constrains and no rigid element makes dependent, in id order, then the scalar points no TF defines.
 fn number_dofs<'d>(
     deck: &'d Deck,
     constrained: &HashMap<i64, u8>,
@@ -504,8 +508,8 @@ fn number_dofs<'d>(
     let scalar = scalar_points(deck);
     let mut dofs = Vec::new();
     let mut index: HashMap<DofLabel, usize> = HashMap::new();
-    for &id in grids.keys().filter(|g| !rigid.ties.contains_key(g)) {
-        let c = constrained[&id];
+    for &id in grids.keys() {
+        let c = constrained[&id] | rigid.dependent(id).map_or(0, |(m, _)| m);
         for comp in 1..=6u8 {
             if c & (1 << (comp - 1)) == 0 {
                 let l = DofLabel { point: id, comp };
@@ -526,14 +530,17 @@ fn number_dofs<'d>(
         scalar,
         dofs,
         index,
-        ties: rigid.ties.iter().map(|(&m, t)| (m, t.gn)).collect(),
+        ties: rigid
+            .ties
+            .iter()
+            .map(|(&g, t)| (g, (t.dependent, t.whole().map(|(gn, _)| gn), t.name.clone())))
+            .collect(),
     }
 }
 
-/// The RBE2s resolved (their dependent grids are left out of the solved DOFs by
-/// [`number_dofs`]): an SPC on a dependent DOF is an error naming both cards; a PS
-/// (GRID or GRDSET) on it yields to the tie, with a warning when the independent grid
-/// is not held alike.
+/// The rigid elements resolved (their dependent components are left out of the
+/// solved DOFs by [`number_dofs`]): an SPC on a dependent DOF is an error naming both
+/// cards; a PS (GRID or GRDSET) on it yields to the tie, with a warning.
 fn rigid_elements(cx: &mut Ctx, deck: &Deck, geo: &Geometry, sel: &Selected) -> crate::model::rigid::Rigid {
     let mut errors = Vec::new();
     let rigid = crate::model::rigid::resolve(&deck.bulk, geo, &mut errors);
@@ -542,23 +549,37 @@ fn rigid_elements(cx: &mut Ctx, deck: &Deck, geo: &Geometry, sel: &Selected) -> 
     }
     for s in &sel.spcs {
         for (gm, t) in s.grids.iter().filter_map(|g| Some((g, rigid.ties.get(g)?))) {
-            cx.err(s.at.error(format!(
-                "SPC1 constrains grid {gm}, which the RBE2 at {} makes dependent: constrain its independent grid \
-                 {} instead",
-                t.at.pos, t.gn
-            )));
+            if s.c.0 & t.dependent == 0 {
+                continue;
+            }
+            cx.err(s.at.error(match t.whole() {
+                Some((gn, _)) => format!(
+                    "SPC1 constrains grid {gm}, which the RBE2 at {} makes dependent: constrain its independent grid \
+                     {gn} instead",
+                    t.at.pos
+                ),
+                None => format!(
+                    "SPC1 constrains components of grid {gm} that {} (at {}) makes dependent: constrain the grids \
+                     they follow instead",
+                    t.name, t.at.pos
+                ),
+            }));
         }
     }
     let b = &deck.bulk;
     let ps: HashMap<i64, u8> = b.grids.iter().map(|g| (g.id, g.ps.unwrap_or(b.grdset.ps).0)).collect();
     for (gm, t) in &rigid.ties {
         let held = |g: &i64| ps.get(g).copied().unwrap_or(0);
-        if held(gm) & !held(&t.gn) != 0 {
-            cx.warn(t.at.warning(format!(
-                "grid {gm}'s PS holds components its independent grid {} does not: the RBE2 ties them to grid \
-                 {}'s motion instead",
-                t.gn, t.gn
-            )));
+        match t.whole() {
+            Some((gn, _)) if held(gm) & !held(&gn) != 0 => cx.warn(t.at.warning(format!(
+                "grid {gm}'s PS holds components its independent grid {gn} does not: the RBE2 ties them to grid \
+                 {gn}'s motion instead"
+            ))),
+            None if held(gm) & t.dependent != 0 => cx.warn(t.at.warning(format!(
+                "grid {gm}'s PS holds components {} makes dependent: they follow the tie instead",
+                t.name
+            ))),
+            _ => {}
         }
     }
     rigid
@@ -618,15 +639,15 @@ fn build_elements(
     };
     connected(cx, deck, num, geo, &mut out);
     point_masses(cx, deck, num, geo, &mut out);
-    // Elements and masses on RBE2-dependent grids, attached through their ties.
-    // An independent grid carries the elements of its dependent grids.
+    // Elements and masses on dependent grids, attached through their ties. An
+    // independent grid that a grid follows whole carries that grid's elements.
     if !rigid.ties.is_empty() {
         out.list = std::mem::take(&mut out.list)
             .into_iter()
             .map(|e| {
                 if !matches!(e.kernel.family(), Family::Point { .. }) {
-                    for g in e.grids.iter().filter_map(|g| rigid.ties.get(g)) {
-                        *out.on_element.entry(g.gn).or_default() += 1;
+                    for (gn, _) in e.grids.iter().filter_map(|g| rigid.ties.get(g)?.whole()) {
+                        *out.on_element.entry(gn).or_default() += 1;
                     }
                 }
                 rigid.attach(e, |g| num.grid_dofs(g))
@@ -637,27 +658,35 @@ fn build_elements(
     out
 }
 
-/// The RBE2-dependent grids' six components as dependent points (functionals of their
-/// independent grids' solved DOFs: the rows of Λ), appended to `dependent` after the
-/// TF points, for the output requests: grid → the index of its T1 there.
-fn tied_points(rigid: &crate::model::rigid::Rigid, num: &Numbering, dependent: &mut Dependent) -> BTreeMap<i64, usize> {
+/// The rigid elements' dependent components as dependent points (functionals of the
+/// solved DOFs: the rows of their ties), appended to `dependent` after the TF points,
+/// for the output requests: grid → the index there of each dependent component.
+fn tied_points(
+    rigid: &crate::model::rigid::Rigid,
+    num: &Numbering,
+    dependent: &mut Dependent,
+) -> BTreeMap<i64, [Option<usize>; 6]> {
     let mut out = BTreeMap::new();
     for (&gm, t) in &rigid.ties {
-        out.insert(gm, dependent.points.len());
-        let dofs = num.grid_dofs(t.gn);
-        for c in 0..6 {
+        let mut at = [None; 6];
+        for (c, slot) in at.iter_mut().enumerate().filter(|(c, _)| t.dependent & (1 << c) != 0) {
+            *slot = Some(dependent.points.len());
+            let mut functional = Vec::new();
+            for (h, m) in &t.terms {
+                let dofs = num.grid_dofs(*h);
+                functional.extend((0..6).filter_map(|k| Some((dofs[k]?, m[(c, k)])).filter(|&(_, a)| a != 0.0)));
+            }
             dependent.points.push(DependentPoint {
                 label: DofLabel {
                     point: gm,
                     comp: c as u8 + 1,
                 },
-                functional: (0..6)
-                    .filter_map(|k| Some((dofs[k]?, t.map[(c, k)])).filter(|&(_, a)| a != 0.0))
-                    .collect(),
+                functional,
                 at: t.at.clone(),
                 tied: true,
             });
         }
+        out.insert(gm, at);
     }
     out
 }
@@ -1269,7 +1298,7 @@ fn output_plan(
     cx: &mut Ctx,
     deck: &Deck,
     num: &Numbering,
-    (dependent, tied): (&Dependent, &BTreeMap<i64, usize>),
+    (dependent, tied): (&Dependent, &BTreeMap<i64, [Option<usize>; 6]>),
     built: &Elements,
     contact: Option<&Contact>,
 ) -> OutputPlan {
@@ -1296,8 +1325,6 @@ fn output_plan(
         for p in members {
             if let Some(&j) = dep_index.get(&p) {
                 list.push((dependent[j].label, Source::Dependent(j)));
-            } else if let Some(&j) = tied.get(&p) {
-                list.extend((j..j + 6).map(|j| (dependent[j].label, Source::Dependent(j))));
             } else if grids.contains_key(&p) || scalar.contains_key(&p) {
                 let comps: Vec<u8> = if scalar.contains_key(&p) {
                     vec![0]
@@ -1306,7 +1333,9 @@ fn output_plan(
                 };
                 for comp in comps {
                     let l = DofLabel { point: p, comp };
-                    if let Some(&i) = index.get(&l) {
+                    if let Some(j) = tied.get(&p).and_then(|t| t[comp as usize - 1]) {
+                        list.push((l, Source::Dependent(j)));
+                    } else if let Some(&i) = index.get(&l) {
                         list.push((l, Source::Dof(i)));
                     }
                 }

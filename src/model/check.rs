@@ -97,6 +97,10 @@ pub struct CheckReport {
     pub free_dofs: usize,
     /// Grid DOFs constrained.
     pub constrained_dofs: usize,
+    /// Rigid elements by kind (RBE2, RBE3).
+    pub rigid: BTreeMap<String, usize>,
+    /// Grid DOFs the rigid elements make dependent.
+    pub dependent_dofs: usize,
     /// Scalar points.
     pub scalar_points: usize,
     /// Mass, centre of gravity and inertia (`None` when the structure does not build).
@@ -206,6 +210,12 @@ pub fn check(deck: &Deck) -> CheckReport {
         elements: BTreeMap::new(),
         free_dofs: 0,
         constrained_dofs: 0,
+        rigid: [("RBE2", b.rbe2s.len()), ("RBE3", b.rbe3s.len())]
+            .into_iter()
+            .filter(|(_, n)| *n > 0)
+            .map(|(k, n)| (k.to_string(), n))
+            .collect(),
+        dependent_dofs: 0,
         scalar_points: 0,
         weight: None,
         systems,
@@ -221,6 +231,7 @@ pub fn check(deck: &Deck) -> CheckReport {
             }
             report.free_dofs = s.free_dofs;
             report.constrained_dofs = s.constrained_dofs;
+            report.dependent_dofs = s.dependent_dofs;
             report.scalar_points = s.scalar_points;
             report.weight = Some(s.mass_properties().into());
             warnings.extend(diags.iter().map(Diagnostic::to_string));

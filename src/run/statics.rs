@@ -98,14 +98,15 @@ pub fn solve(deck: &Deck) -> Result<(StaticSolution, Vec<Diagnostic>), StaticErr
     let index: std::collections::HashMap<_, _> = s.dofs.iter().enumerate().map(|(i, l)| (*l, i)).collect();
     let mut f = vec![0.0; n];
     for (g, l) in &loads {
-        // A load on an RBE2-dependent grid is carried by its independent grid.
-        let (g, l) = s.rigid.carry(*g, *l);
-        for (c, v) in l.iter().enumerate() {
-            if let Some(&i) = index.get(&crate::model::DofLabel {
-                point: g,
-                comp: c as u8 + 1,
-            }) {
-                f[i] += v;
+        // A load on a dependent grid is carried by the grids it follows.
+        for (g, l) in s.rigid.carry(*g, *l) {
+            for (c, v) in l.iter().enumerate() {
+                if let Some(&i) = index.get(&crate::model::DofLabel {
+                    point: g,
+                    comp: c as u8 + 1,
+                }) {
+                    f[i] += v;
+                }
             }
         }
     }
@@ -182,15 +183,12 @@ fn displacements(deck: &Deck, s: &Structure, u: &[f64]) -> Vec<GridDisplacement>
             out[i].u[l.comp as usize - 1] = *v;
         }
     }
-    // RBE2-dependent grids: their independent grid's motion through the tie.
-    for (gm, t) in &s.rigid.ties {
-        let (Ok(m), Ok(n)) = (
-            out.binary_search_by_key(gm, |d| d.grid),
-            out.binary_search_by_key(&t.gn, |d| d.grid),
-        ) else {
-            continue;
-        };
-        out[m].u = (t.map * nalgebra::Vector6::from(out[n].u)).into();
+    // Dependent grids: the motion of the grids they follow, through their ties.
+    let own = |g: i64| out.binary_search_by_key(&g, |d| d.grid).map_or([0.0; 6], |i| out[i].u);
+    for (g, u) in s.rigid.recover(&own) {
+        if let Ok(i) = out.binary_search_by_key(&g, |d| d.grid) {
+            out[i].u = u;
+        }
     }
     for d in &mut out {
         let t = s.geometry.frame(d.grid);

@@ -293,6 +293,16 @@ pub enum CheckSpec {
         /// Smallest order of convergence of any mode.
         min_order: f64,
     },
+    /// A static case's decks are one structure modelled alike but for parts that must
+    /// not change its dynamics (an RBE3 that only reads motion): the lowest `modes`
+    /// natural frequencies of each deck against the first deck's, largest relative
+    /// difference ≤ max.
+    SameFrequencies {
+        /// How many of the lowest frequencies are compared.
+        modes: usize,
+        /// Largest relative difference.
+        max: f64,
+    },
     /// The lowest `modes` natural frequencies of a simply supported square plate of the
     /// case's size and shell section (bending), on two meshes (n × n, the second
     /// twice as fine), Richardson-extrapolated at order 2, against Navier's closed form:
@@ -532,7 +542,10 @@ impl CheckSpec {
     pub fn is_static(&self) -> bool {
         matches!(
             self,
-            CheckSpec::StaticDeflection { .. } | CheckSpec::StaticOrder { .. } | CheckSpec::BeamFrequencies { .. }
+            CheckSpec::StaticDeflection { .. }
+                | CheckSpec::StaticOrder { .. }
+                | CheckSpec::BeamFrequencies { .. }
+                | CheckSpec::SameFrequencies { .. }
         )
     }
 }

@@ -210,7 +210,10 @@ pub fn check(case: &Case, model: &Model, run: &RunResult, spec: &CheckSpec) -> R
         CheckSpec::DtConvergence { .. }
         | CheckSpec::MeshConvergence { .. }
         | CheckSpec::ConvergesToReference { .. } => return Ok(None),
-        CheckSpec::StaticDeflection { .. } | CheckSpec::StaticOrder { .. } | CheckSpec::BeamFrequencies { .. } => {
+        CheckSpec::StaticDeflection { .. }
+        | CheckSpec::StaticOrder { .. }
+        | CheckSpec::BeamFrequencies { .. }
+        | CheckSpec::SameFrequencies { .. } => {
             return Err(CheckError::Failed {
                 case: case.name.clone(),
                 check: "static",
@@ -1338,6 +1341,61 @@ fn static_deflections(
         .collect()
 }
 
+/// The lowest natural frequencies of a static case's decks against its first deck's
+/// (see [`CheckSpec::SameFrequencies`]).
+fn same_frequencies(
+    case: &Case,
+    decks: &[crate::deck::Deck],
+    modes: usize,
+    max: f64,
+) -> Result<CheckResult, CheckError> {
+    let failed = |message: String| CheckError::Failed {
+        case: case.name.clone(),
+        check: "same_frequencies",
+        message,
+    };
+    if decks.len() < 2 {
+        return Err(failed(
+            "needs two decks or more: the first and those compared with it".into(),
+        ));
+    }
+    let mut all = Vec::new();
+    for deck in decks {
+        let (s, _) = crate::model::build_structure(deck).map_err(|e| failed(e.to_string()))?;
+        let mut f = crate::assembly::frequencies_of(&s.elements, s.dofs.len(), usize::MAX)
+            .ok_or_else(|| failed(format!("{}: the massless DOFs' stiffness is singular", deck.name)))?;
+        f.sort_by(f64::total_cmp);
+        if f.len() < modes {
+            return Err(failed(format!(
+                "{}: {} frequencies, fewer than {modes}",
+                deck.name,
+                f.len()
+            )));
+        }
+        f.truncate(modes);
+        all.push((deck.name.clone(), f));
+    }
+    let (first, base) = &all[0];
+    let worst = all[1..]
+        .iter()
+        .flat_map(|(_, f)| f.iter().zip(base).map(|(a, b)| (a / b - 1.0).abs()))
+        .fold(0.0f64, f64::max);
+    Ok(CheckResult::new(
+        case,
+        format!("same_frequencies {modes} modes"),
+        worst,
+        None,
+        Bound::at_most(max),
+        worst <= max,
+        format!(
+            "{} against {first} ({:.6e} … {:.6e})",
+            all[1..].iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>().join(", "),
+            base[0],
+            base[modes - 1]
+        ),
+    ))
+}
+
 /// The natural frequencies of a static case's beams against their closed forms (see
 /// [`CheckSpec::BeamFrequencies`]).
 fn beam_frequencies(
@@ -1506,6 +1564,7 @@ pub fn static_check(
             ))
         }
         CheckSpec::BeamFrequencies { modes, max, min_order } => beam_frequencies(case, decks, *modes, *max, *min_order),
+        CheckSpec::SameFrequencies { modes, max } => same_frequencies(case, decks, *modes, *max),
         _ => Err(CheckError::Failed {
             case: case.name.clone(),
             check: "static",
