@@ -93,6 +93,8 @@ fn select(mask: u8) -> Matrix6<f64> {
 /// cannot be.
 pub fn resolve(b: &Bulk, geo: &Geometry, errors: &mut Vec<Diagnostic>) -> Rigid {
     let exists = |g: i64| geo.positions.contains_key(&g) || b.grids.iter().any(|x| x.id == g);
+    // A grid whose location did not resolve has its error from the geometry already.
+    let located = |g: &i64| geo.positions.contains_key(g);
     let mut defs: BTreeMap<i64, Def> = BTreeMap::new();
     for r in &b.rbe2s {
         let name = format!("RBE2 {}", r.eid);
@@ -103,7 +105,7 @@ pub fn resolve(b: &Bulk, geo: &Geometry, errors: &mut Vec<Diagnostic>) -> Rigid 
         for g in &missing {
             errors.push(r.at.error(format!("{name} references grid {g}, which does not exist")));
         }
-        if !missing.is_empty() {
+        if !missing.is_empty() || !std::iter::once(&r.gn).chain(&r.gm).all(located) {
             continue;
         }
         let xn = Vector3::from(geo.positions[&r.gn]);
@@ -130,7 +132,11 @@ pub fn resolve(b: &Bulk, geo: &Geometry, errors: &mut Vec<Diagnostic>) -> Rigid 
         for g in &missing {
             errors.push(r.at.error(format!("{name} references grid {g}, which does not exist")));
         }
-        if !missing.is_empty() {
+        if !missing.is_empty()
+            || !std::iter::once(&r.refgrid)
+                .chain(r.groups.iter().flat_map(|g| &g.grids))
+                .all(located)
+        {
             continue;
         }
         match rbe3_terms(r, geo) {
