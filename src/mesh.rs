@@ -480,17 +480,22 @@ fn surface_deck(
         contact[0], contact[1], contact[2], contact[3]
     );
     let _ = writeln!(w, "  NLLOAD = 15\n  DISP = 15");
-    // The stiffener nearest the centre: its bar at the centre column.
-    let bar = stiffeners
-        .filter(|s| s.count > 0)
-        .map(|s| {
-            let rows = s.rows(&m);
-            let c = n.div_ceil(2);
-            let r = rows[(rows.len() - 1) / 2];
-            format!(",{}", stiffener_ids(&m) + m.base * r + c)
-        })
-        .unwrap_or_default();
-    let _ = writeln!(w, "  SET 20 = {e},{ga},{gb}{bar}\n  STRESS = 20");
+    // The stiffener nearest the centre: its bar at the centre column, its stresses
+    // and its resultants written.
+    let bar = stiffeners.filter(|s| s.count > 0).map(|s| {
+        let rows = s.rows(&m);
+        let c = n.div_ceil(2);
+        let r = rows[(rows.len() - 1) / 2];
+        stiffener_ids(&m) + m.base * r + c
+    });
+    let _ = writeln!(
+        w,
+        "  SET 20 = {e},{ga},{gb}{}\n  STRESS = 20",
+        bar.map(|b| format!(",{b}")).unwrap_or_default()
+    );
+    if let Some(b) = bar {
+        let _ = writeln!(w, "  SET 21 = {b}\n  FORCE = 21");
+    }
     let _ = writeln!(w, "BEGIN BULK");
     let ep = m.indentation_point();
     let _ = writeln!(w, "EPOINT,{ep}\nGRID,999,,0.0,0.0,-0.1875");

@@ -152,3 +152,73 @@ fn offset_bars_and_masses_weigh_as_pynastran_weighs_them() {
         );
     }
 }
+
+/// Goal: case control's FORCE (and its other name ELFORCE) writes a beam's end
+/// resultants, and STRESS alone does not. Model: the paper's plate on a 9×9 mesh with
+/// one blade stiffener, as `impactlab mesh plate --stiffeners 1` writes it (STRESS on
+/// the centre bar, FORCE on it too), run 300 steps; then its FORCE renamed ELFORCE,
+/// and removed. Reference: the bar's axial force at each end is EA times the mean of
+/// its four point strains (C, D, E, F at the rectangle's corners, where the linear
+/// strain field averages to the centroid's), at every step. Tolerance: 1e-9 of the
+/// largest |N| (the two are computed by different paths).
+#[test]
+fn force_request_writes_a_bars_resultants() {
+    use impactlab::elements::{At, End, Measure, Recovered, Resultant};
+    use impactlab::mesh::{stiffened_plate_deck, Cells, Stiffeners};
+    use impactlab::run::Column;
+    let blade = Stiffeners::blade(1);
+    let text = stiffened_plate_deck(9, Cells::Quad4, &blade).unwrap();
+    assert!(text.contains("  FORCE = 21"), "{text}");
+    let bar = text
+        .lines()
+        .find_map(|l| l.strip_prefix("  SET 21 = "))
+        .unwrap()
+        .parse::<i64>()
+        .unwrap();
+    let force = |end, r| Column::Element {
+        eid: bar,
+        value: Recovered {
+            measure: Measure::Force(r),
+            at: Some(At::End(end)),
+        },
+    };
+    for (name, deck) in [
+        ("force", text.clone()),
+        ("elforce", text.replace("  FORCE = 21", "  ELFORCE = 21")),
+    ] {
+        let model = impactlab::model_from_text(name, &deck).unwrap();
+        let run = common::run(&model, impactlab::integrate::Scheme::Newmark, None, Some(300));
+        let names = run.history_names();
+        let by_name = |n: &str| -> Vec<f64> {
+            let j = names
+                .iter()
+                .position(|x| x == n)
+                .unwrap_or_else(|| panic!("{name}: no column {n}"));
+            run.history.iter().map(|r| r[j]).collect()
+        };
+        for (end, e) in [(End::A, 0), (End::B, 1)] {
+            let n = run.column_values(&force(end, Resultant::Axial)).unwrap();
+            let m1 = run.column(&force(end, Resultant::Moment1)).unwrap();
+            assert!(
+                run.history_header()[m1].ends_with("[lbf*in]"),
+                "{}",
+                run.history_header()[m1]
+            );
+            let strains: Vec<Vec<f64>> = ["c", "d", "e", "f"]
+                .iter()
+                .map(|p| by_name(&format!("strain_{bar}_{}_{p}", ["a", "b"][e])))
+                .collect();
+            let peak = n.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            assert!(peak > 0.0, "{name}: the bar carries no axial force");
+            let area = blade.width * blade.height;
+            for (k, nk) in n.iter().enumerate() {
+                let mean = strains.iter().map(|s| s[k]).sum::<f64>() / 4.0;
+                assert!((nk - blade.e * area * mean).abs() <= 1e-9 * peak, "{name} step {k}");
+            }
+        }
+    }
+    let model = impactlab::model_from_text("stress-only", &text.replace("  FORCE = 21\n", "")).unwrap();
+    let run = common::run(&model, impactlab::integrate::Scheme::Newmark, None, Some(2));
+    assert!(run.column(&force(End::A, Resultant::Axial)).is_none());
+    assert!(run.history_names().contains(&format!("stress_{bar}_a_c")));
+}

@@ -89,7 +89,8 @@ pub struct CaseControl {
     pub tfl: Option<Selection>,
     /// LOAD selection (the static loads of a SOL 101 deck).
     pub load: Option<Selection>,
-    /// Output requests by keyword: NLLOAD, DISP, VELO, ACCEL, STRESS, STRAIN.
+    /// Output requests by keyword: NLLOAD, DISP, VELO, ACCEL, STRESS, STRAIN, FORCE,
+    /// ELFORCE.
     pub outputs: BTreeMap<String, OutputRequest>,
 }
 
@@ -213,10 +214,10 @@ fn parse_id_list(text: &str, pos: &Pos, src: &str, ids_left: &mut usize, diags: 
 }
 
 const SELECTORS: [&str; 6] = ["SPC", "IC", "NONLINEAR", "TSTEP", "TFL", "LOAD"];
-const OUTPUTS: [&str; 6] = ["NLLOAD", "DISP", "VELO", "ACCEL", "STRESS", "STRAIN"];
-const IGNORED: [&str; 8] = [
-    "ECHO", "LINE", "MAXLINES", "OUTPUT", "ELFORCE", "FORCE", "OLOAD", "SPCFORCE",
+const OUTPUTS: [&str; 8] = [
+    "NLLOAD", "DISP", "VELO", "ACCEL", "STRESS", "STRAIN", "FORCE", "ELFORCE",
 ];
+const IGNORED: [&str; 6] = ["ECHO", "LINE", "MAXLINES", "OUTPUT", "OLOAD", "SPCFORCE"];
 
 /// How case control takes SUBCASE.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -291,15 +291,15 @@ impl Kernel for Dkmt {
         let u = SMatrix::<f64, 15, 1>::from_fn(|k, _| if k < 6 { um[k] } else { ub[k - 6] });
         0.5 * (u.transpose() * self.k * u)[0]
     }
-    fn recovered(&self, stress: bool) -> Vec<Recovered> {
-        self.section.recovered(stress)
+    fn recovered(&self, what: super::Output) -> Vec<Recovered> {
+        self.section.recovered(what)
     }
-    fn recover(&self, ue: &[f64], stress: bool) -> Vec<f64> {
+    fn recover(&self, ue: &[f64], what: super::Output) -> Vec<f64> {
         let (um, ub) = parts(ue);
         let mut out = self
             .section
-            .recover(b_membrane(&self.xy) * um, self.b_centre * ub, stress);
-        if stress {
+            .recover(b_membrane(&self.xy) * um, self.b_centre * ub, what);
+        if what != super::Output::Strain && self.section.shear.is_some() {
             out.extend(self.shear_forces(ue).iter());
         }
         out
@@ -463,9 +463,9 @@ mod tests {
         let q = el.shear_forces(&ue);
         let centre = [0, 1].map(|a| (SCALENE[0][a] + SCALENE[1][a] + SCALENE[2][a]) / 3.0);
         assert_relative_eq!(q, ds * (plate.b_shear(centre[0], centre[1]) * ub), max_relative = 1e-14);
-        let names = el.recovered(true);
+        let names = el.recovered(crate::elements::Output::Stress);
         assert_eq!(names[names.len() - 1].name(4), "shear_force_4_qy");
-        let values = el.recover(&ue, true);
+        let values = el.recover(&ue, crate::elements::Output::Stress);
         assert_relative_eq!(values[values.len() - 2], q[0], max_relative = 1e-14);
     }
 }

@@ -76,10 +76,10 @@ impl Kernel for Drill {
         let t = nalgebra::Vector3::new(ue[3], ue[4], ue[5]);
         0.5 * (t.transpose() * self.k * t)[0]
     }
-    fn recovered(&self, _stress: bool) -> Vec<Recovered> {
+    fn recovered(&self, _what: super::Output) -> Vec<Recovered> {
         Vec::new()
     }
-    fn recover(&self, _ue: &[f64], _stress: bool) -> Vec<f64> {
+    fn recover(&self, _ue: &[f64], _what: super::Output) -> Vec<f64> {
         Vec::new()
     }
     fn material_law(&self, _strains: &[f64]) -> Option<Vec<f64>> {

@@ -216,14 +216,14 @@ impl Kernel for Mitc4 {
         let u = local_vector(ue);
         0.5 * (u.transpose() * self.k * u)[0]
     }
-    fn recovered(&self, stress: bool) -> Vec<Recovered> {
-        self.section.recovered(stress)
+    fn recovered(&self, what: super::Output) -> Vec<Recovered> {
+        self.section.recovered(what)
     }
-    fn recover(&self, ue: &[f64], stress: bool) -> Vec<f64> {
+    fn recover(&self, ue: &[f64], what: super::Output) -> Vec<f64> {
         let (um, ub) = parts(ue);
         let kappa: Vector3<f64> = b_bending(&self.xy, 0.0, 0.0).0 * ub;
-        let mut out = self.section.recover(membrane_strain(&self.xy, &um), kappa, stress);
-        if stress {
+        let mut out = self.section.recover(membrane_strain(&self.xy, &um), kappa, what);
+        if what != super::Output::Strain && self.section.shear.is_some() {
             out.extend(self.shear_forces(ue).iter());
         }
         out
@@ -328,14 +328,16 @@ mod tests {
         for k in 0..12 {
             ue[6 * (k / 3) + 2 + k % 3] = w[k];
         }
-        let names = el.recovered(true);
-        let values = el.recover(&ue, true);
+        let names = el.recovered(crate::elements::Output::Stress);
+        let values = el.recover(&ue, crate::elements::Output::Stress);
         assert_eq!(names.len(), values.len());
         assert_eq!(names[names.len() - 2].name(7), "shear_force_7_qx");
         let want = ds * Vector2::new(p, q);
         assert_relative_eq!(values[values.len() - 2], want[0], max_relative = 1e-12);
         assert_relative_eq!(values[values.len() - 1], want[1], max_relative = 1e-12);
-        assert_eq!(el.recovered(false).len(), 6);
+        assert_eq!(el.recovered(crate::elements::Output::Strain).len(), 6);
+        let forces = el.recover(&ue, crate::elements::Output::Force);
+        assert_eq!(forces[6..], values[values.len() - 2..]);
     }
 
     /// Goal: no spurious zero-energy mode. Reference: a free plate element has exactly

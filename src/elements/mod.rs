@@ -65,6 +65,20 @@ impl LocalMatrix {
     }
 }
 
+/// What an output request asks an element to recover (case control's STRAIN, STRESS
+/// and FORCE).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Output {
+    /// Strains.
+    Strain,
+    /// Stresses, then strains (and a shear-deformable shell's transverse shear forces,
+    /// which its interlaminar recovery needs).
+    Stress,
+    /// The force and moment resultants: a rod's axial force and torque, a beam's at
+    /// each end, a shell's per unit length.
+    Force,
+}
+
 /// Stress or strain, or a shear-deformable shell's transverse shear force.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Measure {
@@ -74,11 +88,13 @@ pub enum Measure {
     Strain,
     /// A transverse shear force resultant, Qx or Qy (force per length).
     ShearForce(Transverse),
-    /// A beam's force or moment resultant at one of its ends.
+    /// A force or moment resultant: a rod's, a beam's at one of its ends, a shell's.
     Force(Resultant),
 }
 
-/// A beam's resultants at a section (see [`bar`] for their signs).
+/// An element's force and moment resultants: a rod's and a beam's at a section (see
+/// [`bar`] for their signs), a shell's per unit length at its centre, in its
+/// kernel's axes (Nx = ∫σx dz, Mx = ∫σx z dz, Qx = ∫τxz dz).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Resultant {
     /// Axial force N.
@@ -93,12 +109,54 @@ pub enum Resultant {
     Moment1,
     /// Bending moment M2 (plane 2).
     Moment2,
+    /// A shell's membrane force Nx.
+    Nx,
+    /// A shell's membrane force Ny.
+    Ny,
+    /// A shell's membrane shear force Nxy.
+    Nxy,
+    /// A shell's bending moment Mx.
+    Mx,
+    /// A shell's bending moment My.
+    My,
+    /// A shell's twisting moment Mxy.
+    Mxy,
+    /// A shell's transverse shear force Qx.
+    Qx,
+    /// A shell's transverse shear force Qy.
+    Qy,
 }
 
 impl Resultant {
-    /// A moment (force × length) rather than a force.
-    pub fn is_moment(self) -> bool {
-        matches!(self, Resultant::Torque | Resultant::Moment1 | Resultant::Moment2)
+    /// Its unit from the deck's force and length units: a force, a moment (force ×
+    /// length), or a shell's, per unit length.
+    pub fn unit(self, f: &str, l: &str) -> String {
+        match self {
+            Resultant::Axial | Resultant::Shear1 | Resultant::Shear2 => f.to_string(),
+            Resultant::Torque | Resultant::Moment1 | Resultant::Moment2 => format!("{f}*{l}"),
+            Resultant::Nx | Resultant::Ny | Resultant::Nxy | Resultant::Qx | Resultant::Qy => format!("{f}/{l}"),
+            Resultant::Mx | Resultant::My | Resultant::Mxy => format!("{f}*{l}/{l}"),
+        }
+    }
+
+    /// Its name in a column: `axial`, `m1`, `nx`, `mxy`.
+    fn name(self) -> &'static str {
+        match self {
+            Resultant::Axial => "axial",
+            Resultant::Torque => "torque",
+            Resultant::Shear1 => "v1",
+            Resultant::Shear2 => "v2",
+            Resultant::Moment1 => "m1",
+            Resultant::Moment2 => "m2",
+            Resultant::Nx => "nx",
+            Resultant::Ny => "ny",
+            Resultant::Nxy => "nxy",
+            Resultant::Mx => "mx",
+            Resultant::My => "my",
+            Resultant::Mxy => "mxy",
+            Resultant::Qx => "qx",
+            Resultant::Qy => "qy",
+        }
     }
 }
 
@@ -176,7 +234,8 @@ pub struct Recovered {
 
 impl Recovered {
     /// The name of the value of element `eid`: `strain_72`, `stress_2525_z1_xx`,
-    /// `shear_force_2525_qx`, `stress_9001_a_c`, `force_9001_b_m1`.
+    /// `shear_force_2525_qx`, `stress_9001_a_c`, `force_9001_b_m1`, `force_72_axial`,
+    /// `force_2525_mx`.
     pub fn name(&self, eid: i64) -> String {
         let end = |e: End| match e {
             End::A => "a",
@@ -188,19 +247,10 @@ impl Recovered {
             Measure::ShearForce(Transverse::Qx) => return format!("shear_force_{eid}_qx"),
             Measure::ShearForce(Transverse::Qy) => return format!("shear_force_{eid}_qy"),
             Measure::Force(r) => {
-                let e = match self.at {
-                    Some(At::End(e)) => end(e),
-                    _ => "",
-                };
-                let r = match r {
-                    Resultant::Axial => "axial",
-                    Resultant::Torque => "torque",
-                    Resultant::Shear1 => "v1",
-                    Resultant::Shear2 => "v2",
-                    Resultant::Moment1 => "m1",
-                    Resultant::Moment2 => "m2",
-                };
-                return format!("force_{eid}_{e}_{r}");
+                return match self.at {
+                    Some(At::End(e)) => format!("force_{eid}_{}_{}", end(e), r.name()),
+                    _ => format!("force_{eid}_{}", r.name()),
+                }
             }
         };
         match self.at {
@@ -353,12 +403,11 @@ pub trait Kernel: fmt::Debug + Send + Sync + Any {
     fn mass(&self) -> Vec<LocalMatrix>;
     /// Strain energy ½ u_eᵀ K_e u_e of the local displacements `ue`.
     fn strain_energy(&self, ue: &[f64]) -> f64;
-    /// The values [`Kernel::recover`] gives, in order: stresses and strains when
-    /// `stress`, strains only otherwise.
-    fn recovered(&self, stress: bool) -> Vec<Recovered>;
+    /// The values [`Kernel::recover`] gives for a request, in order (see [`Output`]).
+    fn recovered(&self, what: Output) -> Vec<Recovered>;
     /// Recovered values from the local displacements, in the order of
     /// [`Kernel::recovered`].
-    fn recover(&self, ue: &[f64], stress: bool) -> Vec<f64>;
+    fn recover(&self, ue: &[f64], what: Output) -> Vec<f64>;
     /// The stresses the kind's material law gives for the strains it recovers
     /// (`strains` in the order of `recovered(false)`), in the order of the stresses in
     /// `recovered(true)`; `None` for a kind that recovers no stress. Computed from the
@@ -749,9 +798,9 @@ impl Element {
     }
 
     /// Recovered values at `u` (see [`Kernel::recover`]).
-    pub fn recover(&self, u: &[f64], stress: bool) -> Vec<f64> {
+    pub fn recover(&self, u: &[f64], what: Output) -> Vec<f64> {
         let (ue, n) = self.gather(u);
-        self.kernel.recover(&ue[..n], stress)
+        self.kernel.recover(&ue[..n], what)
     }
 
     /// The translational DOFs of each grid, for the paper's Eq. 16.
@@ -887,23 +936,19 @@ mod tests {
                 "{kind}: {e} vs {}",
                 0.5 * utku
             );
-            for stress in [false, true] {
-                assert_eq!(
-                    k.recover(&u, stress).len(),
-                    k.recovered(stress).len(),
-                    "{kind} stress {stress}"
-                );
+            for what in [Output::Strain, Output::Stress, Output::Force] {
+                assert_eq!(k.recover(&u, what).len(), k.recovered(what).len(), "{kind} {what:?}");
             }
             // The stresses it recovers are its material law of the strains it recovers.
-            let with = k.recover(&u, true);
+            let with = k.recover(&u, Output::Stress);
             let stresses: Vec<f64> = k
-                .recovered(true)
+                .recovered(Output::Stress)
                 .iter()
                 .zip(&with)
                 .filter(|(r, _)| r.measure == Measure::Stress)
                 .map(|(_, &v)| v)
                 .collect();
-            match k.material_law(&k.recover(&u, false)) {
+            match k.material_law(&k.recover(&u, Output::Strain)) {
                 Some(law) => {
                     let scale = stresses.iter().fold(0.0f64, |m, s| m.max(s.abs()));
                     assert_eq!(law.len(), stresses.len(), "{kind}");
@@ -913,6 +958,52 @@ mod tests {
                     );
                 }
                 None => assert!(stresses.is_empty(), "{kind} recovers stresses and answers no law"),
+            }
+        }
+    }
+
+    /// Goal: the resultants FORCE writes are the integrals of the stresses STRESS
+    /// writes. Model: every kernel above at a displacement with every DOF nonzero.
+    /// Reference: a rod's N = σA; a shell's (no membrane-bending coupling, whose
+    /// resultant the fibre stresses do not show) N = T(σ₁ + σ₂)/2 and
+    /// M = T²(σ₂ − σ₁)/12, σ being linear through the thickness, and Qx, Qy as the
+    /// shear forces written with the stresses; a beam's N = EA times the mean of the
+    /// strains at C, D, E, F (a rectangle's corners, where the plane strain field
+    /// averages to its centroid's). Tolerance: 1e-12 of the largest.
+    #[test]
+    fn force_resultants_are_the_integrals_of_the_recovered_stresses() {
+        for k in kernels() {
+            let n = 6 * k.points().len();
+            let u: Vec<f64> = (0..n).map(|i| 1e-3 * (1.0 + (i as f64 * 0.9).sin())).collect();
+            let (stress, force) = (k.recover(&u, Output::Stress), k.recover(&u, Output::Force));
+            let close = |a: f64, b: f64, scale: f64| (a - b).abs() <= 1e-12 * scale;
+            match k.family() {
+                Family::Rod { section, .. } => assert!(close(force[0], stress[0] * section.area, force[0].abs())),
+                Family::Shell(section) if section.g_coupling.is_none() => {
+                    let t = section.thickness;
+                    let scale = force.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                    for c in 0..3 {
+                        let (s1, s2) = (stress[c], stress[3 + c]);
+                        assert!(close(force[c], t * (s1 + s2) / 2.0, scale), "{}: N{c}", k.card());
+                        assert!(
+                            close(force[3 + c], t * t * (s2 - s1) / 12.0, scale),
+                            "{}: M{c}",
+                            k.card()
+                        );
+                    }
+                    if section.shear.is_some() {
+                        assert_eq!(force[6..], stress[stress.len() - 2..]);
+                    }
+                }
+                Family::Beam { section, .. } => {
+                    let strains = &stress[8..16];
+                    for end in 0..2 {
+                        let mean = strains[4 * end..4 * end + 4].iter().sum::<f64>() / 4.0;
+                        let n = section.e * section.area * mean;
+                        assert!(close(force[6 * end], n, n.abs()), "{} end {end}", k.card());
+                    }
+                }
+                _ => {}
             }
         }
     }

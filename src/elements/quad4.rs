@@ -353,13 +353,13 @@ impl Kernel for Quad4 {
             None => 0.5 * (m + b),
         }
     }
-    fn recovered(&self, stress: bool) -> Vec<Recovered> {
-        self.section.recovered(stress)
+    fn recovered(&self, what: super::Output) -> Vec<Recovered> {
+        self.section.recovered(what)
     }
-    fn recover(&self, ue: &[f64], stress: bool) -> Vec<f64> {
+    fn recover(&self, ue: &[f64], what: super::Output) -> Vec<f64> {
         let (um, ub) = parts(ue);
         self.section
-            .recover(membrane_strain(&self.xy, &um), curvature(&self.xy, &ub), stress)
+            .recover(membrane_strain(&self.xy, &um), curvature(&self.xy, &ub), what)
     }
     fn material_law(&self, strains: &[f64]) -> Option<Vec<f64>> {
         Some(self.section.material_law(strains))

@@ -4,7 +4,8 @@
 //! stiffness is exact and no quadrature is needed); axial stiffness EA/L along the
 //! element axis, torsion GJ/L about it. Mass is lumped half to each end on the
 //! translational DOFs (NASTRAN's default, no COUPMASS): (ρA + NSM)·L/2 per node.
-//! Recovery: axial strain (e·(u2 − u1))/L, constant over the element.
+//! Recovery: axial strain (e·(u2 − u1))/L, constant over the element; its resultants
+//! N = EA ε and T = GJ (e·(θ2 − θ1))/L.
 
 use super::{BadShape, Cell, Kernel, LocalMatrix, Measure, Recovered};
 use nalgebra::{DMatrix, SMatrix, Vector3};
@@ -135,24 +136,34 @@ impl Kernel for Rod {
     fn strain_energy(&self, ue: &[f64]) -> f64 {
         strain_energy(self.x[0], self.x[1], &self.section, end(ue, 0), end(ue, 1))
     }
-    fn recovered(&self, stress: bool) -> Vec<Recovered> {
+    fn recovered(&self, what: super::Output) -> Vec<Recovered> {
         let axial = |measure| Recovered { measure, at: None };
-        if stress {
-            vec![axial(Measure::Stress), axial(Measure::Strain)]
-        } else {
-            vec![axial(Measure::Strain)]
+        match what {
+            super::Output::Stress => vec![axial(Measure::Stress), axial(Measure::Strain)],
+            super::Output::Strain => vec![axial(Measure::Strain)],
+            super::Output::Force => vec![
+                axial(Measure::Force(super::Resultant::Axial)),
+                axial(Measure::Force(super::Resultant::Torque)),
+            ],
         }
     }
     fn material_law(&self, strains: &[f64]) -> Option<Vec<f64>> {
         Some(vec![self.section.e * strains[0]])
     }
-    fn recover(&self, ue: &[f64], stress: bool) -> Vec<f64> {
+    fn recover(&self, ue: &[f64], what: super::Output) -> Vec<f64> {
         let t = |k: usize| -> [f64; 3] { std::array::from_fn(|c| ue[6 * k + c]) };
+        let r = |k: usize| -> [f64; 3] { std::array::from_fn(|c| ue[6 * k + 3 + c]) };
         let eps = axial_strain(self.x[0], self.x[1], t(0), t(1));
-        if stress {
-            vec![self.section.e * eps, eps]
-        } else {
-            vec![eps]
+        let s = &self.section;
+        match what {
+            super::Output::Stress => vec![s.e * eps, eps],
+            super::Output::Strain => vec![eps],
+            // N = EA ε; T = GJ times the twist rate, the rotations' difference along
+            // the axis over the length (the rate is the axial strain of the rotations).
+            super::Output::Force => vec![
+                s.e * s.area * eps,
+                s.g * s.torsion * axial_strain(self.x[0], self.x[1], r(0), r(1)),
+            ],
         }
     }
     fn eq16_mass(&self) -> Option<f64> {

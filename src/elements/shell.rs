@@ -14,7 +14,7 @@
 //!   G(MID2) κ z (the coupling of an unsymmetric section acts on resultants, not on
 //!   the fibre stresses PSHELL's recovery reports).
 
-use super::{Fibre, Measure, Plane, Recovered, Transverse};
+use super::{Fibre, Measure, Output, Plane, Recovered, Resultant, Transverse};
 use nalgebra::{Matrix2, Matrix3, Vector3};
 
 /// A PSHELL (or a PCOMP's laminate) with its materials resolved.
@@ -53,15 +53,36 @@ impl ShellSection {
         self.g_coupling.map(|g| g * self.thickness.powi(2))
     }
 
-    /// The values a shell of this section recovers, in order: stresses then strains
-    /// when `stress`, strains only otherwise; each at fibre Z1 then Z2, components xx,
-    /// yy, xy; with the stresses of a section with transverse shear flexibility, then
-    /// its transverse shear forces Qx, Qy.
-    pub fn recovered(&self, stress: bool) -> Vec<Recovered> {
-        let measures: &[Measure] = if stress {
-            &[Measure::Stress, Measure::Strain]
-        } else {
-            &[Measure::Strain]
+    /// The values a shell of this section recovers, in order: for STRESS, stresses
+    /// then strains, for STRAIN, strains; each at fibre Z1 then Z2, components xx, yy,
+    /// xy; with the stresses of a section with transverse shear flexibility, then its
+    /// transverse shear forces Qx, Qy. For FORCE: Nx, Ny, Nxy, Mx, My, Mxy, then Qx, Qy
+    /// of a section with transverse shear flexibility.
+    pub fn recovered(&self, what: Output) -> Vec<Recovered> {
+        let stress = what == Output::Stress;
+        let measures: &[Measure] = match what {
+            Output::Stress => &[Measure::Stress, Measure::Strain],
+            Output::Strain => &[Measure::Strain],
+            Output::Force => {
+                let mut v = vec![
+                    Resultant::Nx,
+                    Resultant::Ny,
+                    Resultant::Nxy,
+                    Resultant::Mx,
+                    Resultant::My,
+                    Resultant::Mxy,
+                ];
+                if self.shear.is_some() {
+                    v.extend([Resultant::Qx, Resultant::Qy]);
+                }
+                return v
+                    .into_iter()
+                    .map(|r| Recovered {
+                        measure: Measure::Force(r),
+                        at: None,
+                    })
+                    .collect();
+            }
         };
         let mut v = Vec::new();
         for &measure in measures {
@@ -83,9 +104,13 @@ impl ShellSection {
         v
     }
 
-    /// The recovered fibre values (in the order of [`ShellSection::recovered`], before
-    /// any shear forces) of a membrane strain `em` and curvature `kappa`.
-    pub fn recover(&self, em: Vector3<f64>, kappa: Vector3<f64>, stress: bool) -> Vec<f64> {
+    /// The recovered values (in the order of [`ShellSection::recovered`], before any
+    /// shear forces) of a membrane strain `em` and curvature `kappa`.
+    pub fn recover(&self, em: Vector3<f64>, kappa: Vector3<f64>, what: Output) -> Vec<f64> {
+        if what == Output::Force {
+            return self.forces(em, kappa).to_vec();
+        }
+        let stress = what == Output::Stress;
         let h = 0.5 * self.thickness;
         let mut stresses = Vec::new();
         let mut strains = Vec::new();
@@ -102,6 +127,20 @@ impl ShellSection {
         } else {
             strains
         }
+    }
+
+    /// The resultants per unit length of a membrane strain `em` and curvature `kappa`:
+    /// N = A ε⁰ + B κ, M = Bᵀ ε⁰ + D κ, as (Nx, Ny, Nxy, Mx, My, Mxy).
+    pub fn forces(&self, em: Vector3<f64>, kappa: Vector3<f64>) -> [f64; 6] {
+        let zero = Matrix3::zeros();
+        let (a, b, d) = (
+            self.a().unwrap_or(zero),
+            self.b().unwrap_or(zero),
+            self.d().unwrap_or(zero),
+        );
+        let n = a * em + b * kappa;
+        let m = b.transpose() * em + d * kappa;
+        [n[0], n[1], n[2], m[0], m[1], m[2]]
     }
 
     /// The fibre stresses the section's law gives for the fibre strains at z1 = −T/2

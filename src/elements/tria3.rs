@@ -248,13 +248,13 @@ impl Kernel for Tria3 {
         let c = self.k_coupling.map_or(0.0, |k| (um.transpose() * k * ub)[0]);
         0.5 * (m + b) + c
     }
-    fn recovered(&self, stress: bool) -> Vec<Recovered> {
-        self.section.recovered(stress)
+    fn recovered(&self, what: super::Output) -> Vec<Recovered> {
+        self.section.recovered(what)
     }
-    fn recover(&self, ue: &[f64], stress: bool) -> Vec<f64> {
+    fn recover(&self, ue: &[f64], what: super::Output) -> Vec<f64> {
         let (um, ub) = parts(ue);
         self.section
-            .recover(self.membrane_strain(&um), self.curvature(&ub), stress)
+            .recover(self.membrane_strain(&um), self.curvature(&ub), what)
     }
     fn material_law(&self, strains: &[f64]) -> Option<Vec<f64>> {
         Some(self.section.material_law(strains))

@@ -1293,7 +1293,8 @@ fn initial_conditions(cx: &mut Ctx, sel: &Selected, dependent: &Dependent, num: 
     (u0, v0)
 }
 
-/// What case control asks to be written: DISP, VELO, NLLOAD, STRESS, STRAIN.
+/// What case control asks to be written: DISP, VELO, NLLOAD, STRESS, STRAIN, FORCE
+/// (or ELFORCE).
 fn output_plan(
     cx: &mut Ctx,
     deck: &Deck,
@@ -1359,8 +1360,11 @@ fn output_plan(
         .filter(|(_, e)| !matches!(e.kernel.family(), Family::Point { .. }))
         .map(|(i, e)| (e.eid, i))
         .collect();
-    for key in ["STRESS", "STRAIN"] {
-        let req = case.outputs.get(key);
+    for key in ["STRESS", "STRAIN", "FORCE"] {
+        let req = match key {
+            "FORCE" => case.outputs.get("FORCE").or(case.outputs.get("ELFORCE")),
+            _ => case.outputs.get(key),
+        };
         let Some(members) = set_members(req) else { continue };
         let list: Vec<usize> = if members.is_empty() {
             let mut v: Vec<usize> = elem_pos.values().copied().collect();
@@ -1369,16 +1373,17 @@ fn output_plan(
         } else {
             members.iter().filter_map(|m| elem_pos.get(m).copied()).collect()
         };
-        if key == "STRESS" {
-            outputs.stress = list;
-        } else {
-            outputs.strain = list;
+        match key {
+            "STRESS" => outputs.stress = list,
+            "STRAIN" => outputs.strain = list,
+            _ => outputs.force = list,
         }
     }
     // Ply results of every written laminate element, in the order its element's
     // results are written.
     outputs.plies = outputs
         .written()
+        .filter(|(_, what)| *what != crate::elements::Output::Force)
         .filter_map(|(e, _)| Some((e, built.plies.get(&e)?.clone())))
         .collect();
     outputs.failure_fields = built

@@ -210,6 +210,8 @@ pub struct OutputPlan {
     pub stress: Vec<usize>,
     /// Element indices requested by STRAIN.
     pub strain: Vec<usize>,
+    /// Element indices requested by FORCE (or ELFORCE).
+    pub force: Vec<usize>,
     /// The laminate (PCOMP) elements among those, with their plies: their ply strains
     /// and stresses are written too.
     pub plies: Vec<(usize, PlyStack)>,
@@ -219,15 +221,21 @@ pub struct OutputPlan {
 }
 
 impl OutputPlan {
-    /// The elements whose results are recorded, with whether their stresses are:
-    /// STRESS requests (stress and strain), then STRAIN requests not already there.
-    pub fn written(&self) -> impl Iterator<Item = (usize, bool)> + '_ {
-        self.stress.iter().map(|&e| (e, true)).chain(
-            self.strain
-                .iter()
-                .filter(|e| !self.stress.contains(e))
-                .map(|&e| (e, false)),
-        )
+    /// The elements whose results are recorded, with what of them: STRESS requests
+    /// (stress and strain), then STRAIN requests not already there, then FORCE
+    /// requests.
+    pub fn written(&self) -> impl Iterator<Item = (usize, crate::elements::Output)> + '_ {
+        use crate::elements::Output;
+        self.stress
+            .iter()
+            .map(|&e| (e, Output::Stress))
+            .chain(
+                self.strain
+                    .iter()
+                    .filter(|e| !self.stress.contains(e))
+                    .map(|&e| (e, Output::Strain)),
+            )
+            .chain(self.force.iter().map(|&e| (e, Output::Force)))
     }
 }
 

@@ -344,7 +344,11 @@ impl<'m> Mesh<'m> {
     /// Element ids, each laminate element's largest failure index (when asked) and
     /// the recovered strain arrays of [`strain_layout`], per cell.
     fn cell_arrays(&self, model: &Model, s: &Snapshot) -> Vec<Array<'_>> {
-        let recovered: Vec<Vec<f64>> = self.cells.iter().map(|e| e.recover(&s.u, false)).collect();
+        let recovered: Vec<Vec<f64>> = self
+            .cells
+            .iter()
+            .map(|e| e.recover(&s.u, crate::elements::Output::Strain))
+            .collect();
         let mut cell = vec![Array {
             name: "element_id",
             components: &[],
@@ -418,7 +422,7 @@ fn strain_layout(cells: &[&Element]) -> Vec<StrainArray> {
     const BAR: [&str; 8] = ["a_c", "a_d", "a_e", "a_f", "b_c", "b_d", "b_e", "b_f"];
     let mut out: Vec<StrainArray> = Vec::new();
     for (k, e) in cells.iter().enumerate() {
-        let rec: Vec<Recovered> = e.kernel.recovered(false);
+        let rec: Vec<Recovered> = e.kernel.recovered(crate::elements::Output::Strain);
         for (j, r) in rec.iter().enumerate() {
             let (name, components, c): (&str, &'static [&'static str], usize) = match r.at {
                 None | Some(At::End(_)) => ("axial_strain", &[], 0),

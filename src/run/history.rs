@@ -226,8 +226,7 @@ impl Column {
                 Measure::Stress => format!("{f}/{l}^2"),
                 Measure::Strain => "-".into(),
                 Measure::ShearForce(_) => format!("{f}/{l}"),
-                Measure::Force(r) if r.is_moment() => format!("{f}*{l}"),
-                Measure::Force(_) => f.clone(),
+                Measure::Force(r) => r.unit(f, l),
             },
         }
     }

@@ -366,11 +366,11 @@ pub fn history_columns(m: &Model) -> Vec<Column> {
                 .map(|&k| Column::NlLoad(c.loads[k].label, cd(&c.loads[k].label))),
         );
     }
-    for (e, stress) in m.outputs.written() {
+    for (e, what) in m.outputs.written() {
         let e = &m.elements[e];
         cols.extend(
             e.kernel
-                .recovered(stress)
+                .recovered(what)
                 .into_iter()
                 .map(|value| Column::Element { eid: e.eid, value }),
         );
@@ -401,8 +401,8 @@ fn linear_outputs(m: &Model, u: &[f64], v: &[f64]) -> Vec<f64> {
     for (_, src) in &m.outputs.velo {
         out.push(m.value(*src, v));
     }
-    for (e, stress) in m.outputs.written() {
-        out.extend(m.elements[e].recover(u, stress));
+    for (e, what) in m.outputs.written() {
+        out.extend(m.elements[e].recover(u, what));
     }
     for (e, plies) in &m.outputs.plies {
         ply_outputs(&m.elements[*e], plies, u, &mut out);
@@ -464,8 +464,13 @@ fn ply_outputs(e: &crate::elements::Element, plies: &[crate::laminate::PlyLayer]
     // One recovery: the fibre strains, and with interfaces also the shear forces,
     // which come with the stresses.
     let bonded = plies.iter().any(|p| p.interface.is_some());
-    let names = e.kernel.recovered(bonded);
-    let values = e.recover(u, bonded);
+    let what = if bonded {
+        crate::elements::Output::Stress
+    } else {
+        crate::elements::Output::Strain
+    };
+    let names = e.kernel.recovered(what);
+    let values = e.recover(u, what);
     let value = |r: Recovered| {
         let k = names
             .iter()

@@ -92,7 +92,16 @@ impl StaticSolution {
 /// Solves a static deck (read with [`crate::deck::STATICS`] as its solution):
 /// the solution and the model builder's warnings.
 pub fn solve(deck: &Deck) -> Result<(StaticSolution, Vec<Diagnostic>), StaticError> {
-    let (s, warnings) = build_structure(deck)?;
+    let (s, mut warnings) = build_structure(deck)?;
+    for (key, r) in deck.case.outputs.iter().filter(|(k, _)| k.as_str() != "DISP") {
+        warnings.push(Diagnostic::warning(
+            Some(r.pos.clone()),
+            format!(
+                "{key} output of a static solution is not written (displacements.csv holds every grid's \
+                 displacement); ignored"
+            ),
+        ));
+    }
     let loads = static_load(deck, &s)?;
     let n = s.dofs.len();
     let index: std::collections::HashMap<_, _> = s.dofs.iter().enumerate().map(|(i, l)| (*l, i)).collect();

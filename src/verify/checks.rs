@@ -491,7 +491,7 @@ fn shell_recovery_patch(cx: &Cx, max: f64) -> CheckResult {
             let (wx, wy) = (a * x + c * y, b * y + c * x);
             ue.extend([ex * x + 0.5 * gxy * y, ey * y + 0.5 * gxy * x, w, wy, -wx, 0.0]);
         }
-        let got = e.kernel.recover(&ue, false);
+        let got = e.kernel.recover(&ue, crate::elements::Output::Strain);
         let h = 0.5 * section.thickness;
         let want: Vec<f64> = [-h, h]
             .iter()
@@ -936,7 +936,7 @@ pub fn material_law(case: &Case, model: &Model, run: &RunResult) -> CheckResult 
     for e in model.elements.iter() {
         // Every value the kind recovers with stresses, written: its stresses against
         // its law (Kernel::material_law) applied to its written strains.
-        let names = e.kernel.recovered(true);
+        let names = e.kernel.recovered(crate::elements::Output::Stress);
         let Some(cols) = names
             .iter()
             .map(|r| run.column(&Column::Element { eid: e.eid, value: *r }))
