@@ -299,3 +299,44 @@ fn static_loads_are_refused_where_they_do_not_belong() {
         "{e}"
     );
 }
+
+/// Goal: a shell's pressure acting off its grids reaches them with its moment.
+/// Model: the ZOFFS strip of verification/shell-offset (reference plane 0.3 above its
+/// grids) and its twin (shells on grids 0.3 above, each tied whole to the grid below
+/// by an RBE2), loaded by a PLOAD4 of 2.0 on every element along +x (CID 0, N = (1,
+/// 0, 0)), not along the normal. Reference: the applied resultant is the traction's,
+/// F = (20, 0, 0) and a moment about the origin with My = 0.3·20 = 6 (its line of
+/// action 0.3 above the grids), and the two strips deflect alike. Tolerance:
+/// round-off.
+#[test]
+fn an_offset_pressure_reaches_its_grids_with_its_moment() {
+    let root = common::root().join("reference-data/decks/beams");
+    let pressure = |name: &str| {
+        let text = std::fs::read_to_string(root.join(name)).unwrap();
+        let text: String = text
+            .lines()
+            .filter(|l| !l.starts_with("FORCE"))
+            .map(|l| {
+                if l == "ENDDATA" {
+                    "PLOAD4,1,1,2.0,,,,THRU,4\n,0,1.0,0.0,0.0\nENDDATA\n".to_string()
+                } else {
+                    format!("{l}\n")
+                }
+            })
+            .collect();
+        static_deck(&text)
+    };
+    let (offset, twin) = (pressure("shell-offset.bdf"), pressure("shell-offset-twin.bdf"));
+    for s in [&offset, &twin] {
+        let want = [20.0, 0.0, 0.0, 0.0, 6.0, -10.0];
+        for (c, w) in want.iter().enumerate() {
+            assert!((s.applied[c] - w).abs() < 1e-12 * 20.0, "{}: {:?}", s.deck, s.applied);
+        }
+    }
+    let tip = |s: &StaticSolution| [s.displacement(104, 1).unwrap(), s.displacement(104, 3).unwrap()];
+    let (a, b) = (tip(&offset), tip(&twin));
+    assert!(a[1].abs() > 0.0, "the moment bends the strip: {a:?}");
+    for c in 0..2 {
+        assert!((a[c] - b[c]).abs() <= 1e-12 * a[c].abs(), "{a:?} vs {b:?}");
+    }
+}

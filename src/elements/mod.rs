@@ -528,7 +528,7 @@ impl Placement {
     }
 
     /// True when grid `g`'s turn has no offset: its translations only rotate.
-    fn rotates_only(&self, g: usize) -> bool {
+    pub fn rotates_only(&self, g: usize) -> bool {
         self.turn[g].fixed_view::<3, 3>(0, 3).iter().all(|&v| v == 0.0)
     }
 }

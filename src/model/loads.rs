@@ -8,8 +8,10 @@
 //!   interpolated from the corners (P1..P4) by the element's own shape functions over
 //!   its mean plane ([`nodal_integrals`]), along the element's normal (G1→G2→G3, right-handed; positive
 //!   pressure pushes along it, as NASTRAN's does) or along CID's (N1, N2, N3). The
-//!   forces go to the grids' translations (a warped quadrilateral's corner offsets,
-//!   at most [`crate::geometry::MAX_WARP`] of its size, carry no moment here).
+//!   forces go to the grids' translations; a corner that stands off its grid (ZOFFS,
+//!   a grid tied whole by an RBE2, a warped quadrilateral's corner projected onto its
+//!   mean plane) gives its grid the force and its moment about the grid, Λᵀ f
+//!   ([`crate::elements::Placement`]).
 //! - GRAV: the inertia load M·a of every element's mass matrix on the rigid
 //!   acceleration a = A·(N1, N2, N3) in rectangular system CID (NASTRAN's gravity: a
 //!   mass is pushed along a).
@@ -210,10 +212,26 @@ impl Loads<'_> {
         let weights = nodal_integrals(&frame.local, p);
         let g = &self.structure.geometry;
         for (k, &id) in e.grids.iter().enumerate() {
-            let v = g.frame(id).transpose() * direction * (weights[k] * factor);
+            let f = direction * (weights[k] * factor);
+            let v = g.frame(id).transpose() * f;
             let slot = out.entry(id).or_default();
-            for c in 0..3 {
-                slot[c] += v[c];
+            match e.placement.as_ref().filter(|p| !p.rotates_only(k)) {
+                // The corner stands off its grid (ZOFFS, a rigid tie): the grid takes
+                // the force and its moment, Λᵀ of the corner's force in the kernel's
+                // axes, which Λ's rotation block (Rᵀ T) gives from the grid's frame.
+                Some(p) => {
+                    let t = p.turn[k];
+                    let local = t.fixed_view::<3, 3>(0, 0) * v;
+                    let at_grid = t.transpose() * nalgebra::Vector6::new(local[0], local[1], local[2], 0.0, 0.0, 0.0);
+                    for c in 0..6 {
+                        slot[c] += at_grid[c];
+                    }
+                }
+                None => {
+                    for c in 0..3 {
+                        slot[c] += v[c];
+                    }
+                }
             }
         }
     }
