@@ -195,8 +195,13 @@ pub fn resolve(b: &Bulk, geo: &Geometry, errors: &mut Vec<Diagnostic>) -> Rigid 
 /// Records grid `g`'s dependency, or the error of a grid made dependent twice.
 fn define<'b>(g: i64, def: Def<'b>, defs: &mut BTreeMap<i64, Def<'b>>, errors: &mut Vec<Diagnostic>) {
     match defs.get(&g) {
-        Some(other) => errors.push(def.at.error(format!(
+        Some(other) if other.dependent & def.dependent != 0 => errors.push(def.at.error(format!(
             "{} makes grid {g} dependent, which {} (at {}) already makes dependent: a DOF can be dependent once",
+            def.name, other.name, other.at.pos
+        ))),
+        Some(other) => errors.push(def.at.error(format!(
+            "{} makes components of grid {g} dependent and {} (at {}) others: one rigid element per dependent \
+             grid is supported",
             def.name, other.name, other.at.pos
         ))),
         None => {
