@@ -26,8 +26,9 @@
 //! load on it goes over as Mₕᵀ f; its displacement is recovered as Σ Mₕ uₕ. A rigid
 //! element stores no energy and has no mass: the ledger needs nothing of it.
 //!
-//! A cycle of dependencies, or a grid made dependent by two rigid elements, is an
-//! error naming both cards.
+//! Rigid elements tying disjoint components of one grid are joined. A cycle of
+//! dependencies, or a component made dependent by two rigid elements, is an error
+//! naming both cards.
 
 use crate::deck::cards::{Bulk, CardRef};
 use crate::deck::Diagnostic;
@@ -192,18 +193,26 @@ pub fn resolve(b: &Bulk, geo: &Geometry, errors: &mut Vec<Diagnostic>) -> Rigid 
     rigid
 }
 
-/// Records grid `g`'s dependency, or the error of a grid made dependent twice.
+/// Records grid `g`'s dependency. Rigid elements that tie disjoint components of one
+/// grid are joined (each card's rows, and the grid keeps what neither ties); a
+/// component tied twice is an error naming both cards.
 fn define<'b>(g: i64, def: Def<'b>, defs: &mut BTreeMap<i64, Def<'b>>, errors: &mut Vec<Diagnostic>) {
-    match defs.get(&g) {
+    match defs.get_mut(&g) {
         Some(other) if other.dependent & def.dependent != 0 => errors.push(def.at.error(format!(
             "{} makes grid {g} dependent, which {} (at {}) already makes dependent: a DOF can be dependent once",
             def.name, other.name, other.at.pos
         ))),
-        Some(other) => errors.push(def.at.error(format!(
-            "{} makes components of grid {g} dependent and {} (at {}) others: one rigid element per dependent \
-             grid is supported",
-            def.name, other.name, other.at.pos
-        ))),
+        Some(other) => {
+            other.terms.remove(&g);
+            for (h, m) in def.terms.into_iter().filter(|(h, _)| *h != g) {
+                *other.terms.entry(h).or_insert_with(Matrix6::zeros) += m;
+            }
+            other.dependent |= def.dependent;
+            if other.dependent != ALL {
+                other.terms.insert(g, select(!other.dependent & ALL));
+            }
+            other.name = format!("{} and {}", other.name, def.name);
+        }
         None => {
             defs.insert(g, def);
         }
@@ -452,6 +461,49 @@ mod tests {
         for a in 0..6 {
             assert!((u[a] - q[a]).abs() < 1e-14, "{a}: {} vs {}", u[a], q[a]);
         }
+    }
+
+    /// Goal: two RBE2s on disjoint components of one grid join: its translations follow
+    /// one grid, its rotations another, each with its lever arm. Model: grid 3 tied by
+    /// CM = 123 to grid 1 and by CM = 456 to grid 2 (both off it). Reference: the
+    /// rows of each card's Λ. Tolerance: exact. The same grid's translations tied by a
+    /// third card is refused, naming both.
+    #[test]
+    fn rbe2s_on_disjoint_components_join() {
+        let text = |extra: &str| {
+            format!(
+                "SOL 101\nCEND\nBEGIN BULK\nGRID,1,,0.,0.,0.\nGRID,2,,4.,1.,0.\nGRID,3,,1.,2.,3.\n\
+                 RBE2,7,1,123,3\nRBE2,8,2,456,3\n{extra}ENDDATA\n"
+            )
+        };
+        let resolved = |extra: &str| {
+            let deck =
+                crate::deck::parse_deck_str("joined", &text(extra), crate::deck::ReadOptions::default()).unwrap();
+            let (geo, _) = crate::geometry::resolve(&deck.bulk);
+            let mut errors = Vec::new();
+            let rigid = resolve(&deck.bulk, &geo, &mut errors);
+            (rigid, errors)
+        };
+        let (rigid, errors) = resolved("");
+        assert!(errors.is_empty(), "{errors:?}");
+        let t = &rigid.ties[&3];
+        assert_eq!(t.dependent, ALL);
+        assert_eq!(t.name, "RBE2 7 and RBE2 8");
+        let lambda = |from: [f64; 3]| {
+            let d = Vector3::new(1.0, 2.0, 3.0) - Vector3::from(from);
+            Placement::turn_of(&Matrix3::identity(), &Matrix3::identity(), d.into())
+        };
+        let terms: BTreeMap<i64, Matrix6<f64>> = t.terms.iter().cloned().collect();
+        assert_eq!(terms[&1], select(0b000111) * lambda([0.0; 3]));
+        assert_eq!(terms[&2], select(0b111000) * lambda([4.0, 1.0, 0.0]));
+        let (rigid, errors) = resolved("RBE2,9,2,1,3\n");
+        assert!(rigid.ties.contains_key(&3));
+        assert!(
+            errors[0]
+                .message
+                .contains("RBE2 9 makes grid 3 dependent, which RBE2 7 and RBE2 8"),
+            "{errors:?}"
+        );
     }
 
     /// Goal: grids on one line do not fix a rotation: the RBE3 is refused with why.
