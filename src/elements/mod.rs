@@ -656,10 +656,10 @@ impl Element {
     /// only; exact zeros skipped).
     pub fn scatter(&self, k: &mut Vec<(usize, usize, f64)>, m: &mut Vec<(usize, usize, f64)>) {
         for l in self.stiffness() {
-            self.scatter_one(&l, k);
+            k.extend(self.expanded(&l));
         }
         for l in self.mass() {
-            self.scatter_one(&l, m);
+            m.extend(self.expanded(&l));
         }
     }
 
@@ -729,35 +729,26 @@ impl Element {
         own.into_iter().chain(linked).collect()
     }
 
-    fn scatter_one(&self, l: &LocalMatrix, out: &mut Vec<(usize, usize, f64)>) {
-        if self.links.is_some() {
-            let terms: Vec<Vec<(usize, f64)>> = l.at.iter().map(|&(g, c)| self.terms(g, c)).collect();
-            for (a, ta) in terms.iter().enumerate() {
-                for (b, tb) in terms.iter().enumerate() {
-                    let v = l.values[(a, b)];
-                    if v == 0.0 {
-                        continue;
-                    }
-                    for &(i, ca) in ta {
-                        for &(j, cb) in tb {
-                            out.push((i, j, ca * v * cb));
-                        }
-                    }
-                }
-            }
-            return;
-        }
-        let global: Vec<Option<usize>> = l.at.iter().map(|&(g, c)| self.dofs[g][c]).collect();
-        for (a, ga) in global.iter().enumerate() {
-            let Some(i) = ga else { continue };
-            for (b, gb) in global.iter().enumerate() {
-                let Some(j) = gb else { continue };
+    /// A local matrix over the solved DOFs: each nonzero entry (a, b) as c_a·v·c_b on
+    /// every pair of the solved DOFs its rows and columns are sums of (one each, with
+    /// coefficient 1, for a grid without links), in row-major order.
+    fn expanded(&self, l: &LocalMatrix) -> Vec<(usize, usize, f64)> {
+        let terms: Vec<Vec<(usize, f64)>> = l.at.iter().map(|&(g, c)| self.terms(g, c)).collect();
+        let mut out = Vec::new();
+        for (a, ta) in terms.iter().enumerate() {
+            for (b, tb) in terms.iter().enumerate() {
                 let v = l.values[(a, b)];
-                if v != 0.0 {
-                    out.push((*i, *j, v));
+                if v == 0.0 {
+                    continue;
+                }
+                for &(i, ca) in ta {
+                    for &(j, cb) in tb {
+                        out.push((i, j, ca * v * cb));
+                    }
                 }
             }
         }
+        out
     }
 
     /// Strain energy at the displacements `u` of the solved DOFs.
@@ -770,28 +761,9 @@ impl Element {
     /// matrices as they act on its grids' DOFs; unsolved DOFs at rest).
     pub fn kinetic_energy(&self, v: &[f64]) -> f64 {
         let mut ke = 0.0;
-        if self.links.is_some() {
-            for l in self.mass() {
-                let ve: Vec<f64> =
-                    l.at.iter()
-                        .map(|&(g, c)| self.terms(g, c).iter().map(|&(i, a)| a * v[i]).sum())
-                        .collect();
-                for (a, va) in ve.iter().enumerate() {
-                    for (b, vb) in ve.iter().enumerate() {
-                        ke += 0.5 * va * l.values[(a, b)] * vb;
-                    }
-                }
-            }
-            return ke;
-        }
         for l in self.mass() {
-            let at: Vec<Option<usize>> = l.at.iter().map(|&(g, c)| self.dofs[g][c]).collect();
-            for (a, ia) in at.iter().enumerate() {
-                for (b, ib) in at.iter().enumerate() {
-                    if let (Some(i), Some(j)) = (ia, ib) {
-                        ke += 0.5 * v[*i] * l.values[(a, b)] * v[*j];
-                    }
-                }
+            for (i, j, m) in self.expanded(&l) {
+                ke += 0.5 * v[i] * m * v[j];
             }
         }
         ke

@@ -118,9 +118,8 @@ struct Numbering<'d> {
     scalar: BTreeMap<i64, &'d CardRef>,
     dofs: Vec<DofLabel>,
     index: HashMap<DofLabel, usize>,
-    /// Grids a rigid element makes dependent: their dependent components, the
-    /// independent grid when the whole grid follows one, and the card.
-    ties: BTreeMap<i64, (u8, Option<i64>, String)>,
+    /// The rigid elements' dependent grids.
+    rigid: &'d crate::model::rigid::Rigid,
 }
 
 impl Numbering<'_> {
@@ -157,15 +156,18 @@ impl Numbering<'_> {
             point: g,
             comp: if is_scalar { 0 } else { c as u8 },
         };
-        match (self.index.get(&l), self.ties.get(&g)) {
+        match (self.index.get(&l), self.rigid.ties.get(&g)) {
             (Some(&i), _) => Some(i),
-            (None, Some((mask, whole, card))) if is_grid && mask & (1 << (c - 1)) != 0 => {
-                cx.err(at.error(match whole {
-                    Some(gn) => format!(
+            (None, Some(t)) if is_grid && t.ties(c - 1) => {
+                cx.err(at.error(match t.whole() {
+                    Some((gn, _)) => format!(
                         "{what} uses {l}, a DOF an RBE2 makes dependent (its motion is grid {gn}'s): name grid {gn} \
                          instead"
                     ),
-                    None => format!("{what} uses {l}, a DOF {card} makes dependent: name an independent DOF instead"),
+                    None => format!(
+                        "{what} uses {l}, a DOF {} makes dependent: name an independent DOF instead",
+                        t.name
+                    ),
                 }));
                 None
             }
@@ -502,14 +504,14 @@ fn number_dofs<'d>(
     deck: &'d Deck,
     constrained: &HashMap<i64, u8>,
     tf_of: &BTreeMap<i64, &crate::deck::cards::Tf>,
-    rigid: &crate::model::rigid::Rigid,
+    rigid: &'d crate::model::rigid::Rigid,
 ) -> Numbering<'d> {
     let grids: BTreeMap<i64, &crate::deck::cards::Grid> = deck.bulk.grids.iter().map(|g| (g.id, g)).collect();
     let scalar = scalar_points(deck);
     let mut dofs = Vec::new();
     let mut index: HashMap<DofLabel, usize> = HashMap::new();
     for &id in grids.keys() {
-        let c = constrained[&id] | rigid.dependent(id).map_or(0, |(m, _)| m);
+        let c = constrained[&id] | rigid.dependent(id);
         for comp in 1..=6u8 {
             if c & (1 << (comp - 1)) == 0 {
                 let l = DofLabel { point: id, comp };
@@ -530,11 +532,7 @@ fn number_dofs<'d>(
         scalar,
         dofs,
         index,
-        ties: rigid
-            .ties
-            .iter()
-            .map(|(&g, t)| (g, (t.dependent, t.whole().map(|(gn, _)| gn), t.name.clone())))
-            .collect(),
+        rigid,
     }
 }
 
@@ -669,19 +667,14 @@ fn tied_points(
     let mut out = BTreeMap::new();
     for (&gm, t) in &rigid.ties {
         let mut at = [None; 6];
-        for (c, slot) in at.iter_mut().enumerate().filter(|(c, _)| t.dependent & (1 << c) != 0) {
+        for (c, slot) in at.iter_mut().enumerate().filter(|(c, _)| t.ties(*c)) {
             *slot = Some(dependent.points.len());
-            let mut functional = Vec::new();
-            for (h, m) in &t.terms {
-                let dofs = num.grid_dofs(*h);
-                functional.extend((0..6).filter_map(|k| Some((dofs[k]?, m[(c, k)])).filter(|&(_, a)| a != 0.0)));
-            }
             dependent.points.push(DependentPoint {
                 label: DofLabel {
                     point: gm,
                     comp: c as u8 + 1,
                 },
-                functional,
+                functional: t.functional(c, &|g| num.grid_dofs(g)),
                 at: t.at.clone(),
                 tied: true,
             });

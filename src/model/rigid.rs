@@ -60,6 +60,23 @@ pub struct Tie {
 }
 
 impl Tie {
+    /// Component `c` (0-5) of the grid, when dependent, as a functional of the solved
+    /// DOFs: the row c of each term over its grid's solved DOFs (`dofs_of`; a term on
+    /// a DOF not solved drops out, it being held at zero).
+    pub fn functional(&self, c: usize, dofs_of: &impl Fn(i64) -> [Option<usize>; 6]) -> Vec<(usize, f64)> {
+        let mut f = Vec::new();
+        for (h, m) in &self.terms {
+            let dofs = dofs_of(*h);
+            f.extend((0..6).filter_map(|k| Some((dofs[k]?, m[(c, k)])).filter(|&(_, a)| a != 0.0)));
+        }
+        f
+    }
+
+    /// True when component `c` (0-5) is dependent.
+    pub fn ties(&self, c: usize) -> bool {
+        self.dependent & (1 << c) != 0
+    }
+
     /// The independent grid and Λ when the whole grid follows one other grid (an RBE2
     /// of all six components, or a chain of them).
     pub fn whole(&self) -> Option<(i64, &Matrix6<f64>)> {
@@ -93,20 +110,27 @@ fn select(mask: u8) -> Matrix6<f64> {
 /// The rigid elements of a deck resolved (see the module's doc); errors for what
 /// cannot be.
 pub fn resolve(b: &Bulk, geo: &Geometry, errors: &mut Vec<Diagnostic>) -> Rigid {
-    let exists = |g: i64| geo.positions.contains_key(&g) || b.grids.iter().any(|x| x.id == g);
-    // A grid whose location did not resolve has its error from the geometry already.
-    let located = |g: &i64| geo.positions.contains_key(g);
+    // Reports each grid a card names that does not exist; true when every one is
+    // located (a grid whose location did not resolve has its error from the geometry).
+    let usable = |name: &str, at: &CardRef, grids: &mut dyn Iterator<Item = i64>, errors: &mut Vec<Diagnostic>| {
+        let mut ok = true;
+        for g in grids.filter(|g| !geo.positions.contains_key(g)) {
+            ok = false;
+            if !b.grids.iter().any(|x| x.id == g) {
+                errors.push(at.error(format!("{name} references grid {g}, which does not exist")));
+            }
+        }
+        ok
+    };
     let mut defs: BTreeMap<i64, Def> = BTreeMap::new();
     for r in &b.rbe2s {
         let name = format!("RBE2 {}", r.eid);
-        let missing: Vec<i64> = std::iter::once(r.gn)
-            .chain(r.gm.iter().copied())
-            .filter(|&g| !exists(g))
-            .collect();
-        for g in &missing {
-            errors.push(r.at.error(format!("{name} references grid {g}, which does not exist")));
-        }
-        if !missing.is_empty() || !std::iter::once(&r.gn).chain(&r.gm).all(located) {
+        if !usable(
+            &name,
+            &r.at,
+            &mut std::iter::once(r.gn).chain(r.gm.iter().copied()),
+            errors,
+        ) {
             continue;
         }
         let xn = Vector3::from(geo.positions[&r.gn]);
@@ -128,16 +152,8 @@ pub fn resolve(b: &Bulk, geo: &Geometry, errors: &mut Vec<Diagnostic>) -> Rigid 
     }
     for r in &b.rbe3s {
         let name = format!("RBE3 {}", r.eid);
-        let grids = std::iter::once(r.refgrid).chain(r.groups.iter().flat_map(|g| g.grids.iter().copied()));
-        let missing: Vec<i64> = grids.filter(|&g| !exists(g)).collect();
-        for g in &missing {
-            errors.push(r.at.error(format!("{name} references grid {g}, which does not exist")));
-        }
-        if !missing.is_empty()
-            || !std::iter::once(&r.refgrid)
-                .chain(r.groups.iter().flat_map(|g| &g.grids))
-                .all(located)
-        {
+        let mut grids = std::iter::once(r.refgrid).chain(r.groups.iter().flat_map(|g| g.grids.iter().copied()));
+        if !usable(&name, &r.at, &mut grids, errors) {
             continue;
         }
         match rbe3_terms(r, geo) {
@@ -337,15 +353,10 @@ impl Rigid {
         let links = ties
             .iter()
             .map(|t| {
-                let mut l: [Vec<(usize, f64)>; 6] = Default::default();
-                let Some(t) = t else { return l };
-                for (h, m) in &t.terms {
-                    let dofs = dofs_of(*h);
-                    for (c, lc) in l.iter_mut().enumerate().filter(|(c, _)| t.dependent & (1 << c) != 0) {
-                        lc.extend((0..6).filter_map(|k| Some((dofs[k]?, m[(c, k)])).filter(|&(_, a)| a != 0.0)));
-                    }
-                }
-                l
+                std::array::from_fn(|c| match t {
+                    Some(t) if t.ties(c) => t.functional(c, &dofs_of),
+                    _ => Vec::new(),
+                })
             })
             .collect();
         e.linked(links)
@@ -366,9 +377,9 @@ impl Rigid {
     }
 
     /// The components of grid `g` a rigid element makes dependent (bit c − 1 for
-    /// component c), and that element.
-    pub fn dependent(&self, g: i64) -> Option<(u8, &CardRef)> {
-        self.ties.get(&g).map(|t| (t.dependent, &t.at))
+    /// component c); none for an independent grid.
+    pub fn dependent(&self, g: i64) -> u8 {
+        self.ties.get(&g).map_or(0, |t| t.dependent)
     }
 
     /// How many DOFs the rigid elements make dependent.

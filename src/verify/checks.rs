@@ -1341,6 +1341,14 @@ fn static_deflections(
         .collect()
 }
 
+/// A static deck's structure and all its natural frequencies, or why not.
+fn structure_frequencies(deck: &crate::deck::Deck) -> Result<(crate::model::Structure, Vec<f64>), String> {
+    let (s, _) = crate::model::build_structure(deck).map_err(|e| e.to_string())?;
+    let f = crate::assembly::frequencies_of(&s.elements, s.dofs.len(), usize::MAX)
+        .ok_or_else(|| format!("{}: the massless DOFs' stiffness is singular", deck.name))?;
+    Ok((s, f))
+}
+
 /// The lowest natural frequencies of a static case's decks against its first deck's
 /// (see [`CheckSpec::SameFrequencies`]).
 fn same_frequencies(
@@ -1361,9 +1369,7 @@ fn same_frequencies(
     }
     let mut all = Vec::new();
     for deck in decks {
-        let (s, _) = crate::model::build_structure(deck).map_err(|e| failed(e.to_string()))?;
-        let mut f = crate::assembly::frequencies_of(&s.elements, s.dofs.len(), usize::MAX)
-            .ok_or_else(|| failed(format!("{}: the massless DOFs' stiffness is singular", deck.name)))?;
+        let (_, mut f) = structure_frequencies(deck).map_err(failed)?;
         f.sort_by(f64::total_cmp);
         if f.len() < modes {
             return Err(failed(format!(
@@ -1413,7 +1419,7 @@ fn beam_frequencies(
     let mut errors: Vec<Vec<f64>> = Vec::new();
     let mut names = Vec::new();
     for deck in decks {
-        let (s, _) = crate::model::build_structure(deck).map_err(|e| failed(e.to_string()))?;
+        let (s, fem) = structure_frequencies(deck).map_err(failed)?;
         let beams: Vec<_> = s
             .elements
             .iter()
@@ -1436,8 +1442,6 @@ fn beam_frequencies(
                 exact.push(("torsion", k, kl * (sec.g * sec.j / sec.torsional_inertia).sqrt()));
             }
         }
-        let fem = crate::assembly::frequencies_of(&s.elements, s.dofs.len(), usize::MAX)
-            .ok_or_else(|| failed(format!("{}: the massless DOFs' stiffness is singular", deck.name)))?;
         errors.push(
             exact
                 .iter()
