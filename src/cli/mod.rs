@@ -512,6 +512,23 @@ fn check_text(r: &impactlab::model::check::CheckReport) -> String {
         let p = w.principal;
         let _ = writeln!(s, "  principal       {:.6e}, {:.6e}, {:.6e}", p[0], p[1], p[2]);
     }
+    if let (Some(w), Some(m)) = (r.wtmass, r.scaled_mass) {
+        let _ = writeln!(
+            s,
+            "  WTMASS {w:e}   the mass above is in the deck's input units; solutions use {:.6e} (x), {:.6e} (y), {:.6e} (z)",
+            m[0], m[1], m[2]
+        );
+    }
+    for (what, n) in &r.readings {
+        let _ = writeln!(s, "  read as         {what} ({n} card(s))");
+    }
+    if !r.not_written.is_empty() {
+        let _ = writeln!(
+            s,
+            "  not written     {} (requested in case control)",
+            r.not_written.join(", ")
+        );
+    }
     for c in &r.systems {
         let _ = writeln!(
             s,

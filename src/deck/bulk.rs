@@ -1,27 +1,16 @@
-//! Bulk data lines to logical cards: free, small and large field formats,
-//! continuation (explicit marker or implicit) and replication (`=`, `==`, `*(x)`,
-//! `=(n)`).
+//! Card images to logical cards: a card's continuations found by their identifiers
+//! (or, implicit, the card image before them).
 //!
 //! Every field keeps the position it was written at, so that typed-card errors can
-//! point at file, line and column. Each physical line contributes its data fields
-//! 2-9 (small or free field) or 2-5 (large field) to the card, in order.
+//! point at file, line and column. Each card image contributes its data fields 2-9
+//! (small or free field) or 2-5 (large field) to the card, in order.
 
 use super::diag::{Diagnostic, Diagnostics, Pos};
-use super::number::{format_real, parse_int, parse_real, RealToken};
+pub use super::image::Field;
+use super::image::{continuation_key, is_continuation, marker_keys, too_many_cards, Image, Imager};
 use super::source::SrcLine;
 use super::Limits;
 use std::collections::HashMap;
-
-/// One data field of a card.
-#[derive(Debug, Clone)]
-pub struct Field {
-    /// The token, trimmed; empty when blank.
-    pub text: String,
-    /// Where the field starts.
-    pub pos: Pos,
-    /// NASTRAN field number on its physical line (2-9).
-    pub number: usize,
-}
 
 /// A logical bulk data card: name plus data fields from all its lines.
 #[derive(Debug, Clone)]
@@ -67,198 +56,37 @@ impl RawCard {
     }
 }
 
-/// A physical line cut into its NASTRAN fields.
-struct PhysLine {
-    first: Field,
-    data: Vec<Field>,
-    /// Continuation marker (field 10), trimmed.
-    marker: String,
-    large: bool,
-    src: String,
-}
-
-fn field_at(line: &SrcLine, text: &str, col: usize, number: usize) -> Field {
-    Field {
-        text: text.trim().to_string(),
-        pos: line.pos(col),
-        number,
-    }
-}
-
-/// Cuts one line into physical lines (a free-field line with more than 10 fields
-/// continues onto further physical lines of 10 fields each).
-fn cut(line: &SrcLine, diags: &mut Diagnostics) -> Vec<PhysLine> {
-    let text = line.text.as_str();
-    let data_part = match text.find('$') {
-        Some(i) => &text[..i],
-        None => text,
-    };
-    if data_part.contains(',') {
-        // Free field.
-        let mut pieces = Vec::new();
-        let mut col = 1;
-        for p in data_part.split(',') {
-            pieces.push((p, col));
-            col += p.chars().count() + 1;
-        }
-        let large = pieces[0].0.trim().ends_with('*');
-        let mut out = Vec::new();
-        for (ci, chunk) in pieces.chunks(10).enumerate() {
-            let first = field_at(line, chunk[0].0, chunk[0].1, 1);
-            if ci > 0 && !is_continuation(&first.text) {
-                diags.push(
-                    Diagnostic::error(
-                        Some(first.pos.clone()),
-                        "a free-field line longer than 10 fields continues: its field 11 (21, ...) \
-                         must be blank or a continuation marker",
-                    )
-                    .token(&first.text)
-                    .quote(text),
-                );
-                break;
-            }
-            out.push(PhysLine {
-                first,
-                data: chunk
-                    .iter()
-                    .enumerate()
-                    .skip(1)
-                    .take(8)
-                    .map(|(i, (p, c))| field_at(line, p, *c, i + 1))
-                    .collect(),
-                marker: chunk.get(9).map(|(p, _)| p.trim().to_string()).unwrap_or_default(),
-                large,
-                src: text.to_string(),
-            });
-        }
-        return out;
-    }
-    // Fixed format: by character columns.
-    let chars: Vec<char> = data_part.chars().collect();
-    let slice = |a: usize, b: usize| -> String { chars.iter().skip(a).take(b - a).collect() };
-    let first_text = slice(0, 8);
-    let large = first_text.trim_end().ends_with('*') || first_text.starts_with('*');
-    if chars.len() > 80 && chars[80..].iter().any(|c| !c.is_whitespace()) {
-        diags.push(
-            Diagnostic::warning(
-                Some(line.pos(81)),
-                "text beyond column 80 is ignored in fixed-field format",
-            )
-            .quote(text),
-        );
-    }
-    let mut data = Vec::new();
-    if large {
-        for i in 0..4 {
-            let a = 8 + 16 * i;
-            data.push(field_at(line, &slice(a, a + 16), a + 1, i + 2));
-        }
-    } else {
-        for i in 0..8 {
-            let a = 8 + 8 * i;
-            data.push(field_at(line, &slice(a, a + 8), a + 1, i + 2));
-        }
-    }
-    vec![PhysLine {
-        first: field_at(line, &first_text, 1, 1),
-        data,
-        marker: slice(72, 80).trim().to_string(),
-        large,
-        src: text.to_string(),
-    }]
-}
-
-fn marker_key(m: &str) -> String {
-    m.trim_start_matches(['+', '*']).trim().to_ascii_uppercase()
-}
-
-fn is_continuation(first: &str) -> bool {
-    first.is_empty() || first.starts_with('+') || first.starts_with('*')
-}
-
-/// The pattern of a replication line, kept so that a bare `=(n)` can repeat it.
-#[derive(Clone)]
-struct Pattern {
-    fields: Vec<Field>,
-}
-
 /// Assembles bulk data lines into logical cards.
 /// Stops with an error at the first card past [`Limits::max_cards`].
 pub fn assemble(lines: &[SrcLine], limits: Limits, diags: &mut Diagnostics) -> Vec<RawCard> {
     let mut cards: Vec<RawCard> = Vec::new();
-    // Open continuation markers: marker key -> card index.
+    // Open continuation identifiers: key -> card index.
     let mut open: HashMap<String, usize> = HashMap::new();
-    let mut last_pattern: Option<Pattern> = None;
-    for line in lines {
-        for phys in cut(line, diags) {
-            let first = phys.first.text.clone();
-            if first.starts_with('=') {
-                let room = limits.max_cards.saturating_sub(cards.len());
-                if !replicate(
-                    &phys,
-                    limits.max_replication,
-                    room,
-                    &mut cards,
-                    &mut last_pattern,
-                    diags,
-                ) {
-                    return cards;
-                }
+    let mut imager = Imager::new();
+    'lines: for line in lines {
+        let room = limits.max_cards.saturating_sub(cards.len());
+        let Ok(images) = imager.line(line, limits.max_replication, room, diags) else {
+            diags.push(too_many_cards(&line.pos(1), &line.text, limits.max_cards));
+            break;
+        };
+        for img in images {
+            if is_continuation(&img.first.text) {
+                continue_card(img, &mut cards, &mut open, diags);
                 continue;
             }
-            if is_continuation(&first) {
-                let key = marker_key(&first);
-                let target = if let Some(&i) = open.get(&key).filter(|_| !key.is_empty()) {
-                    Some(i)
-                } else if key.is_empty() {
-                    cards.len().checked_sub(1)
-                } else {
-                    diags.push(
-                        Diagnostic::error(
-                            Some(phys.first.pos.clone()),
-                            "continuation marker matches no parent card's field 10",
-                        )
-                        .token(&first)
-                        .quote(&phys.src),
-                    );
-                    None
-                };
-                let Some(i) = target else {
-                    if key.is_empty() {
-                        diags.push(
-                            Diagnostic::error(Some(phys.first.pos.clone()), "continuation line with no parent card")
-                                .quote(&phys.src),
-                        );
-                    }
-                    continue;
-                };
-                open.retain(|_, v| *v != i);
-                let card = &mut cards[i];
-                pad(card, phys.large);
-                card.fields.extend(phys.data);
-                card.source.push('\n');
-                card.source.push_str(&phys.src);
-                if !phys.marker.is_empty() {
-                    open.insert(marker_key(&phys.marker), i);
-                }
-                continue;
-            }
-            let name = first.trim_end_matches('*').trim().to_ascii_uppercase();
             if cards.len() == limits.max_cards {
-                diags.push(too_many_cards(&phys, limits.max_cards));
-                return cards;
+                diags.push(too_many_cards(&img.first.pos, &img.src, limits.max_cards));
+                break 'lines;
             }
             let i = cards.len();
+            open_markers(&img, i, &mut open);
             cards.push(RawCard {
-                name,
-                pos: phys.first.pos.clone(),
-                fields: phys.data,
-                source: phys.src,
-                replicated_at: None,
+                name: img.first.text.trim_end_matches('*').trim().to_ascii_uppercase(),
+                pos: img.first.pos,
+                fields: img.data,
+                source: img.src,
+                replicated_at: img.replicated_at,
             });
-            if !phys.marker.is_empty() {
-                open.insert(marker_key(&phys.marker), i);
-            }
         }
     }
     for c in &mut cards {
@@ -267,6 +95,49 @@ pub fn assemble(lines: &[SrcLine], limits: Limits, diags: &mut Diagnostics) -> V
         }
     }
     cards
+}
+
+/// Registers a card image's field 10, when it has one, as continued by card `i`.
+fn open_markers(img: &Image, i: usize, open: &mut HashMap<String, usize>) {
+    if img.marker.trim().is_empty() {
+        return;
+    }
+    for key in marker_keys(img) {
+        if !key.is_empty() {
+            open.insert(key, i);
+        }
+    }
+}
+
+/// Appends a continuation image to the card whose field 10 it names (or, when its
+/// field 1 names none, to the card before it).
+fn continue_card(img: Image, cards: &mut [RawCard], open: &mut HashMap<String, usize>, diags: &mut Diagnostics) {
+    let key = continuation_key(&img.first.text);
+    let target = if key.is_empty() {
+        cards.len().checked_sub(1)
+    } else {
+        open.get(&key).copied()
+    };
+    let Some(i) = target else {
+        let d = if key.is_empty() {
+            Diagnostic::error(Some(img.first.pos.clone()), "continuation line with no parent card")
+        } else {
+            Diagnostic::error(
+                Some(img.first.pos.clone()),
+                "continuation marker matches no parent card's field 10",
+            )
+            .token(&img.first.text)
+        };
+        diags.push(d.quote(&img.src));
+        return;
+    };
+    open.retain(|_, v| *v != i);
+    open_markers(&img, i, open);
+    let card = &mut cards[i];
+    pad(card, img.large);
+    card.fields.extend(img.data);
+    card.source.push('\n');
+    card.source.push_str(&img.src);
 }
 
 /// Before a continuation is appended, the card's fields are padded to a whole line
@@ -288,186 +159,5 @@ fn pad(card: &mut RawCard, large_next: bool) {
             pos: pos.clone(),
             number,
         });
-    }
-}
-
-/// The error at the first card past the limit; the reader stops there.
-fn too_many_cards(phys: &PhysLine, max: usize) -> Diagnostic {
-    Diagnostic::error(
-        Some(phys.first.pos.clone()),
-        format!("the deck has more than {max} bulk data cards (the reader's limit); reading stops here"),
-    )
-    .quote(&phys.src)
-}
-
-/// The repeat count of a replication line's field 1: `=` (1), `=(n)` or `=n`.
-fn repeat_count(first: &Field, max: usize, src: &str, diags: &mut Diagnostics) -> Option<usize> {
-    let t = first.text.trim();
-    if t == "=" {
-        return Some(1);
-    }
-    let inner = t[1..].trim().trim_start_matches('(').trim_end_matches(')').trim();
-    match parse_int(inner) {
-        Some(n) if n >= 1 && n as u64 <= max as u64 => Some(n as usize),
-        Some(n) if n >= 1 => {
-            diags.push(
-                Diagnostic::error(
-                    Some(first.pos.clone()),
-                    format!("replicates {n} cards, more than the limit of {max}"),
-                )
-                .field(1, "replication")
-                .token(t)
-                .quote(src),
-            );
-            None
-        }
-        _ => {
-            diags.push(
-                Diagnostic::error(
-                    Some(first.pos.clone()),
-                    "is not a replication count: expected =, =(n) or =n",
-                )
-                .field(1, "replication")
-                .token(t)
-                .quote(src),
-            );
-            None
-        }
-    }
-}
-
-/// Generates a replication line's cards; false when they would pass the deck's card
-/// limit (`room` cards are left), which ends the reading.
-fn replicate(
-    phys: &PhysLine,
-    max_replication: usize,
-    room: usize,
-    cards: &mut Vec<RawCard>,
-    last_pattern: &mut Option<Pattern>,
-    diags: &mut Diagnostics,
-) -> bool {
-    let Some(count) = repeat_count(&phys.first, max_replication, &phys.src, diags) else {
-        return true;
-    };
-    if count > room {
-        diags.push(too_many_cards(phys, cards.len() + room));
-        return false;
-    }
-    if cards.is_empty() {
-        diags.push(
-            Diagnostic::error(
-                Some(phys.first.pos.clone()),
-                "replication with nothing to replicate: no card precedes it",
-            )
-            .quote(&phys.src),
-        );
-        return true;
-    }
-    let bare = phys.data.iter().all(|f| f.text.is_empty());
-    let pattern = if bare {
-        last_pattern.clone().unwrap_or(Pattern { fields: Vec::new() })
-    } else {
-        Pattern {
-            fields: phys.data.clone(),
-        }
-    };
-    let exact_copy = bare && last_pattern.is_none();
-    for _ in 0..count {
-        let prev = cards.last().expect("checked non-empty").clone();
-        let mut fields = Vec::new();
-        if exact_copy {
-            fields = prev.fields.clone();
-        } else {
-            let mut ok = true;
-            for (k, pf) in pattern.fields.iter().enumerate() {
-                let prev_f = prev.fields.get(k);
-                let prev_text = prev_f.map(|f| f.text.as_str()).unwrap_or("");
-                let t = pf.text.as_str();
-                if t == "==" {
-                    fields.extend(prev.fields.iter().skip(k).cloned().map(|mut f| {
-                        f.pos = pf.pos.clone();
-                        f
-                    }));
-                    break;
-                }
-                let text = if t == "=" {
-                    prev_text.to_string()
-                } else if let Some(inc) = t.strip_prefix('*') {
-                    let inc = inc.trim().trim_start_matches('(').trim_end_matches(')').trim();
-                    match increment(prev_text, inc) {
-                        Ok(v) => v,
-                        Err(e) => {
-                            diags.push(
-                                Diagnostic::error(Some(pf.pos.clone()), e.to_string())
-                                    .card(&prev.name)
-                                    .field(pf.number, "replication increment")
-                                    .token(t)
-                                    .quote(&phys.src),
-                            );
-                            ok = false;
-                            break;
-                        }
-                    }
-                } else {
-                    t.to_string()
-                };
-                fields.push(Field {
-                    text,
-                    pos: pf.pos.clone(),
-                    number: pf.number,
-                });
-            }
-            if !ok {
-                return true;
-            }
-        }
-        while fields.last().is_some_and(|f| f.text.is_empty()) {
-            fields.pop();
-        }
-        cards.push(RawCard {
-            name: prev.name.clone(),
-            pos: phys.first.pos.clone(),
-            fields,
-            source: phys.src.clone(),
-            replicated_at: Some(phys.first.pos.clone()),
-        });
-    }
-    if !bare {
-        *last_pattern = Some(pattern);
-    }
-    true
-}
-
-/// Why a replication increment cannot be applied.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-enum IncrementError {
-    #[error("increments a field that is blank on the previous card")]
-    Blank,
-    #[error("cannot increment '{0}': it is not a number")]
-    NotANumber(String),
-    #[error("is not a number to increment by")]
-    BadIncrement,
-    #[error("'{0}' incremented by '{1}' is out of range")]
-    OutOfRange(String, String),
-}
-
-/// `previous + increment`, integer when both are integers, real otherwise.
-fn increment(prev: &str, inc: &str) -> Result<String, IncrementError> {
-    if prev.is_empty() {
-        return Err(IncrementError::Blank);
-    }
-    let out_of_range = || IncrementError::OutOfRange(prev.to_string(), inc.to_string());
-    if let (Some(a), Some(b)) = (parse_int(prev), parse_int(inc)) {
-        return a.checked_add(b).map(|v| v.to_string()).ok_or_else(out_of_range);
-    }
-    let val = |s: &str| match parse_real(s) {
-        Some(RealToken::Real(v)) | Some(RealToken::Integer(v)) => Some(v),
-        None => None,
-    };
-    match (val(prev), val(inc)) {
-        (Some(a), Some(b)) if (a + b).is_finite() => Ok(format_real(a + b)),
-        (Some(_), Some(_)) => Err(out_of_range()),
-        (None, _) => Err(IncrementError::NotANumber(prev.to_string())),
-        (_, None) => Err(IncrementError::BadIncrement),
     }
 }

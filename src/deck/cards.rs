@@ -183,6 +183,8 @@ pub struct Connection {
     pub zoffs: f64,
     /// A bar's orientation, offsets and pin flags (CBAR, CBEAM).
     pub bar: Option<BarCard>,
+    /// A CONROD's own property (its PID is its EID).
+    pub rod: Option<Prod>,
     /// The card.
     pub at: CardRef,
 }
@@ -439,6 +441,8 @@ pub struct Spc1 {
     pub c: Components,
     /// Constrained grids (fields 4 on, THRU ranges expanded).
     pub grids: Vec<i64>,
+    /// An SPC's enforced value D when it is not zero, with where it is written.
+    pub enforced: Option<(f64, FieldRef)>,
     /// The card.
     pub at: CardRef,
 }
@@ -536,6 +540,9 @@ pub struct Tstep {
     pub dt: f64,
     /// Output every NO-th step (field 5).
     pub every: usize,
+    /// Where a second interval (N(2), on the continuation) is written: a run refuses
+    /// it, a structure check reads past it.
+    pub further: Option<FieldRef>,
     /// The card.
     pub at: CardRef,
 }
@@ -696,6 +703,12 @@ pub struct Bulk {
     pub gravs: Vec<Grav>,
     /// LOAD cards.
     pub load_combinations: Vec<LoadCombination>,
+    /// PARAM WTMASS when the deck sets it, with its card: every mass of the deck
+    /// (densities, non-structural and concentrated masses) has been multiplied by it.
+    pub wtmass: Option<(f64, CardRef)>,
+    /// How fields that COSMIC and MSC read differently were read: the reading, and
+    /// on how many cards.
+    pub readings: std::collections::BTreeMap<&'static str, usize>,
 }
 
 /// Reads the fields of one raw card, recording every problem.
@@ -705,6 +718,8 @@ struct Reader<'a> {
     /// What is left of [`super::Limits::max_listed_ids`].
     ids_left: &'a mut usize,
     ok: bool,
+    /// Readings of dialect-dependent fields made on this card ([`Bulk::readings`]).
+    readings: Vec<&'static str>,
 }
 
 impl<'a> Reader<'a> {
@@ -714,7 +729,13 @@ impl<'a> Reader<'a> {
             diags,
             ids_left,
             ok: true,
+            readings: Vec::new(),
         }
+    }
+
+    /// Records how a field that COSMIC and MSC read differently was read.
+    fn reading(&mut self, what: &'static str) {
+        self.readings.push(what);
     }
 
     fn at(&self) -> CardRef {
@@ -864,12 +885,7 @@ impl<'a> Reader<'a> {
             return;
         }
         if v <= 0.0 {
-            let hint = if name == "RHO" {
-                " (leave it blank for a massless material)"
-            } else {
-                ""
-            };
-            self.fail(k, name, format!("must be positive{hint}"));
+            self.fail(k, name, "must be positive");
         }
     }
 
@@ -975,11 +991,11 @@ impl<'a> Reader<'a> {
 
 /// Cards the reader knows. `PARAM` is accepted and ignored with a warning.
 /// Element cards are those of [`crate::elements::KINDS`] besides these.
-pub const KNOWN_CARDS: [&str; 38] = [
+pub const KNOWN_CARDS: [&str; 40] = [
     "GRID", "GRDSET", "CORD1R", "CORD1C", "CORD1S", "CORD2R", "CORD2C", "CORD2S", "EPOINT", "SPOINT", "PROD", "PBAR",
     "PBARL", "PBEAM", "PBEAML", "PSHELL", "PCOMP", "MAT1", "MAT2", "MAT8", "CONM2", "RBE2", "RBE3", "SPC1", "SPC",
     "SPCADD", "TF", "TSTEP", "NOLIN3", "TIC", "FORCE", "MOMENT", "PLOAD4", "GRAV", "LOAD", "PARAM", "INCLUDE",
-    "ENDDATA",
+    "ENDDATA", "BAROR", "PTUBE",
 ];
 
 /// Every card the reader types: the element cards of [`crate::elements::KINDS`], then
@@ -997,48 +1013,123 @@ pub fn supported() -> Vec<&'static str> {
 pub fn type_cards(raw: &[RawCard], ids_left: &mut usize, diags: &mut Diagnostics) -> (Bulk, Vec<super::UnknownCard>) {
     let mut b = Bulk::default();
     let mut unknown = Vec::new();
-    for card in raw {
-        let mut r = Reader::new(card, diags, ids_left);
-        match card.name.as_str() {
-            "GRID" => card_grid(&mut r, &mut b),
-            "GRDSET" => card_grdset(&mut r, &mut b),
-            "CORD1R" | "CORD1C" | "CORD1S" => card_cord1(&mut r, &mut b),
-            "CORD2R" | "CORD2C" | "CORD2S" => card_cord2(&mut r, &mut b),
-            "EPOINT" | "SPOINT" => card_points(&mut r, &mut b, card),
-            "PROD" => card_prod(&mut r, &mut b),
-            "PBAR" | "PBEAM" => card_pbar(&mut r, &mut b),
-            "PBARL" | "PBEAML" => card_pbarl(&mut r, &mut b),
-            "PSHELL" => card_pshell(&mut r, &mut b),
-            "MAT1" => card_mat1(&mut r, &mut b),
-            "MAT2" => card_mat2(&mut r, &mut b),
-            "MAT8" => card_mat8(&mut r, &mut b),
-            "PCOMP" => card_pcomp(&mut r, &mut b),
-            "CONM2" => card_conm2(&mut r, &mut b),
-            "SPC1" => card_spc1(&mut r, &mut b),
-            "SPC" => card_spc(&mut r, &mut b),
-            "SPCADD" => card_spcadd(&mut r, &mut b),
-            "RBE2" => card_rbe2(&mut r, &mut b),
-            "RBE3" => card_rbe3(&mut r, &mut b),
-            "TF" => card_tf(&mut r, &mut b, card),
-            "TSTEP" => card_tstep(&mut r, &mut b, card),
-            "NOLIN3" => card_nolin3(&mut r, &mut b),
-            "TIC" => card_tic(&mut r, &mut b),
-            "FORCE" | "MOMENT" => card_point_load(&mut r, &mut b),
-            "PLOAD4" => card_pload4(&mut r, &mut b),
-            "GRAV" => card_grav(&mut r, &mut b),
-            "LOAD" => card_load(&mut r, &mut b),
-            "PARAM" => card_param(&mut r, card),
-            name => match crate::elements::kind(name) {
-                Some(kind) => card_element(&mut r, &mut b, kind),
-                None => unknown.push(super::UnknownCard {
-                    name: card.name.clone(),
-                    pos: card.pos.clone(),
-                    line: card.source.lines().next().unwrap_or("").to_string(),
-                }),
-            },
+    let mut barors = raw.iter().filter(|c| c.name == "BAROR");
+    let baror = barors.next();
+    for extra in barors {
+        let first = baror.map(|c| c.pos.to_string()).unwrap_or_default();
+        diags.push(
+            Diagnostic::error(
+                Some(extra.pos.clone()),
+                format!("only one BAROR card may appear in the bulk data (the first is at {first})"),
+            )
+            .card("BAROR")
+            .quote(&extra.source),
+        );
+    }
+    for whole in raw {
+        for piece in pieces(whole, baror) {
+            let card: &RawCard = &piece;
+            let mut r = Reader::new(card, diags, ids_left);
+            match card.name.as_str() {
+                "BAROR" => r.extra_fields(8),
+                "GRID" => card_grid(&mut r, &mut b),
+                "GRDSET" => card_grdset(&mut r, &mut b),
+                "CORD1R" | "CORD1C" | "CORD1S" => card_cord1(&mut r, &mut b),
+                "CORD2R" | "CORD2C" | "CORD2S" => card_cord2(&mut r, &mut b),
+                "EPOINT" | "SPOINT" => card_points(&mut r, &mut b, card),
+                "PROD" => card_prod(&mut r, &mut b),
+                "PTUBE" => card_ptube(&mut r, &mut b),
+                "CONROD" => card_conrod(&mut r, &mut b),
+                "PBAR" | "PBEAM" => card_pbar(&mut r, &mut b),
+                "PBARL" | "PBEAML" => card_pbarl(&mut r, &mut b),
+                "PSHELL" => card_pshell(&mut r, &mut b),
+                "MAT1" => card_mat1(&mut r, &mut b),
+                "MAT2" => card_mat2(&mut r, &mut b),
+                "MAT8" => card_mat8(&mut r, &mut b),
+                "PCOMP" => card_pcomp(&mut r, &mut b),
+                "CONM2" => card_conm2(&mut r, &mut b),
+                "SPC1" => card_spc1(&mut r, &mut b),
+                "SPC" => card_spc(&mut r, &mut b),
+                "SPCADD" => card_spcadd(&mut r, &mut b),
+                "RBE2" => card_rbe2(&mut r, &mut b),
+                "RBE3" => card_rbe3(&mut r, &mut b),
+                "TF" => card_tf(&mut r, &mut b, card),
+                "TSTEP" => card_tstep(&mut r, &mut b, card),
+                "NOLIN3" => card_nolin3(&mut r, &mut b),
+                "TIC" => card_tic(&mut r, &mut b),
+                "FORCE" | "MOMENT" => card_point_load(&mut r, &mut b),
+                "PLOAD4" => card_pload4(&mut r, &mut b),
+                "GRAV" => card_grav(&mut r, &mut b),
+                "LOAD" => card_load(&mut r, &mut b),
+                "PARAM" => card_param(&mut r, &mut b, card),
+                name => match crate::elements::kind(name) {
+                    Some(kind) => card_element(&mut r, &mut b, kind),
+                    None => unknown.push(super::UnknownCard {
+                        name: card.name.clone(),
+                        pos: card.pos.clone(),
+                        line: card.source.lines().next().unwrap_or("").to_string(),
+                    }),
+                },
+            }
+            for what in r.readings {
+                *b.readings.entry(what).or_default() += 1;
+            }
         }
     }
+    if let Some((w, _)) = &b.wtmass {
+        let w = *w;
+        b.scale_masses(w);
+    }
     (b, unknown)
+}
+
+/// Cards that define one or two elements (fields 2-5 and 6-9): "one or two ROD
+/// elements may be defined on a single card" (COSMIC's CROD; likewise CELAS3, CELAS4,
+/// CMASS3, CMASS4, CDAMP3, CDAMP4).
+const TWO_PER_CARD: [&str; 7] = ["CROD", "CELAS3", "CELAS4", "CMASS3", "CMASS4", "CDAMP3", "CDAMP4"];
+
+/// The cards one raw card stands for: two for a card of [`TWO_PER_CARD`] with its
+/// fields 6-9 written; a CBAR with its blank fields 3 and 6-9 taken from BAROR ("the
+/// contents of fields on this card will be assumed for any CBAR card whose
+/// corresponding fields are blank"); the card itself otherwise.
+fn pieces<'a>(card: &'a RawCard, baror: Option<&RawCard>) -> Vec<std::borrow::Cow<'a, RawCard>> {
+    use std::borrow::Cow;
+    if TWO_PER_CARD.contains(&card.name.as_str()) && card.fields.len() > 4 {
+        let second = RawCard {
+            fields: card.fields[4..card.fields.len().min(8)].to_vec(),
+            ..card.clone()
+        };
+        let mut first = card.clone();
+        first.fields.truncate(4);
+        // Continuation fields, if any, stay on the second for its reader to refuse.
+        let mut second = second;
+        second.fields.extend(card.fields.iter().skip(8).cloned());
+        return vec![Cow::Owned(first), Cow::Owned(second)];
+    }
+    match baror {
+        Some(d) if card.name == "CBAR" => {
+            let mut c = card.clone();
+            let g0_given =
+                parse_int(card.text(7)) == Some(2) || parse_int(d.text(7)) == Some(2) && card.text(7).is_empty();
+            for k in [1, 4, 5, 6, 7] {
+                if g0_given && (k == 5 || k == 6) {
+                    continue;
+                }
+                if c.text(k).is_empty() && !d.text(k).is_empty() {
+                    while c.fields.len() <= k {
+                        c.fields.push(super::bulk::Field {
+                            text: String::new(),
+                            pos: c.pos.clone(),
+                            number: c.fields.len() % 8 + 2,
+                        });
+                    }
+                    c.fields[k] = d.fields[k].clone();
+                }
+            }
+            vec![Cow::Owned(c)]
+        }
+        _ => vec![Cow::Borrowed(card)],
+    }
 }
 
 /// The vector F·(N1, N2, N3) of fields `k`.. (`k + 3`), named after the card's.
@@ -1222,18 +1313,12 @@ fn card_load(r: &mut Reader, b: &mut Bulk) {
 /// PARAM: not used by impactlab and ignored with a warning, except WTMASS other than
 /// 1.0, which scales every mass of the deck and is refused (masses are taken as
 /// written: multiply the densities and masses by it and remove the PARAM).
-fn card_param(r: &mut Reader, card: &RawCard) {
+fn card_param(r: &mut Reader, b: &mut Bulk, card: &RawCard) {
     if r.text(0).eq_ignore_ascii_case("WTMASS") {
         let w = r.real_or(1, "V1", 1.0);
-        if w != 1.0 {
-            r.fail(
-                1,
-                "V1",
-                format!(
-                    "PARAM WTMASS = {w:e} scales every mass of the deck, which impactlab takes as written: multiply \
-                     the densities and masses by it and remove the PARAM"
-                ),
-            );
+        r.positive(1, "V1", w);
+        if r.ok {
+            b.wtmass = Some((w, r.at()));
         }
         return;
     }
@@ -1242,6 +1327,46 @@ fn card_param(r: &mut Reader, card: &RawCard) {
             .card("PARAM")
             .quote(&card.source),
     );
+}
+
+impl Bulk {
+    /// Multiplies every term of the mass by PARAM WTMASS, as NASTRAN does ("the terms
+    /// of the structural mass matrix are multiplied by the value of this parameter"):
+    /// the materials' densities, the properties' non-structural masses and the
+    /// concentrated masses and inertias.
+    fn scale_masses(&mut self, w: f64) {
+        for m in &mut self.mat1s {
+            m.rho *= w;
+        }
+        for m in &mut self.mat2s {
+            m.rho *= w;
+        }
+        for m in &mut self.mat8s {
+            m.rho *= w;
+        }
+        for p in self
+            .prods
+            .iter_mut()
+            .chain(self.elements.iter_mut().filter_map(|c| c.rod.as_mut()))
+        {
+            p.nsm *= w;
+        }
+        for p in &mut self.bar_properties {
+            p.nsm *= w;
+        }
+        for p in &mut self.pshells {
+            p.nsm *= w;
+        }
+        for p in &mut self.pcomps {
+            p.nsm *= w;
+        }
+        for c in &mut self.conm2s {
+            c.mass *= w;
+            for i in &mut c.inertia {
+                *i *= w;
+            }
+        }
+    }
 }
 
 /// GRID.
@@ -1393,6 +1518,7 @@ fn card_element(r: &mut Reader, b: &mut Bulk, kind: &'static crate::elements::Ki
         orientation_at: shell.then(|| r.field_ref(2 + n, "THETA/MCID")),
         zoffs: 0.0,
         bar: None,
+        rod: None,
         at: r.at(),
     };
     let pid = if r.text(1).is_empty() { c.eid } else { c.pid };
@@ -1435,10 +1561,19 @@ fn card_element(r: &mut Reader, b: &mut Bulk, kind: &'static crate::elements::Ki
 /// W3B (a CBEAM's SA, SB, its warping grids, must be blank). X1 an integer with X2,
 /// X3 blank is G0. OFFT's letters say in which frame v, WA and WB are given: G (the
 /// grid's displacement frame, GA's for v) or B (basic); O (element) is refused.
+///
+/// Field 9 of a CBAR is COSMIC's F flag where it holds an integer: "F = 1: X1 X2
+/// X3; F = 2: G0" in field 6 (NASTRAN-95's BULK.TXT, CBAR), v and the offsets then in
+/// the grids' displacement frames, as OFFT = GGG; MSC's OFFT where it holds letters.
 fn card_bar(r: &mut Reader) -> BarCard {
     let orientation_at = r.field_ref(4, "X1/G0");
-    let orientation = match parse_real(r.text(4)) {
-        Some(RealToken::Integer(_)) if r.text(5).is_empty() && r.text(6).is_empty() => {
+    let flag = parse_int(r.text(7)).filter(|_| r.card.name == "CBAR");
+    if flag.is_some() {
+        r.reading("CBAR field 9 read as COSMIC's F flag (1: X1, X2, X3; 2: G0 in field 6)");
+    }
+    let orientation = match (flag, parse_real(r.text(4))) {
+        (Some(2), _) => BarOrientation::Grid(r.id(4, "G0")),
+        (None, Some(RealToken::Integer(_))) if r.text(5).is_empty() && r.text(6).is_empty() => {
             BarOrientation::Grid(r.id(4, "G0"))
         }
         _ => {
@@ -1453,9 +1588,17 @@ fn card_bar(r: &mut Reader) -> BarCard {
             BarOrientation::Vector(v)
         }
     };
-    let offt = match r.text(7) {
-        "" => "GGG".to_string(),
-        t => t.to_ascii_uppercase(),
+    let offt = match (flag, r.text(7)) {
+        (Some(1 | 2), _) | (None, "") => "GGG".to_string(),
+        (Some(_), _) => {
+            r.fail(
+                7,
+                "F",
+                "is not an orientation flag: F is 1 (X1, X2, X3) or 2 (G0 in field 6)",
+            );
+            "GGG".to_string()
+        }
+        (None, t) => t.to_ascii_uppercase(),
     };
     let letters: Vec<char> = offt.chars().collect();
     let valid = letters.len() == 3 && letters.iter().all(|&c| c == 'G' || c == 'B' || c == 'O');
@@ -1464,7 +1607,7 @@ fn card_bar(r: &mut Reader) -> BarCard {
             7,
             "OFFT",
             "is not an offset type: three letters, the first G or B (the orientation vector), the others \
-             G, B or O (the offsets)",
+             G, B or O (the offsets); or COSMIC's F flag, 1 or 2",
         );
     } else if letters[1..].contains(&'O') {
         r.fail(
@@ -1673,6 +1816,78 @@ fn card_prod(r: &mut Reader, b: &mut Bulk) {
     }
 }
 
+/// PTUBE: PID MID OD T NSM (OD2): a tube's area and torsional constant,
+/// A = π/4 (OD² − ID²), J = π/32 (OD⁴ − ID⁴), ID = OD − 2T; "if T is zero, a solid
+/// circular rod is assumed". A tapered tube (OD2 ≠ OD) is refused.
+fn card_ptube(r: &mut Reader, b: &mut Bulk) {
+    let (pid, mid, od) = (r.id(0, "PID"), r.id(1, "MID"), r.real(2, "OD"));
+    let t = r.real_or(3, "T", 0.0);
+    let nsm = r.real_or(4, "NSM", 0.0);
+    r.positive(2, "OD", od);
+    r.non_negative(3, "T", t);
+    if r.ok && 2.0 * t > od {
+        r.fail(3, "T", format!("is more than half the outside diameter (OD = {od:e})"));
+    }
+    if let Some(od2) = r.real_opt(5, "OD2") {
+        if od2 != od {
+            r.fail(
+                5,
+                "OD2",
+                "a tapered tube is not supported: OD2 must be blank or equal to OD",
+            );
+        }
+    }
+    r.extra_fields(6);
+    let id = if t == 0.0 { 0.0 } else { od - 2.0 * t };
+    let p = Prod {
+        pid,
+        mid,
+        a: std::f64::consts::PI / 4.0 * (od * od - id * id),
+        j: std::f64::consts::PI / 32.0 * (od.powi(4) - id.powi(4)),
+        nsm,
+        at: r.at(),
+    };
+    if r.ok {
+        b.prods.push(p);
+    }
+}
+
+/// CONROD: EID G1 G2 MID A J C NSM, a rod with its property on its card.
+fn card_conrod(r: &mut Reader, b: &mut Bulk) {
+    let kind = crate::elements::kind("CONROD").expect("CONROD is an element kind");
+    let eid = r.id(0, "EID");
+    let g = vec![r.id(1, "G1"), r.id(2, "G2")];
+    let p = Prod {
+        pid: eid,
+        mid: r.id(3, "MID"),
+        a: r.real(4, "A"),
+        j: r.real_or(5, "J", 0.0),
+        nsm: r.real_or(7, "NSM", 0.0),
+        at: r.at(),
+    };
+    r.real_opt(6, "C");
+    r.positive(4, "A", p.a);
+    r.non_negative(5, "J", p.j);
+    if r.ok && g[0] == g[1] {
+        r.fail(2, "G2", "is the same grid as G1");
+    }
+    r.extra_fields(8);
+    if r.ok {
+        b.elements.push(Connection {
+            kind,
+            eid,
+            pid: eid,
+            g,
+            orientation: Orientation::Theta(0.0),
+            orientation_at: None,
+            zoffs: 0.0,
+            bar: None,
+            rod: Some(p),
+            at: r.at(),
+        });
+    }
+}
+
 /// PSHELL.
 fn card_pshell(r: &mut Reader, b: &mut Bulk) {
     let p = Pshell {
@@ -1724,7 +1939,7 @@ fn card_mat1(r: &mut Reader, b: &mut Bulk) {
         if !(-1.0..0.5).contains(&nu) {
             r.fail(3, "NU", format!("Poisson's ratio must lie in (-1, 0.5) (NU = {nu})"));
         }
-        r.positive(4, "RHO", rho);
+        r.non_negative(4, "RHO", rho);
     }
     let m = Mat1 {
         mid: r.id(0, "MID"),
@@ -1745,7 +1960,7 @@ fn card_mat2(r: &mut Reader, b: &mut Bulk) {
         .map(|k| r.real_or(k, ["", "G11", "G12", "G13", "G22", "G23", "G33"][k], 0.0))
         .collect();
     let rho = r.real_or(7, "RHO", 0.0);
-    r.positive(7, "RHO", rho);
+    r.non_negative(7, "RHO", rho);
     for (k, name) in [
         (8, "A1"),
         (9, "A2"),
@@ -1793,7 +2008,7 @@ fn card_mat8(r: &mut Reader, b: &mut Bulk) {
     if let Some(v) = g2z {
         r.positive(6, "G2Z", v);
     }
-    r.positive(7, "RHO", rho);
+    r.non_negative(7, "RHO", rho);
     if r.ok && nu12 * nu12 >= e1 / e2 {
         r.fail(
             3,
@@ -1809,12 +2024,17 @@ fn card_mat8(r: &mut Reader, b: &mut Bulk) {
         r.real_opt(k, name);
     }
     let names = ["Xt", "Xc", "Yt", "Yc", "S"];
+    // Xc and Yc are magnitudes; NASTRAN-95 writes them "Real" of either sign (MAT8).
     let mut allowables: [Option<f64>; 5] = std::array::from_fn(|i| {
         let v = r.real_opt(11 + i, names[i]);
-        if let Some(v) = v {
-            r.positive(11 + i, names[i], v);
+        match v {
+            Some(v) if (i == 1 || i == 3) && v < 0.0 => Some(-v),
+            Some(v) => {
+                r.positive(11 + i, names[i], v);
+                Some(v)
+            }
+            None => None,
         }
-        v
     });
     // A blank compressive allowable is the tensile one, as NASTRAN takes it.
     for (c, t) in [(1, 0), (3, 2)] {
@@ -2011,6 +2231,7 @@ fn card_spc1(r: &mut Reader, b: &mut Bulk) {
         sid: r.id(0, "SID"),
         c: r.components(1, "C"),
         grids: r.id_list(2, "G"),
+        enforced: None,
         at: r.at(),
     };
     if r.ok && s.grids.is_empty() {
@@ -2033,22 +2254,16 @@ fn card_spc(r: &mut Reader, b: &mut Bulk) {
         if k == 4 && (4..7).all(|i| r.text(i).is_empty()) {
             break;
         }
+        // A blank or 0 component: a scalar point ("C ... blank or zero for scalar
+        // points", BULK.TXT, SPC); a grid so named is refused when the SPC is used.
         let g = r.id(k, names[0]);
         let c = r.components(k + 1, names[1]);
-        if r.ok && c.0 == 0 {
-            r.fail(k + 1, names[1], "names no component");
-        }
-        if r.real_or(k + 2, names[2], 0.0) != 0.0 {
-            r.fail(
-                k + 2,
-                names[2],
-                "an enforced displacement is not supported: an SPC here holds its components at zero",
-            );
-        }
+        let d = r.real_or(k + 2, names[2], 0.0);
         out.push(Spc1 {
             sid,
             c,
             grids: vec![g],
+            enforced: (d != 0.0).then(|| (d, r.field_ref(k + 2, names[2]))),
             at: r.at(),
         });
     }
@@ -2262,6 +2477,7 @@ fn card_tstep(r: &mut Reader, b: &mut Bulk, card: &RawCard) {
         n: r.int(1, "N(1)").max(0) as usize,
         dt: r.real(2, "DT(1)"),
         every: r.int_or(3, "NO(1)", 1).max(0) as usize,
+        further: (card.fields.len() > 8).then(|| r.field_ref(9, "N(2)")),
         at: r.at(),
     };
     if r.ok && t.n == 0 {
@@ -2271,8 +2487,17 @@ fn card_tstep(r: &mut Reader, b: &mut Bulk, card: &RawCard) {
     if r.ok && t.every == 0 {
         r.fail(3, "NO(1)", "the output interval must be positive");
     }
-    if card.fields.len() > 8 {
-        r.fail(9, "N(2)", "more than one TSTEP interval is not supported");
+    for k in (8..card.fields.len()).filter(|k| k % 8 != 0) {
+        let name = ["", "N", "DT", "NO"][k % 8 % 4];
+        match k % 8 {
+            1 | 3 => {
+                r.int_opt(k, name);
+            }
+            2 => {
+                r.real_opt(k, name);
+            }
+            _ => r.fail(k, "unused", "TSTEP has no field here"),
+        }
     }
     if r.ok {
         b.tsteps.push(t);

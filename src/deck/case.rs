@@ -58,8 +58,10 @@ pub struct OutputRequest {
 /// A case-control SET: its members (THRU ranges expanded).
 #[derive(Debug, Clone)]
 pub struct SetDef {
-    /// Member ids.
+    /// Member ids (empty for `SET n = ALL`).
     pub members: Vec<i64>,
+    /// `SET n = ALL`: every point or element.
+    pub all: bool,
     /// Where the SET is written.
     pub pos: Pos,
 }
@@ -90,8 +92,11 @@ pub struct CaseControl {
     /// LOAD selection (the static loads of a SOL 101 deck).
     pub load: Option<Selection>,
     /// Output requests by keyword: NLLOAD, DISP, VELO, ACCEL, STRESS, STRAIN, FORCE,
-    /// ELFORCE.
+    /// ELFORCE (NASTRAN's longer names and synonyms read as these).
     pub outputs: BTreeMap<String, OutputRequest>,
+    /// Output requests of quantities impactlab does not write (SPCFORCES, OLOAD,
+    /// ESE ...), with where each is asked for.
+    pub not_written: Vec<(String, Pos)>,
 }
 
 /// Reads executive control (ID, SOL, TIME) from its lines; for a deck read for its
@@ -164,7 +169,10 @@ pub fn parse_executive(lines: &[SrcLine], structure: bool, diags: &mut Diagnosti
     e
 }
 
-/// Parses a comma/space separated id list with THRU ranges, as in SET and SPC1.
+/// Parses a comma/space separated id list as a case-control SET writes it: ids,
+/// `a THRU b`, `a THRU b BY k`, and `EXCEPT` after a range, which leaves out the ids
+/// that follow it as long as they fall in that range (CASE.TXT, SET: "EXCEPT ...
+/// deletes" the listed members from the preceding THRU range).
 fn parse_id_list(text: &str, pos: &Pos, src: &str, ids_left: &mut usize, diags: &mut Diagnostics) -> Vec<i64> {
     let toks: Vec<String> = text
         .split([',', ' '])
@@ -175,22 +183,53 @@ fn parse_id_list(text: &str, pos: &Pos, src: &str, ids_left: &mut usize, diags: 
     let mut out = Vec::new();
     let mut i = 0;
     let error = |message: String| Diagnostic::error(Some(pos.clone()), message).card("SET").quote(src);
+    // The last THRU range, for EXCEPT.
+    let mut range: Option<(i64, i64)> = None;
     while i < toks.len() {
         let t = &toks[i];
         if t == "THRU" {
             let (a, b) = (out.last().copied(), toks.get(i + 1).and_then(|s| parse_int(s)));
-            match (a, b) {
-                (Some(a), Some(b)) if b >= a => {
-                    if let Err(e) = super::take_ids(ids_left, (b as i128 - a as i128) as u128) {
+            i += 2;
+            let step = if toks.get(i).is_some_and(|t| t == "BY") {
+                i += 2;
+                toks.get(i - 1).and_then(|s| parse_int(s)).filter(|&k| k > 0)
+            } else {
+                Some(1)
+            };
+            match (a, b, step) {
+                (Some(a), Some(b), Some(k)) if b >= a => {
+                    if let Err(e) = super::take_ids(ids_left, ((b as i128 - a as i128) / k as i128) as u128) {
                         diags.push(error(e));
                         return out;
                     }
-                    out.extend(a + 1..=b)
+                    out.extend((a + k..=b).step_by(k as usize));
+                    range = Some((a, b));
                 }
-                (Some(a), Some(b)) => diags.push(error(format!("THRU range {a} THRU {b} is reversed"))),
+                (Some(a), Some(b), Some(_)) => diags.push(error(format!("THRU range {a} THRU {b} is reversed"))),
+                (_, _, None) => diags.push(error("BY needs a positive integer step after it".into())),
                 _ => diags.push(error("THRU needs an integer on each side".into())),
             }
-            i += 2;
+            continue;
+        }
+        if t == "EXCEPT" {
+            let Some((a, b)) = range else {
+                diags.push(error("EXCEPT follows no THRU range".into()));
+                return out;
+            };
+            i += 1;
+            let mut leave = Vec::new();
+            while let Some(v) = toks.get(i).and_then(|s| parse_int(s)).filter(|v| (a..=b).contains(v)) {
+                if toks.get(i + 1).is_some_and(|t| t == "THRU") {
+                    let end = toks.get(i + 2).and_then(|s| parse_int(s)).unwrap_or(v).min(b);
+                    leave.extend(v..=end);
+                    i += 3;
+                } else {
+                    leave.push(v);
+                    i += 1;
+                }
+            }
+            out.retain(|m| !((a..=b).contains(m) && leave.contains(m)));
+            range = None;
             continue;
         }
         match parse_int(t) {
@@ -214,10 +253,93 @@ fn parse_id_list(text: &str, pos: &Pos, src: &str, ids_left: &mut usize, diags: 
 }
 
 const SELECTORS: [&str; 6] = ["SPC", "IC", "NONLINEAR", "TSTEP", "TFL", "LOAD"];
-const OUTPUTS: [&str; 8] = [
-    "NLLOAD", "DISP", "VELO", "ACCEL", "STRESS", "STRAIN", "FORCE", "ELFORCE",
+
+/// Output requests impactlab writes: NASTRAN's name, and the key it is kept under.
+/// A request may be written by any abbreviation of its name of four letters or more
+/// (CASE.TXT: "the first four characters ... are sufficient").
+const OUTPUTS: [(&str, &str); 10] = [
+    ("NLLOAD", "NLLOAD"),
+    ("DISPLACEMENT", "DISP"),
+    ("VELOCITY", "VELO"),
+    ("ACCELERATION", "ACCEL"),
+    ("STRESS", "STRESS"),
+    ("ELSTRESS", "STRESS"),
+    ("STRAIN", "STRAIN"),
+    ("ELSTRAIN", "STRAIN"),
+    ("FORCE", "FORCE"),
+    ("ELFORCE", "ELFORCE"),
 ];
-const IGNORED: [&str; 6] = ["ECHO", "LINE", "MAXLINES", "OUTPUT", "OLOAD", "SPCFORCE"];
+
+/// Output requests of quantities impactlab does not write: listed as not written,
+/// never dropped in silence.
+const NOT_WRITTEN: [&str; 22] = [
+    "SPCFORCES",
+    "MPCFORCES",
+    "OLOAD",
+    "ESE",
+    "EKE",
+    "EDE",
+    "GPKE",
+    "GPFORCE",
+    "GPSTRESS",
+    "STRFIELD",
+    "SDISPLACEMENT",
+    "SVELOCITY",
+    "SACCELERATION",
+    "NOUTPUT",
+    "BOUTPUT",
+    "THERMAL",
+    "FLUX",
+    "PRESSURE",
+    "ELSDCON",
+    "GPSDCON",
+    "AEROF",
+    "APRESSURE",
+];
+
+/// Commands that change nothing impactlab computes: printing and paging controls.
+const IGNORED: [&str; 8] = ["ECHO", "LINE", "MAXLINES", "OUTPUT", "PLOTID", "PAGE", "SKIP", "SORT"];
+
+/// The NASTRAN name `word` abbreviates (four letters at least) among `names`.
+fn abbreviates<'a>(word: &str, names: impl IntoIterator<Item = &'a str>) -> Option<&'a str> {
+    let word = word.trim();
+    names
+        .into_iter()
+        .find(|n| *n == word || (word.len() >= 4 && n.starts_with(word)))
+}
+
+/// The key an output request's keyword is kept under, if impactlab writes it.
+fn output_key(word: &str) -> Option<&'static str> {
+    // Exact names first: ELSTRESS is not an abbreviation of ELSTRAIN.
+    let exact = OUTPUTS.iter().find(|(n, _)| *n == word);
+    let short = || OUTPUTS.iter().find(|(n, _)| word.len() >= 4 && n.starts_with(word));
+    // Keys as they were always written here (ACCEL, DISP, VELO).
+    let key = OUTPUTS.iter().find(|(_, k)| *k == word);
+    exact.or(key).or_else(short).map(|(_, k)| *k)
+}
+
+/// The line without a `$` comment (a title keeps its text whole).
+fn without_comment(t: &str) -> &str {
+    let up = t.trim_start().to_ascii_uppercase();
+    if ["TITLE", "SUBTITLE", "SUBTI", "LABEL"]
+        .iter()
+        .any(|k| up.starts_with(k) && up[k.len()..].trim_start().starts_with('='))
+    {
+        return t;
+    }
+    t.split('$').next().unwrap_or("")
+}
+
+/// `OUTPUT(PLOT)`, `OUTPUT(XYPLOT)`, `OUTPUT(XYOUT)`: the plotting packages, which run
+/// to the end of case control.
+fn is_plot_section(t: &str) -> bool {
+    let up: String = t
+        .chars()
+        .filter(|c| !c.is_whitespace())
+        .collect::<String>()
+        .to_ascii_uppercase();
+    ["OUTPUT(PLOT)", "OUTPUT(XYPLOT)", "OUTPUT(XYOUT)", "OUTPUT(XYPLOTS)"].contains(&up.as_str())
+}
 
 /// How case control takes SUBCASE.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -239,8 +361,24 @@ pub fn parse_case(lines: &[SrcLine], subcases: Subcases, ids_left: &mut usize, d
     while i < lines.len() {
         let l = &lines[i];
         i += 1;
-        let t = l.text.trim();
+        let t = without_comment(&l.text).trim();
         let pos = l.pos(1);
+        if t.is_empty() {
+            continue;
+        }
+        if is_plot_section(t) {
+            diags.push(
+                Diagnostic::warning(
+                    Some(pos),
+                    format!(
+                        "the plotting section ({} lines to BEGIN BULK) is skipped: impactlab draws its own figures",
+                        lines.len() - i + 1
+                    ),
+                )
+                .quote(&l.text),
+            );
+            break;
+        }
         if t.split_whitespace()
             .next()
             .is_some_and(|w| w.eq_ignore_ascii_case("SUBCASE"))
@@ -273,9 +411,21 @@ pub fn parse_case(lines: &[SrcLine], subcases: Subcases, ids_left: &mut usize, d
                 set_definition(&mut cc, n, &rhs, &src, pos, ids_left, diags);
             }
             [k] if SELECTORS.contains(k) => selector(&mut cc, k, &rhs, pos, &l.text, diags),
-            [k] if OUTPUTS.contains(k) => output_request(&mut cc, k, &rhs, pos, &l.text, diags),
+            [k] if output_key(k).is_some() => {
+                let key = output_key(k).expect("matched");
+                output_request(&mut cc, key, &rhs, pos, &l.text, diags)
+            }
             ["SUBCASE"] | ["SUBCASE", ..] => subcase(subcases, &mut first_subcase, pos, &l.text, diags),
-            [k] if IGNORED.contains(k) => diags.push(
+            [k] if abbreviates(k, NOT_WRITTEN).is_some() => {
+                let name = abbreviates(k, NOT_WRITTEN).expect("matched");
+                diags.push(
+                    Diagnostic::warning(Some(pos.clone()), format!("{name} is not written by impactlab"))
+                        .card(k)
+                        .quote(&l.text),
+                );
+                cc.not_written.push((name.to_string(), pos));
+            }
+            [k] if abbreviates(k, IGNORED).is_some() => diags.push(
                 Diagnostic::warning(Some(pos), "case control request is not supported and is ignored")
                     .card(k)
                     .quote(&l.text),
@@ -287,7 +437,7 @@ pub fn parse_case(lines: &[SrcLine], subcases: Subcases, ids_left: &mut usize, d
             ),
         }
     }
-    check_output_sets(&cc, diags);
+    check_output_sets(&mut cc, diags);
     cc
 }
 
@@ -328,9 +478,15 @@ fn set_definition(
         );
         return;
     };
-    let members = parse_id_list(rhs, &pos, src, ids_left, diags);
+    let all = rhs.trim().eq_ignore_ascii_case("ALL");
+    let members = if all {
+        Vec::new()
+    } else {
+        parse_id_list(rhs, &pos, src, ids_left, diags)
+    };
     let def = SetDef {
         members,
+        all,
         pos: pos.clone(),
     };
     if cc.sets.insert(id, def).is_some() {
@@ -386,11 +542,14 @@ fn output_request(cc: &mut CaseControl, k: &str, rhs: &str, pos: Pos, text: &str
     }
 }
 
-/// Every set named by an output request must exist.
-fn check_output_sets(cc: &CaseControl, diags: &mut Diagnostics) {
-    for (k, req) in &cc.outputs {
+/// Every set named by an output request must exist; a request of a `SET n = ALL`
+/// is a request of ALL.
+fn check_output_sets(cc: &mut CaseControl, diags: &mut Diagnostics) {
+    for (k, req) in &mut cc.outputs {
         if let OutputSet::Set(id) = req.set {
-            if !cc.sets.contains_key(&id) {
+            if cc.sets.get(&id).is_some_and(|s| s.all) {
+                req.set = OutputSet::All;
+            } else if !cc.sets.contains_key(&id) {
                 diags.push(
                     Diagnostic::error(
                         Some(req.pos.clone()),

@@ -8,6 +8,7 @@ pub mod bulk;
 pub mod cards;
 pub mod case;
 pub mod diag;
+pub mod image;
 pub mod number;
 pub mod source;
 
@@ -345,14 +346,20 @@ fn check_duplicates(b: &Bulk, diags: &mut Diagnostics) {
             .chain(b.spoints.iter().map(|(i, a)| (*i, a))),
         diags,
     );
-    dup(
-        "element",
-        b.elements
-            .iter()
-            .map(|c| (c.eid, &c.at))
-            .chain(b.conm2s.iter().map(|c| (c.eid, &c.at))),
-        diags,
-    );
+    dup("element", b.elements.iter().map(|c| (c.eid, &c.at)), diags);
+    dup("mass element", b.conm2s.iter().map(|c| (c.eid, &c.at)), diags);
+    // NASTRAN-95 keeps its mass elements apart from the structural ones and runs a
+    // deck whose CONM2 shares an element's id (its demonstration problem D12-01-1A
+    // does); MSC refuses it. Taken, with a warning.
+    let structural: HashMap<i64, &CardRef> = b.elements.iter().map(|c| (c.eid, &c.at)).collect();
+    for m in &b.conm2s {
+        if let Some(first) = structural.get(&m.eid) {
+            diags.push(m.at.warning(format!(
+                "CONM2 {} has the id of the {} at {}: NASTRAN-95 takes this, MSC does not; the two are kept apart",
+                m.eid, first.name, first.pos
+            )));
+        }
+    }
     dup(
         "property",
         b.prods

@@ -266,8 +266,11 @@ fn split(file: Arc<str>, lines: Vec<SrcLine>, diags: &mut Diagnostics) -> Sectio
                 }
             }
             S::Case => {
-                let up = l.text.trim().to_ascii_uppercase();
-                if up.split_whitespace().collect::<Vec<_>>() == ["BEGIN", "BULK"] {
+                // `BEGIN BULK`; COSMIC also reads `BEGIN` alone, after executive control's
+                // DMAP (whose own `BEGIN $` stands before CEND).
+                let up = l.text.split('$').next().unwrap_or("").trim().to_ascii_uppercase();
+                let words: Vec<&str> = up.split_whitespace().collect();
+                if words == ["BEGIN", "BULK"] || words == ["BEGIN"] {
                     state = S::Bulk;
                 } else {
                     s.case.push(l);

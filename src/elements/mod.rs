@@ -341,11 +341,21 @@ pub struct Kind {
 
 /// Every element card, one line per kind (CONM2, a mass rather than an element
 /// connecting grids, is read on its own).
-pub static KINDS: [Kind; 5] = [
+pub static KINDS: [Kind; 7] = [
     Kind {
         card: "CROD",
         grids: 2,
         build: Build::Rod(|x, s| Ok(Box::new(rod::Rod::build(x, s)?))),
+    },
+    Kind {
+        card: "CONROD",
+        grids: 2,
+        build: Build::Rod(|x, s| Ok(Box::new(rod::Rod::build(x, s)?.of_card("CONROD")))),
+    },
+    Kind {
+        card: "CTUBE",
+        grids: 2,
+        build: Build::Rod(|x, s| Ok(Box::new(rod::Rod::build(x, s)?.of_card("CTUBE")))),
     },
     Kind {
         card: "CQUAD4",
@@ -808,6 +818,7 @@ mod tests {
         };
         vec![
             Box::new(rod::Rod {
+                card: "CROD",
                 x: [[0.0, 0.0, 0.0], [0.3, 0.2, 0.1]],
                 section,
             }),

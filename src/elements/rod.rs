@@ -86,6 +86,9 @@ pub fn axial_strain(x1: [f64; 3], x2: [f64; 3], u1: [f64; 3], u2: [f64; 3]) -> f
 /// A CROD between two grids.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Rod {
+    /// The card it comes from: CROD, CONROD or CTUBE (one element, three ways of
+    /// giving its section).
+    pub card: &'static str,
     /// End coordinates.
     pub x: [[f64; 3]; 2],
     /// Section and material.
@@ -99,7 +102,17 @@ impl Rod {
         if x[0] == x[1] {
             return Err(BadShape("has zero length (its grids coincide)"));
         }
-        Ok(Rod { x, section })
+        Ok(Rod {
+            card: "CROD",
+            x,
+            section,
+        })
+    }
+
+    /// The rod as the element of another card (CONROD, CTUBE).
+    pub fn of_card(mut self, card: &'static str) -> Self {
+        self.card = card;
+        self
     }
 
     /// Its length.
@@ -114,7 +127,7 @@ fn end(ue: &[f64], k: usize) -> [f64; 6] {
 
 impl Kernel for Rod {
     fn card(&self) -> &'static str {
-        "CROD"
+        self.card
     }
     fn family(&self) -> super::Family<'_> {
         super::Family::Rod {

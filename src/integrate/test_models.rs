@@ -39,7 +39,16 @@ fn one_dof(mass: f64, spring: f64, v0: f64, hertz: Option<f64>) -> Model {
             nsm: 0.0,
         };
         let x = [[0.0; 3], [1.0, 0.0, 0.0]];
-        elements.push(Element::new(1, vec![1, 2], vec![[None; 6], free], Rod { x, section }));
+        elements.push(Element::new(
+            1,
+            vec![1, 2],
+            vec![[None; 6], free],
+            Rod {
+                card: "CROD",
+                x,
+                section,
+            },
+        ));
     }
     let contact = hertz.map(|k| {
         let at = CardRef {

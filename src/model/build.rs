@@ -212,6 +212,9 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
         cx.err(d);
     }
     let constrained = constrained_grids(&mut cx, deck, &sel);
+    for d in enforced_values(&sel) {
+        cx.err(d);
+    }
     let rigid = rigid_elements(&mut cx, deck, &geo, &sel);
     let tf_of = transfer_functions(&mut cx, &sel, deck);
     let num = number_dofs(deck, &constrained, &tf_of, &rigid);
@@ -294,6 +297,9 @@ pub struct Structure {
     pub scalar_points: usize,
     /// The solved DOFs, in the order the elements' DOF indices count them.
     pub dofs: Vec<DofLabel>,
+    /// The selected SPCs' nonzero enforced values (SPC's D): a load on the
+    /// structure, not part of it; refused by a solution that cannot apply it.
+    pub enforced: Vec<Diagnostic>,
 }
 
 impl Structure {
@@ -326,6 +332,7 @@ pub fn build_structure(deck: &Deck) -> Result<(Structure, Vec<Diagnostic>), Mode
         tsteps: Vec::new(),
     };
     let constrained = constrained_grids(&mut cx, deck, &sel);
+    let enforced = enforced_values(&sel);
     let rigid = rigid_elements(&mut cx, deck, &geometry, &sel);
     let num = number_dofs(deck, &constrained, &BTreeMap::new(), &rigid);
     let elements = build_elements(&mut cx, deck, &num, &geometry, &rigid);
@@ -339,6 +346,7 @@ pub fn build_structure(deck: &Deck) -> Result<(Structure, Vec<Diagnostic>), Mode
         scalar_points: num.scalar.len(),
         dofs: num.dofs,
         rigid,
+        enforced,
     };
     if cx.diags.iter().any(|d| d.is_error()) {
         Err(ModelError { diagnostics: cx.diags })
@@ -378,6 +386,11 @@ fn select_cards<'d>(cx: &mut Ctx, deck: &'d Deck) -> Selected<'d> {
         tics: cx.select("TIC", "IC", &case.ic, &b.tics, |c| c.sid, |c| &c.at),
         tsteps: cx.select("TSTEP", "TSTEP", &case.tstep, &b.tsteps, |c| c.sid, |c| &c.at),
     };
+    for t in &sel.tsteps {
+        if let Some(f) = &t.further {
+            cx.err(t.at.field_error(f, "more than one TSTEP interval is not supported"));
+        }
+    }
     if case.tstep.is_none() {
         cx.err(Diagnostic::error(
             case.at.clone(),
@@ -472,6 +485,21 @@ fn transfer_functions<'d>(cx: &mut Ctx, sel: &Selected<'d>, deck: &Deck) -> BTre
     tf_of
 }
 
+/// The selected SPCs' nonzero enforced values, as errors to raise where they cannot
+/// be applied.
+fn enforced_values(sel: &Selected) -> Vec<Diagnostic> {
+    sel.spcs
+        .iter()
+        .filter_map(|s| {
+            let (d, at) = s.enforced.as_ref()?;
+            Some(s.at.field_error(
+                at,
+                format!("an enforced displacement (D = {d:e}) is not supported: impactlab holds constrained components at zero"),
+            ))
+        })
+        .collect()
+}
+
 /// The grids and their constrained components (PS, GRDSET and the selected SPC1s),
 /// each in the grid's displacement frame.
 fn constrained_grids(cx: &mut Ctx, deck: &Deck, sel: &Selected) -> HashMap<i64, u8> {
@@ -486,6 +514,9 @@ fn constrained_grids(cx: &mut Ctx, deck: &Deck, sel: &Selected) -> HashMap<i64, 
     for s in spcs {
         for gid in &s.grids {
             match constrained.get_mut(gid) {
+                Some(_) if s.c.0 == 0 => cx.err(s.at.error(format!(
+                    "constrains grid {gid} in no component (a blank or 0 component names a scalar point)"
+                ))),
                 Some(c) => *c |= s.c.0,
                 None if scalar.contains_key(gid) => cx.err(s.at.error(format!(
                     "SPC1 constrains point {gid}, a scalar point: only grids are supported"
@@ -1046,18 +1077,19 @@ impl<'d> Properties<'d> {
     }
 
     /// A rod's PROD and MAT1.
-    fn rod(&self, cx: &mut Ctx, c: &Connection) -> Option<RodSection> {
-        let Some(p) = self.prod.get(&c.pid) else {
+    fn rod(&self, cx: &mut Ctx, c: &'d Connection) -> Option<RodSection> {
+        let property = if c.kind.card == "CTUBE" { "PTUBE" } else { "PROD" };
+        let Some(p) = c.rod.as_ref().or_else(|| self.prod.get(&c.pid).copied()) else {
             cx.err(c.at.error(format!(
-                "{} {} references PROD {}, which does not exist",
+                "{} {} references {property} {}, which does not exist",
                 c.kind.card, c.eid, c.pid
             )));
             return None;
         };
         let Some(m) = self.mat1.get(&p.mid) else {
             cx.err(p.at.error(format!(
-                "PROD {} references MAT1 {}, which does not exist",
-                p.pid, p.mid
+                "{} {} references MAT1 {}, which does not exist",
+                p.at.name, p.pid, p.mid
             )));
             return None;
         };

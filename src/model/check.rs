@@ -68,6 +68,20 @@ pub struct Weight {
     pub principal: [f64; 3],
 }
 
+impl Weight {
+    /// The weight before PARAM WTMASS `w` (masses and inertias divided by it; the
+    /// centre of gravity unchanged).
+    fn in_input_units(mut self, w: f64) -> Self {
+        if w == 1.0 {
+            return self;
+        }
+        self.mass = self.mass.map(|m| m / w);
+        self.inertia = self.inertia.map(|row| row.map(|v| v / w));
+        self.principal = self.principal.map(|v| v / w);
+        self
+    }
+}
+
 impl From<MassProperties> for Weight {
     fn from(m: MassProperties) -> Self {
         Weight {
@@ -103,8 +117,18 @@ pub struct CheckReport {
     pub dependent_dofs: usize,
     /// Scalar points.
     pub scalar_points: usize,
-    /// Mass, centre of gravity and inertia (`None` when the structure does not build).
+    /// Mass, centre of gravity and inertia in the deck's input units, as NASTRAN's
+    /// grid point weight generator prints them: before PARAM WTMASS (`None` when the
+    /// structure does not build).
     pub weight: Option<Weight>,
+    /// PARAM WTMASS, when the deck sets it.
+    pub wtmass: Option<f64>,
+    /// The mass along basic x, y, z as solutions use it: `weight`'s times WTMASS.
+    pub scaled_mass: Option<[f64; 3]>,
+    /// How fields that COSMIC and MSC read differently were read, and on how many cards.
+    pub readings: BTreeMap<String, usize>,
+    /// Output requests of quantities impactlab does not write.
+    pub not_written: Vec<String>,
     /// The coordinate systems.
     pub systems: Vec<SystemUse>,
     /// Cards that would change the structure and are not supported.
@@ -218,6 +242,10 @@ pub fn check(deck: &Deck) -> CheckReport {
         dependent_dofs: 0,
         scalar_points: 0,
         weight: None,
+        wtmass: b.wtmass.as_ref().map(|(w, _)| *w),
+        scaled_mass: None,
+        readings: b.readings.iter().map(|(k, n)| (k.to_string(), *n)).collect(),
+        not_written: deck.case.not_written.iter().map(|(k, _)| k.clone()).collect(),
         systems,
         unsupported: unsupported.into_values().collect(),
         ignored: ignored.into_values().collect(),
@@ -233,7 +261,10 @@ pub fn check(deck: &Deck) -> CheckReport {
             report.constrained_dofs = s.constrained_dofs;
             report.dependent_dofs = s.dependent_dofs;
             report.scalar_points = s.scalar_points;
-            report.weight = Some(s.mass_properties().into());
+            let m = s.mass_properties();
+            let w = report.wtmass.unwrap_or(1.0);
+            report.scaled_mass = report.wtmass.map(|_| m.mass);
+            report.weight = Some(Weight::from(m).in_input_units(w));
             warnings.extend(diags.iter().map(Diagnostic::to_string));
             report.takes = report.unsupported.is_empty();
         }

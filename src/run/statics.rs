@@ -93,6 +93,12 @@ impl StaticSolution {
 /// the solution and the model builder's warnings.
 pub fn solve(deck: &Deck) -> Result<(StaticSolution, Vec<Diagnostic>), StaticError> {
     let (s, mut warnings) = build_structure(deck)?;
+    if !s.enforced.is_empty() {
+        return Err(ModelError {
+            diagnostics: s.enforced.clone(),
+        }
+        .into());
+    }
     for (key, r) in deck.case.outputs.iter().filter(|(k, _)| k.as_str() != "DISP") {
         warnings.push(Diagnostic::warning(
             Some(r.pos.clone()),
