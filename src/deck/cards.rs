@@ -648,6 +648,44 @@ pub struct LoadCombination {
     pub at: CardRef,
 }
 
+/// CELAS1-4 and CMASS1-4: a scalar spring or mass between two DOFs.
+#[derive(Debug, Clone)]
+pub struct ScalarCard {
+    /// Element id (field 2).
+    pub eid: i64,
+    /// A spring (CELASi) rather than a mass (CMASSi).
+    pub spring: bool,
+    /// Its value: through its property (PELAS, PMASS) or on the card.
+    pub value: ScalarValue,
+    /// Its two terminals (point, component 0-6): a grid's component 1-6, a scalar
+    /// point's 0; point 0 is ground.
+    pub terminals: [(i64, usize); 2],
+    /// Where G1 (S1) is written.
+    pub first_at: FieldRef,
+    /// The card.
+    pub at: CardRef,
+}
+
+/// Where a scalar element's stiffness or mass is given.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ScalarValue {
+    /// A PELAS or PMASS id.
+    Property(i64),
+    /// K or M on the card (CELAS2, CELAS4, CMASS2, CMASS4).
+    Value(f64),
+}
+
+/// PELAS (PID K GE S) or PMASS (PID M).
+#[derive(Debug, Clone)]
+pub struct ScalarProperty {
+    /// Property id.
+    pub pid: i64,
+    /// K or M.
+    pub value: f64,
+    /// The card.
+    pub at: CardRef,
+}
+
 /// All bulk data of a deck, typed.
 #[derive(Debug, Clone, Default)]
 pub struct Bulk {
@@ -679,6 +717,12 @@ pub struct Bulk {
     pub pcomps: Vec<Pcomp>,
     /// CONM2 cards.
     pub conm2s: Vec<Conm2>,
+    /// CELAS1-4 and CMASS1-4 cards.
+    pub scalars: Vec<ScalarCard>,
+    /// PELAS cards.
+    pub pelas: Vec<ScalarProperty>,
+    /// PMASS cards.
+    pub pmass: Vec<ScalarProperty>,
     /// SPC1 cards, and each grid of an SPC card as one.
     pub spc1s: Vec<Spc1>,
     /// SPCADD cards.
@@ -991,21 +1035,24 @@ impl<'a> Reader<'a> {
 
 /// Cards the reader knows. `PARAM` is accepted and ignored with a warning.
 /// Element cards are those of [`crate::elements::KINDS`] besides these.
-pub const KNOWN_CARDS: [&str; 40] = [
+pub const KNOWN_CARDS: [&str; 50] = [
     "GRID", "GRDSET", "CORD1R", "CORD1C", "CORD1S", "CORD2R", "CORD2C", "CORD2S", "EPOINT", "SPOINT", "PROD", "PBAR",
     "PBARL", "PBEAM", "PBEAML", "PSHELL", "PCOMP", "MAT1", "MAT2", "MAT8", "CONM2", "RBE2", "RBE3", "SPC1", "SPC",
     "SPCADD", "TF", "TSTEP", "NOLIN3", "TIC", "FORCE", "MOMENT", "PLOAD4", "GRAV", "LOAD", "PARAM", "INCLUDE",
-    "ENDDATA", "BAROR", "PTUBE",
+    "ENDDATA", "BAROR", "PTUBE", "CELAS1", "CELAS2", "CELAS3", "CELAS4", "CMASS1", "CMASS2", "CMASS3", "CMASS4",
+    "PELAS", "PMASS",
 ];
 
-/// Every card the reader types: the element cards of [`crate::elements::KINDS`], then
-/// [`KNOWN_CARDS`].
+/// Every card the reader types: the element cards of [`crate::elements::KINDS`] and
+/// [`KNOWN_CARDS`], in alphabetical order.
 pub fn supported() -> Vec<&'static str> {
-    crate::elements::KINDS
+    let mut all: Vec<&'static str> = crate::elements::KINDS
         .iter()
         .map(|k| k.card)
         .chain(KNOWN_CARDS)
-        .collect()
+        .collect();
+    all.sort_unstable();
+    all
 }
 
 /// Types all raw cards. Unknown card names are collected and returned. `ids_left` is
@@ -1039,6 +1086,10 @@ pub fn type_cards(raw: &[RawCard], ids_left: &mut usize, diags: &mut Diagnostics
                 "EPOINT" | "SPOINT" => card_points(&mut r, &mut b, card),
                 "PROD" => card_prod(&mut r, &mut b),
                 "PTUBE" => card_ptube(&mut r, &mut b),
+                "CELAS1" | "CELAS2" | "CELAS3" | "CELAS4" | "CMASS1" | "CMASS2" | "CMASS3" | "CMASS4" => {
+                    card_scalar(&mut r, &mut b)
+                }
+                "PELAS" | "PMASS" => card_scalar_property(&mut r, &mut b),
                 "CONROD" => card_conrod(&mut r, &mut b),
                 "PBAR" | "PBEAM" => card_pbar(&mut r, &mut b),
                 "PBARL" | "PBEAML" => card_pbarl(&mut r, &mut b),
@@ -1080,31 +1131,66 @@ pub fn type_cards(raw: &[RawCard], ids_left: &mut usize, diags: &mut Diagnostics
         let w = *w;
         b.scale_masses(w);
     }
+    implicit_scalar_points(&mut b);
     (b, unknown)
 }
 
-/// Cards that define one or two elements (fields 2-5 and 6-9): "one or two ROD
-/// elements may be defined on a single card" (COSMIC's CROD; likewise CELAS3, CELAS4,
-/// CMASS3, CMASS4, CDAMP3, CDAMP4).
-const TWO_PER_CARD: [&str; 7] = ["CROD", "CELAS3", "CELAS4", "CMASS3", "CMASS4", "CDAMP3", "CDAMP4"];
+/// Scalar points defined by their use: "a scalar point ... referenced on a scalar
+/// connection card need not be defined on an SPOINT card" (BULK.TXT, SPOINT): a
+/// scalar element's terminal of component 0 that no GRID, SPOINT or EPOINT defines.
+fn implicit_scalar_points(b: &mut Bulk) {
+    let known: std::collections::HashSet<i64> = b
+        .grids
+        .iter()
+        .map(|g| g.id)
+        .chain(b.spoints.iter().chain(&b.epoints).map(|(i, _)| *i))
+        .collect();
+    let mut added = std::collections::HashSet::new();
+    for c in &b.scalars {
+        for &(g, comp) in &c.terminals {
+            if g > 0 && comp == 0 && !known.contains(&g) && added.insert(g) {
+                b.spoints.push((g, c.at.clone()));
+            }
+        }
+    }
+}
 
-/// The cards one raw card stands for: two for a card of [`TWO_PER_CARD`] with its
-/// fields 6-9 written; a CBAR with its blank fields 3 and 6-9 taken from BAROR ("the
-/// contents of fields on this card will be assumed for any CBAR card whose
-/// corresponding fields are blank"); the card itself otherwise.
+/// Cards that define up to two elements or properties (fields 2-5 and 6-9; "one or
+/// two ROD elements may be defined on a single card", COSMIC's CROD), or four (PMASS,
+/// PDAMP: fields 2-3, 4-5, 6-7, 8-9): the fields of one.
+fn per_card(name: &str) -> Option<usize> {
+    match name {
+        "CROD" | "CELAS3" | "CELAS4" | "CMASS3" | "CMASS4" | "CDAMP3" | "CDAMP4" | "PELAS" => Some(4),
+        "PMASS" | "PDAMP" => Some(2),
+        _ => None,
+    }
+}
+
+/// The cards one raw card stands for: one for each element or property written on a
+/// card of several ([`per_card`]); a CBAR with its blank fields 3 and 6-9 taken from
+/// BAROR ("the contents of fields on this card will be assumed for any CBAR card
+/// whose corresponding fields are blank"); the card itself otherwise.
 fn pieces<'a>(card: &'a RawCard, baror: Option<&RawCard>) -> Vec<std::borrow::Cow<'a, RawCard>> {
     use std::borrow::Cow;
-    if TWO_PER_CARD.contains(&card.name.as_str()) && card.fields.len() > 4 {
-        let second = RawCard {
-            fields: card.fields[4..card.fields.len().min(8)].to_vec(),
-            ..card.clone()
-        };
-        let mut first = card.clone();
-        first.fields.truncate(4);
-        // Continuation fields, if any, stay on the second for its reader to refuse.
-        let mut second = second;
-        second.fields.extend(card.fields.iter().skip(8).cloned());
-        return vec![Cow::Owned(first), Cow::Owned(second)];
+    if let Some(w) = per_card(&card.name).filter(|&w| card.fields.len() > w) {
+        let first_line = card.fields.len().min(8);
+        let mut out: Vec<RawCard> = (0..first_line)
+            .step_by(w)
+            .filter(|&k| {
+                card.fields[k..(k + w).min(first_line)]
+                    .iter()
+                    .any(|f| !f.text.is_empty())
+            })
+            .map(|k| RawCard {
+                fields: card.fields[k..(k + w).min(first_line)].to_vec(),
+                ..card.clone()
+            })
+            .collect();
+        // Continuation fields, if any, go to the last for its reader to refuse.
+        if let Some(last) = out.last_mut() {
+            last.fields.extend(card.fields.iter().skip(8).cloned());
+        }
+        return out.into_iter().map(Cow::Owned).collect();
     }
     match baror {
         Some(d) if card.name == "CBAR" => {
@@ -1359,6 +1445,14 @@ impl Bulk {
         }
         for p in &mut self.pcomps {
             p.nsm *= w;
+        }
+        for p in &mut self.pmass {
+            p.value *= w;
+        }
+        for c in self.scalars.iter_mut().filter(|c| !c.spring) {
+            if let ScalarValue::Value(m) = &mut c.value {
+                *m *= w;
+            }
         }
         for c in &mut self.conm2s {
             c.mass *= w;
@@ -1849,6 +1943,95 @@ fn card_ptube(r: &mut Reader, b: &mut Bulk) {
     };
     if r.ok {
         b.prods.push(p);
+    }
+}
+
+/// CELAS1 (EID PID G1 C1 G2 C2), CELAS2 (EID K G1 C1 G2 C2 GE S), CELAS3 (EID PID
+/// S1 S2), CELAS4 (EID K S1 S2), and CMASS1-4 alike with M: "scalar points may be
+/// used for G1 and/or G2, in which case the corresponding C1 and/or C2 must be zero
+/// or blank. Zero or blank may be used to indicate a grounded terminal".
+fn card_scalar(r: &mut Reader, b: &mut Bulk) {
+    let name = r.card.name.as_str();
+    let spring = name.starts_with("CELAS");
+    let n = name.as_bytes()[name.len() - 1] - b'0';
+    let eid = r.id(0, "EID");
+    let value = if n % 2 == 1 {
+        ScalarValue::Property(r.int_or(1, "PID", eid))
+    } else {
+        ScalarValue::Value(r.real(1, if spring { "K" } else { "M" }))
+    };
+    let terminals = if n <= 2 {
+        [
+            (r.int_or(2, "G1", 0), r.component(3, "C1")),
+            (r.int_or(4, "G2", 0), r.component(5, "C2")),
+        ]
+    } else {
+        [(r.int_or(2, "S1", 0), 0), (r.int_or(3, "S2", 0), 0)]
+    };
+    let first_at = r.field_ref(2, if n <= 2 { "G1" } else { "S1" });
+    for (k, (g, _)) in terminals.iter().enumerate() {
+        if *g < 0 {
+            let f = if n <= 2 { 2 + 2 * k } else { 2 + k };
+            r.fail(f, "G", "must be a point id, or 0 or blank for ground");
+        }
+    }
+    if r.ok && terminals[0].0 == 0 && terminals[1].0 == 0 {
+        r.fail(2, "G1", "both terminals are ground: the element connects nothing");
+    }
+    if r.ok && terminals[0] == terminals[1] {
+        r.fail(4, "G2", "the two connection points must be distinct");
+    }
+    if n == 2 && spring {
+        if r.real_or(6, "GE", 0.0) != 0.0 {
+            r.warn(
+                6,
+                "GE",
+                "structural damping is not applied: impactlab's structure is undamped",
+            );
+        }
+        r.real_opt(7, "S");
+        r.extra_fields(8);
+    } else {
+        r.extra_fields(if n <= 2 { 6 } else { 4 });
+    }
+    if r.ok {
+        b.scalars.push(ScalarCard {
+            eid,
+            spring,
+            value,
+            terminals,
+            first_at,
+            at: r.at(),
+        });
+    }
+}
+
+/// PELAS (PID K GE S) and PMASS (PID M).
+fn card_scalar_property(r: &mut Reader, b: &mut Bulk) {
+    let spring = r.card.name == "PELAS";
+    let p = ScalarProperty {
+        pid: r.id(0, "PID"),
+        value: r.real(1, if spring { "K" } else { "M" }),
+        at: r.at(),
+    };
+    if spring {
+        if r.real_or(2, "GE", 0.0) != 0.0 {
+            r.warn(
+                2,
+                "GE",
+                "structural damping is not applied: impactlab's structure is undamped",
+            );
+        }
+        r.real_opt(3, "S");
+        r.extra_fields(4);
+        if r.ok {
+            b.pelas.push(p);
+        }
+    } else {
+        r.extra_fields(2);
+        if r.ok {
+            b.pmass.push(p);
+        }
     }
 }
 

@@ -17,6 +17,9 @@ pub struct Executive {
     pub solution: Option<String>,
     /// TIME statement's text.
     pub time_limit: Option<String>,
+    /// The statement that makes the deck a restart (`NASTRAN FILES = OPTP`: the old
+    /// problem tape of an earlier run holds its structure), with where it is.
+    pub restart: Option<(String, Pos)>,
 }
 
 /// Solution sequences that mean direct transient response.
@@ -153,6 +156,9 @@ pub fn parse_executive(lines: &[SrcLine], structure: bool, diags: &mut Diagnosti
                 }
             }
             "APP" | "DIAG" | "CHKPNT" | "ECHOON" | "ECHOOFF" => {}
+            "NASTRAN" if rest.to_ascii_uppercase().contains("OPTP") => {
+                e.restart = Some((t.to_string(), l.pos(1)));
+            }
             _ => diags.push(
                 Diagnostic::warning(Some(l.pos(1)), "unknown executive control statement, ignored")
                     .token(&key)

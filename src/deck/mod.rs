@@ -346,7 +346,14 @@ fn check_duplicates(b: &Bulk, diags: &mut Diagnostics) {
             .chain(b.spoints.iter().map(|(i, a)| (*i, a))),
         diags,
     );
-    dup("element", b.elements.iter().map(|c| (c.eid, &c.at)), diags);
+    dup(
+        "element",
+        b.elements
+            .iter()
+            .map(|c| (c.eid, &c.at))
+            .chain(b.scalars.iter().map(|c| (c.eid, &c.at))),
+        diags,
+    );
     dup("mass element", b.conm2s.iter().map(|c| (c.eid, &c.at)), diags);
     // NASTRAN-95 keeps its mass elements apart from the structural ones and runs a
     // deck whose CONM2 shares an element's id (its demonstration problem D12-01-1A
@@ -365,7 +372,9 @@ fn check_duplicates(b: &Bulk, diags: &mut Diagnostics) {
         b.prods
             .iter()
             .map(|p| (p.pid, &p.at))
-            .chain(b.pshells.iter().map(|p| (p.pid, &p.at))),
+            .chain(b.pshells.iter().map(|p| (p.pid, &p.at)))
+            .chain(b.pelas.iter().map(|p| (p.pid, &p.at)))
+            .chain(b.pmass.iter().map(|p| (p.pid, &p.at))),
         diags,
     );
     dup(

@@ -21,6 +21,7 @@ pub mod mass;
 pub mod mitc4;
 pub mod quad4;
 pub mod rod;
+pub mod scalar;
 pub mod section;
 pub mod shell;
 pub mod tria3;
@@ -466,6 +467,8 @@ pub enum Family<'a> {
     /// A support the model adds (a grid's drilling spring, [`drill::Drill`]): no
     /// mass, no recovered values, not drawn.
     Support,
+    /// A scalar spring or mass between two DOFs ([`scalar::Scalar`]).
+    Scalar,
 }
 
 impl<'a> Family<'a> {

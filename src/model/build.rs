@@ -306,11 +306,7 @@ impl Structure {
     /// Its mass, centre of gravity and inertia (see [`super::mass_properties`]).
     pub fn mass_properties(&self) -> super::MassProperties {
         let g = &self.geometry;
-        super::mass_properties(
-            &self.elements,
-            |id| g.positions.get(&id).copied().unwrap_or_default(),
-            |id| g.frame(id),
-        )
+        super::mass_properties(&self.elements, |id| g.positions.get(&id).copied(), |id| g.frame(id))
     }
 }
 
@@ -668,6 +664,7 @@ fn build_elements(
     };
     connected(cx, deck, num, geo, &mut out);
     point_masses(cx, deck, num, geo, &mut out);
+    scalar_elements(cx, deck, num, geo, rigid, &mut out);
     // Elements and masses on dependent grids, attached through their ties. An
     // independent grid that a grid follows whole carries that grid's elements.
     if !rigid.ties.is_empty() {
@@ -1277,6 +1274,106 @@ fn point_masses(cx: &mut Ctx, deck: &Deck, num: &Numbering, geo: &Geometry, out:
             Some(p) => e.placed(p),
             None => e,
         });
+    }
+}
+
+/// The scalar springs and masses (CELAS1-4, CMASS1-4) between their terminals: a
+/// grid's component in its displacement frame, or a scalar point; ground left out.
+fn scalar_elements(
+    cx: &mut Ctx,
+    deck: &Deck,
+    num: &Numbering,
+    geo: &Geometry,
+    rigid: &crate::model::rigid::Rigid,
+    out: &mut Elements,
+) {
+    use crate::deck::cards::ScalarValue;
+    use crate::elements::scalar::{Scalar, ScalarKind};
+    let b = &deck.bulk;
+    let pelas: HashMap<i64, f64> = b.pelas.iter().map(|p| (p.pid, p.value)).collect();
+    let pmass: HashMap<i64, f64> = b.pmass.iter().map(|p| (p.pid, p.value)).collect();
+    for c in &b.scalars {
+        let card = c.at.name.as_str();
+        let value = match c.value {
+            ScalarValue::Value(v) => Some(v),
+            ScalarValue::Property(pid) => {
+                let (props, name) = if c.spring { (&pelas, "PELAS") } else { (&pmass, "PMASS") };
+                let v = props.get(&pid).copied();
+                if v.is_none() {
+                    cx.err(c.at.error(format!(
+                        "{card} {} references {name} {pid}, which does not exist",
+                        c.eid
+                    )));
+                }
+                v
+            }
+        };
+        let mut grids = Vec::new();
+        let mut dofs = Vec::new();
+        let mut slots = Vec::new();
+        let mut points = Vec::new();
+        let mut ok = true;
+        for &(g, comp) in c.terminals.iter().filter(|(g, _)| *g != 0) {
+            let (d, slot, x) = if num.grids.contains_key(&g) {
+                if comp == 0 {
+                    cx.err(c.at.field_error(
+                        &c.first_at,
+                        format!(
+                            "{card} {}: grid {g} needs a component 1-6 (0 or blank is a scalar point's)",
+                            c.eid
+                        ),
+                    ));
+                    ok = false;
+                    continue;
+                }
+                if rigid.ties.contains_key(&g) {
+                    cx.err(c.at.error(format!(
+                        "{card} {} is on grid {g}, which a rigid element makes dependent: connect it to an independent grid",
+                        c.eid
+                    )));
+                    ok = false;
+                    continue;
+                }
+                (num.grid_dofs(g), comp - 1, geo.positions.get(&g).copied())
+            } else if num.scalar.contains_key(&g) {
+                if comp != 0 {
+                    cx.err(c.at.field_error(
+                        &c.first_at,
+                        format!(
+                            "{card} {}: point {g} is a scalar point: its component is 0 or blank",
+                            c.eid
+                        ),
+                    ));
+                    ok = false;
+                    continue;
+                }
+                let i = num.index.get(&DofLabel { point: g, comp: 0 }).copied();
+                let mut d = [None; 6];
+                d[0] = i;
+                (d, 0, None)
+            } else {
+                cx.err(c.at.error(format!("{card} {} references point {g}, which does not exist", c.eid)));
+                ok = false;
+                continue;
+            };
+            slots.push((grids.len(), slot));
+            grids.push(g);
+            dofs.push(d);
+            points.push(x);
+        }
+        let Some(v) = value.filter(|_| ok) else { continue };
+        let kind = if c.spring {
+            ScalarKind::Spring(v)
+        } else {
+            ScalarKind::Mass(v)
+        };
+        let kernel = Scalar {
+            card: crate::elements::scalar::card_name(card),
+            kind,
+            slots,
+            points,
+        };
+        out.list.push(Element::new(c.eid, grids, dofs, kernel));
     }
 }
 

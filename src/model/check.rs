@@ -252,6 +252,14 @@ pub fn check(deck: &Deck) -> CheckReport {
         errors: Vec::new(),
         warnings: Vec::new(),
     };
+    if let Some((statement, at)) = &deck.executive.restart {
+        report.errors = vec![format!(
+            "{at}: a restart deck ({statement}): its structure is on the old problem tape of an earlier run, \
+             which impactlab does not read; check the deck that made it"
+        )];
+        report.warnings = warnings;
+        return report;
+    }
     match build_structure(deck) {
         Ok((s, diags)) => {
             for e in &s.elements {

@@ -34,16 +34,18 @@ pub struct MassProperties {
 /// displaced in `frame(g)` (axes as columns, basic components).
 pub fn mass_properties(
     elements: &[Element],
-    position: impl Fn(i64) -> [f64; 3],
+    position: impl Fn(i64) -> Option<[f64; 3]>,
     frame: impl Fn(i64) -> Matrix3<f64>,
 ) -> MassProperties {
     let mut m0 = Matrix6::<f64>::zeros();
     for e in elements {
+        // A scalar point (no position) has no place in the rigid-body mass.
+        let located: Vec<bool> = e.grids.iter().map(|&g| position(g).is_some()).collect();
         let d: Vec<SMatrix<f64, 6, 6>> = e
             .grids
             .iter()
             .map(|&g| {
-                let (x, t) = (Vector3::from(position(g)), frame(g));
+                let (x, t) = (Vector3::from(position(g).unwrap_or_default()), frame(g));
                 let mut rigid = Matrix6::identity();
                 rigid.fixed_view_mut::<3, 3>(0, 3).copy_from(&(-x.cross_matrix()));
                 let mut turn = Matrix6::zeros();
@@ -56,7 +58,7 @@ pub fn mass_properties(
             for (a, &(ga, ca)) in l.at.iter().enumerate() {
                 for (b, &(gb, cb)) in l.at.iter().enumerate() {
                     let v = l.values[(a, b)];
-                    if v != 0.0 {
+                    if v != 0.0 && located[ga] && located[gb] {
                         m0 += d[ga].row(ca).transpose() * d[gb].row(cb) * v;
                     }
                 }
@@ -104,7 +106,7 @@ mod tests {
             Element::new(1, vec![1], vec![[None; 6]], pm([1.0, 0.0, 0.0], 2.0)),
             Element::new(2, vec![2], vec![[None; 6]], pm([-2.0, 3.0, 0.0], 1.0)),
         ];
-        let position = |g: i64| if g == 1 { [1.0, 0.0, 0.0] } else { [-2.0, 3.0, 0.0] };
+        let position = |g: i64| Some(if g == 1 { [1.0, 0.0, 0.0] } else { [-2.0, 3.0, 0.0] });
         let turned = nalgebra::Rotation3::from_euler_angles(0.3, 0.2, -0.9).into_inner();
         for frame in [Matrix3::identity(), turned] {
             let p = mass_properties(
