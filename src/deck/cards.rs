@@ -185,6 +185,9 @@ pub struct Connection {
     pub bar: Option<BarCard>,
     /// A CONROD's own property (its PID is its EID).
     pub rod: Option<Prod>,
+    /// The property card a COSMIC plate names (CQDMEM1's PQDMEM1): COSMIC numbers
+    /// each property card's ids apart, so PID is looked up among that card's.
+    pub property_card: Option<&'static str>,
     /// The card.
     pub at: CardRef,
 }
@@ -707,6 +710,9 @@ pub struct Bulk {
     pub bar_properties: Vec<BarProperty>,
     /// PSHELL cards.
     pub pshells: Vec<Pshell>,
+    /// COSMIC's plate properties (PQUAD1 ... PTRMEM) as the PSHELL they describe, by
+    /// their card (COSMIC numbers each card's ids apart).
+    pub cosmic_plates: Vec<(&'static str, Pshell)>,
     /// MAT1 cards.
     pub mat1s: Vec<Mat1>,
     /// MAT2 cards.
@@ -1035,12 +1041,13 @@ impl<'a> Reader<'a> {
 
 /// Cards the reader knows. `PARAM` is accepted and ignored with a warning.
 /// Element cards are those of [`crate::elements::KINDS`] besides these.
-pub const KNOWN_CARDS: [&str; 50] = [
+pub const KNOWN_CARDS: [&str; 66] = [
     "GRID", "GRDSET", "CORD1R", "CORD1C", "CORD1S", "CORD2R", "CORD2C", "CORD2S", "EPOINT", "SPOINT", "PROD", "PBAR",
     "PBARL", "PBEAM", "PBEAML", "PSHELL", "PCOMP", "MAT1", "MAT2", "MAT8", "CONM2", "RBE2", "RBE3", "SPC1", "SPC",
     "SPCADD", "TF", "TSTEP", "NOLIN3", "TIC", "FORCE", "MOMENT", "PLOAD4", "GRAV", "LOAD", "PARAM", "INCLUDE",
     "ENDDATA", "BAROR", "PTUBE", "CELAS1", "CELAS2", "CELAS3", "CELAS4", "CMASS1", "CMASS2", "CMASS3", "CMASS4",
-    "PELAS", "PMASS",
+    "PELAS", "PMASS", "CQUAD1", "CQUAD2", "CQDMEM", "CQDMEM1", "CQDMEM2", "CTRIA1", "CTRIA2", "CTRMEM", "PQUAD1",
+    "PTRIA1", "PQUAD2", "PTRIA2", "PQDMEM", "PQDMEM1", "PQDMEM2", "PTRMEM",
 ];
 
 /// Every card the reader types: the element cards of [`crate::elements::KINDS`] and
@@ -1090,6 +1097,12 @@ pub fn type_cards(raw: &[RawCard], ids_left: &mut usize, diags: &mut Diagnostics
                     card_scalar(&mut r, &mut b)
                 }
                 "PELAS" | "PMASS" => card_scalar_property(&mut r, &mut b),
+                "CQUAD1" | "CQUAD2" | "CQDMEM" | "CQDMEM1" | "CQDMEM2" | "CTRIA1" | "CTRIA2" | "CTRMEM" => {
+                    card_cosmic_plate(&mut r, &mut b)
+                }
+                "PQUAD1" | "PTRIA1" | "PQUAD2" | "PTRIA2" | "PQDMEM" | "PQDMEM1" | "PQDMEM2" | "PTRMEM" => {
+                    card_cosmic_plate_property(&mut r, &mut b)
+                }
                 "CONROD" => card_conrod(&mut r, &mut b),
                 "PBAR" | "PBEAM" => card_pbar(&mut r, &mut b),
                 "PBARL" | "PBEAML" => card_pbarl(&mut r, &mut b),
@@ -1160,7 +1173,8 @@ fn implicit_scalar_points(b: &mut Bulk) {
 /// PDAMP: fields 2-3, 4-5, 6-7, 8-9): the fields of one.
 fn per_card(name: &str) -> Option<usize> {
     match name {
-        "CROD" | "CELAS3" | "CELAS4" | "CMASS3" | "CMASS4" | "CDAMP3" | "CDAMP4" | "PELAS" => Some(4),
+        "CROD" | "CELAS3" | "CELAS4" | "CMASS3" | "CMASS4" | "CDAMP3" | "CDAMP4" | "PELAS" | "PQUAD2" | "PTRIA2"
+        | "PQDMEM" | "PQDMEM1" | "PQDMEM2" | "PTRMEM" | "PSHEAR" => Some(4),
         "PMASS" | "PDAMP" => Some(2),
         _ => None,
     }
@@ -1440,7 +1454,11 @@ impl Bulk {
         for p in &mut self.bar_properties {
             p.nsm *= w;
         }
-        for p in &mut self.pshells {
+        for p in self
+            .pshells
+            .iter_mut()
+            .chain(self.cosmic_plates.iter_mut().map(|(_, p)| p))
+        {
             p.nsm *= w;
         }
         for p in &mut self.pcomps {
@@ -1613,6 +1631,7 @@ fn card_element(r: &mut Reader, b: &mut Bulk, kind: &'static crate::elements::Ki
         zoffs: 0.0,
         bar: None,
         rod: None,
+        property_card: None,
         at: r.at(),
     };
     let pid = if r.text(1).is_empty() { c.eid } else { c.pid };
@@ -2035,6 +2054,132 @@ fn card_scalar_property(r: &mut Reader, b: &mut Bulk) {
     }
 }
 
+/// COSMIC's plates, EID PID G1 G2 G3 (G4) THETA, read as impactlab's CQUAD4 and
+/// CTRIA3 of the same property: QUAD1, TRIA1 (membrane, bending and transverse shear
+/// of their PQUAD1, PTRIA1), QUAD2, TRIA2 (homogeneous thin plates) and QDMEM,
+/// QDMEM1, QDMEM2, TRMEM (membranes). The structure is the deck's; the element is
+/// impactlab's (NASTRAN-95's are other formulations), and `check` says so.
+fn card_cosmic_plate(r: &mut Reader, b: &mut Bulk) {
+    let quad = r.card.name.starts_with("CQ");
+    let (own, reading) = if quad {
+        (
+            "CQUAD4",
+            "COSMIC's CQUAD1, CQUAD2, CQDMEM, CQDMEM1, CQDMEM2 read as impactlab's CQUAD4 (another formulation)",
+        )
+    } else {
+        (
+            "CTRIA3",
+            "COSMIC's CTRIA1, CTRIA2, CTRMEM read as impactlab's CTRIA3 (another formulation)",
+        )
+    };
+    r.reading(reading);
+    let kind = crate::elements::kind(own).expect("a shell kind");
+    let property = match r.card.name.as_str() {
+        "CQUAD1" => "PQUAD1",
+        "CQUAD2" => "PQUAD2",
+        "CQDMEM" => "PQDMEM",
+        "CQDMEM1" => "PQDMEM1",
+        "CQDMEM2" => "PQDMEM2",
+        "CTRIA1" => "PTRIA1",
+        "CTRIA2" => "PTRIA2",
+        _ => "PTRMEM",
+    };
+    let n = b.elements.len();
+    card_element(r, b, kind);
+    if let Some(c) = b.elements.get_mut(n) {
+        c.property_card = Some(property);
+    }
+}
+
+/// COSMIC's plate properties as the PSHELL they are: PQUAD1, PTRIA1 (PID MID1 T1 MID2
+/// I MID3 T3 NSM: MID1, T = T1, MID2, 12I/T³ = 12 I/T1³, MID3, TS/T = T3/T1, NSM);
+/// PQUAD2, PTRIA2 (PID MID T NSM: MID1 = MID2 = MID, 12I/T³ = 1); PQDMEM, PQDMEM1,
+/// PQDMEM2, PTRMEM (PID MID T NSM: a membrane, MID1 = MID).
+fn card_cosmic_plate_property(r: &mut Reader, b: &mut Bulk) {
+    let name = r.card.name.clone();
+    let pid = r.id(0, "PID");
+    let p = if name.ends_with('1') && !name.starts_with("PQDMEM") {
+        let mid1 = r.int_opt(1, "MID1");
+        // A plate of bending alone may leave T1 blank: its bending thickness is then
+        // (12 I)^(1/3), which gives the plate its D = E I.
+        let t = match (mid1, r.real_opt(2, "T1")) {
+            (_, Some(t)) => t,
+            (None, None) => {
+                let t = (12.0 * r.real_or(4, "I", 0.0)).cbrt();
+                r.warn(
+                    2,
+                    "T1",
+                    format!(
+                        "is blank (no membrane): the plate bends as one of thickness (12 I)^(1/3) = {t:e}, which \
+                         also carries MID2's density (NASTRAN-95 gives such a plate the NSM alone)"
+                    ),
+                );
+                t
+            }
+            (Some(_), None) => r.real(2, "T1"),
+        };
+        let mid2 = r.int_opt(3, "MID2");
+        let i = r.real_or(4, "I", 0.0);
+        let mid3 = r.int_opt(5, "MID3");
+        let t3 = r.real_or(6, "T3", 0.0);
+        let nsm = r.real_or(7, "NSM", 0.0);
+        for (k, name) in [(8, "Z1"), (9, "Z2")] {
+            r.real_opt(k, name);
+        }
+        r.extra_fields(10);
+        if !r.text(2).is_empty() {
+            r.positive(2, "T1", t);
+        }
+        if mid2.is_some() {
+            r.positive(4, "I", i);
+        }
+        if mid3.is_some() {
+            r.positive(6, "T3", t3);
+        }
+        Pshell {
+            pid,
+            mid1,
+            t,
+            mid2,
+            bend_ratio: if t > 0.0 { 12.0 * i / t.powi(3) } else { 1.0 },
+            mid3,
+            ts_t: if t > 0.0 && t3 > 0.0 { t3 / t } else { 0.833333 },
+            mid4: None,
+            nsm,
+            at: r.at(),
+        }
+    } else {
+        let membrane = name.contains("MEM");
+        let mid = r.id(1, "MID");
+        let t = r.real(2, "T");
+        let nsm = r.real_or(3, "NSM", 0.0);
+        r.positive(2, "T", t);
+        r.extra_fields(4);
+        Pshell {
+            pid,
+            mid1: Some(mid),
+            t,
+            mid2: (!membrane).then_some(mid),
+            bend_ratio: 1.0,
+            mid3: None,
+            ts_t: 0.833333,
+            mid4: None,
+            nsm,
+            at: r.at(),
+        }
+    };
+    r.reading("COSMIC's plate properties (PQUAD1, PQUAD2, PQDMEM, PTRIA1, ...) read as the PSHELL they describe");
+    if r.ok {
+        let card = super::case::static_name(&name, &COSMIC_PLATE_PROPERTIES);
+        b.cosmic_plates.push((card, p));
+    }
+}
+
+/// COSMIC's plate property cards.
+const COSMIC_PLATE_PROPERTIES: [&str; 8] = [
+    "PQUAD1", "PTRIA1", "PQUAD2", "PTRIA2", "PQDMEM", "PQDMEM1", "PQDMEM2", "PTRMEM",
+];
+
 /// CONROD: EID G1 G2 MID A J C NSM, a rod with its property on its card.
 fn card_conrod(r: &mut Reader, b: &mut Bulk) {
     let kind = crate::elements::kind("CONROD").expect("CONROD is an element kind");
@@ -2066,6 +2211,7 @@ fn card_conrod(r: &mut Reader, b: &mut Bulk) {
             zoffs: 0.0,
             bar: None,
             rod: Some(p),
+            property_card: None,
             at: r.at(),
         });
     }

@@ -567,3 +567,8 @@ fn check_output_sets(cc: &mut CaseControl, diags: &mut Diagnostics) {
         }
     }
 }
+
+/// The `&'static str` among `names` equal to `name` (the first of them otherwise).
+pub(crate) fn static_name(name: &str, names: &[&'static str]) -> &'static str {
+    names.iter().find(|n| **n == name).copied().unwrap_or(names[0])
+}

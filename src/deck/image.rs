@@ -292,7 +292,7 @@ impl Imager {
                 number: t.number,
             };
         }
-        let large = first_text.ends_with('*');
+        let large = first_text.starts_with('*') || (!first_text.starts_with('+') && first_text.ends_with('*'));
         let src = text.to_string();
         if first_text.starts_with('=') {
             let count = repeat_count(&first_text, &first_pos, max_replication, text, diags);
@@ -643,7 +643,9 @@ fn fixed(line: &SrcLine, diags: &mut Diagnostics) -> Image {
     let chars: Vec<char> = d.chars().collect();
     let slice = |a: usize, b: usize| -> String { chars.iter().skip(a).take(b - a).collect() };
     let first_text = slice(0, 8);
-    let large = first_text.trim_end().ends_with('*') || first_text.starts_with('*');
+    // `*` after a name makes a large-field card, `*` in column 1 a large-field
+    // continuation; a `+` continuation is small field whatever its identifier holds.
+    let large = first_text.starts_with('*') || (!first_text.starts_with('+') && first_text.trim_end().ends_with('*'));
     if chars.len() > 80 && chars[80..].iter().any(|c| !c.is_whitespace()) {
         diags.push(
             Diagnostic::warning(

@@ -1051,7 +1051,10 @@ struct Properties<'d> {
     bars: HashMap<i64, &'d crate::deck::cards::BarProperty>,
     pshell: HashMap<i64, &'d crate::deck::cards::Pshell>,
     pcomp: HashMap<i64, &'d crate::deck::cards::Pcomp>,
+    /// COSMIC's plate properties by (card, id).
+    cosmic: HashMap<(&'static str, i64), &'d crate::deck::cards::Pshell>,
     shells: HashMap<i64, Option<ShellSection>>,
+    cosmic_shells: HashMap<(&'static str, i64), Option<ShellSection>>,
     laminates: HashMap<(i64, u64), Option<(ShellSection, PlyStack)>>,
 }
 
@@ -1068,7 +1071,9 @@ impl<'d> Properties<'d> {
             bars: b.bar_properties.iter().map(|p| (p.pid, p)).collect(),
             pshell,
             pcomp: b.pcomps.iter().map(|p| (p.pid, p)).collect(),
+            cosmic: b.cosmic_plates.iter().map(|(card, p)| ((*card, p.pid), p)).collect(),
             shells: HashMap::new(),
+            cosmic_shells: HashMap::new(),
             laminates: HashMap::new(),
         }
     }
@@ -1159,6 +1164,24 @@ impl<'d> Properties<'d> {
     /// element's grids are not all known (a laminate is then not resolved).
     fn shell(&mut self, cx: &mut Ctx, c: &Connection, axes: Option<f64>) -> Option<(ShellSection, Option<PlyStack>)> {
         let b = self.bulk;
+        if let Some(card) = c.property_card {
+            let key = (card, c.pid);
+            if !self.cosmic_shells.contains_key(&key) {
+                let s = match self.cosmic.get(&key) {
+                    Some(p) => shell_section(cx, p, &self.mat1, &b.mat2s),
+                    None => {
+                        cx.err(c.at.error(format!(
+                            "{} {} references {card} {}, which does not exist",
+                            c.at.name, c.eid, c.pid
+                        )));
+                        None
+                    }
+                };
+                self.cosmic_shells.insert(key, s);
+            }
+            let s = self.cosmic_shells[&key].clone();
+            return self.oriented(s, self.cosmic.get(&key).copied(), axes);
+        }
         match (self.shells.get(&c.pid), self.pcomp.get(&c.pid)) {
             (_, Some(p)) if !self.pshell.contains_key(&c.pid) => {
                 let axes = axes?;
@@ -1187,17 +1210,28 @@ impl<'d> Properties<'d> {
                         s
                     }
                 };
-                let anisotropic = self.pshell.get(&c.pid).is_some_and(|p| {
-                    [p.mid1, p.mid2, p.mid3, p.mid4]
-                        .iter()
-                        .flatten()
-                        .any(|mid| b.mat2s.iter().any(|m| m.mid == *mid))
-                });
-                match (s, axes) {
-                    (Some(s), Some(angle)) if anisotropic => Some((turned_section(&s, angle), None)),
-                    (s, _) => s.map(|s| (s, None)),
-                }
+                self.oriented(s, self.pshell.get(&c.pid).copied(), axes)
             }
+        }
+    }
+
+    /// A PSHELL's section in the element's axes: turned to the material axis when
+    /// one of its materials is a MAT2 (anisotropic).
+    fn oriented(
+        &self,
+        s: Option<ShellSection>,
+        p: Option<&crate::deck::cards::Pshell>,
+        axes: Option<f64>,
+    ) -> Option<(ShellSection, Option<PlyStack>)> {
+        let anisotropic = p.is_some_and(|p| {
+            [p.mid1, p.mid2, p.mid3, p.mid4]
+                .iter()
+                .flatten()
+                .any(|mid| self.bulk.mat2s.iter().any(|m| m.mid == *mid))
+        });
+        match (s, axes) {
+            (Some(s), Some(angle)) if anisotropic => Some((turned_section(&s, angle), None)),
+            (s, _) => s.map(|s| (s, None)),
         }
     }
 }

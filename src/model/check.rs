@@ -13,7 +13,7 @@ use std::collections::BTreeMap;
 /// Bulk data cards that do not change a structure's stiffness, mass or constraints:
 /// loads, temperatures, eigenvalue and solution controls, tables, design and output
 /// cards. A deck's card of these kinds is listed as ignored, not as unsupported.
-pub const NON_STRUCTURAL: [&str; 70] = [
+pub const NON_STRUCTURAL: [&str; 75] = [
     // Static and dynamic loads.
     "FORCE", "FORCE1", "FORCE2", "MOMENT", "MOMENT1", "MOMENT2", "PLOAD", "PLOAD1", "PLOAD2", "PLOAD4", "PLOADX1",
     "GRAV", "LOAD", "ACCEL", "ACCEL1", "RFORCE", "SPCD", "DAREA", "DLOAD", "TLOAD1", "TLOAD2", "RLOAD1", "RLOAD2",
@@ -24,8 +24,16 @@ pub const NON_STRUCTURAL: [&str; 70] = [
     "TABLED1", "TABLED2", "TABLED3", "TABLED4", "TABLEM1", "TABLEM2", "TABLEM3", "TABLEM4", "TABLES1", "TABLEST",
     "TABRND1", // Design and output.
     "DESVAR", "DRESP1", "DRESP2", "DCONSTR", "DCONADD", "DOPTPRM", "DVPREL1", "DVPREL2", "DLINK", "MONPNT1", "PLOTEL",
-    "SET1", "SET3",
+    "SET1", "SET3", // Sequencing, congruence hints and heat-transfer materials.
+    "SEQGP", "SEQEP", "CNGRNT", "MAT4", "MAT5",
 ];
+
+/// Temperature-dependent material tables: they change nothing unless the deck has a
+/// temperature field, and are ignored where it has none.
+const TEMPERATURE_TABLES: [&str; 5] = ["MATT1", "MATT2", "MATT3", "MATT4", "MATT5"];
+
+/// The cards that give a temperature field.
+const TEMPERATURES: [&str; 5] = ["TEMP", "TEMPD", "TEMPP1", "TEMPRB", "TEMPAX"];
 
 /// Cards of one name the deck holds and impactlab does not take.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -146,8 +154,10 @@ pub fn check(deck: &Deck) -> CheckReport {
     let b = &deck.bulk;
     let mut unsupported: BTreeMap<String, CardCount> = BTreeMap::new();
     let mut ignored: BTreeMap<String, CardCount> = BTreeMap::new();
+    let has_temperatures = deck.unknown.iter().any(|u| TEMPERATURES.contains(&u.name.as_str()));
     for u in &deck.unknown {
-        let to = if NON_STRUCTURAL.contains(&u.name.as_str()) {
+        let name = u.name.as_str();
+        let to = if NON_STRUCTURAL.contains(&name) || (TEMPERATURE_TABLES.contains(&name) && !has_temperatures) {
             &mut ignored
         } else {
             &mut unsupported
