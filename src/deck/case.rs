@@ -20,6 +20,9 @@ pub struct Executive {
     /// The statement that makes the deck a restart (`NASTRAN FILES = OPTP`: the old
     /// problem tape of an earlier run holds its structure), with where it is.
     pub restart: Option<(String, Pos)>,
+    /// A DMAP alter's call of NASTRAN's INPUT module, which generates the structure
+    /// (grids, elements, constraints) from parameters, with where it is.
+    pub generated: Option<(String, Pos)>,
 }
 
 /// Solution sequences that mean direct transient response.
@@ -156,6 +159,7 @@ pub fn parse_executive(lines: &[SrcLine], structure: bool, diags: &mut Diagnosti
                 }
             }
             "APP" | "DIAG" | "CHKPNT" | "ECHOON" | "ECHOOFF" => {}
+            "INPUT" => e.generated = Some((t.to_string(), l.pos(1))),
             "NASTRAN" if rest.to_ascii_uppercase().contains("OPTP") => {
                 e.restart = Some((t.to_string(), l.pos(1)));
             }
