@@ -1,0 +1,244 @@
+//! Static loads: FORCE, MOMENT, PLOAD4, GRAV and their LOAD combinations.
+
+use super::*;
+
+/// FORCE or MOMENT: a static load F·(N1, N2, N3) on a grid, its direction in system
+/// CID (at the grid's location, for a cylindrical or spherical CID).
+#[derive(Debug, Clone)]
+pub struct PointLoad {
+    /// Load set id (field 2).
+    pub sid: i64,
+    /// Grid G (field 3).
+    pub g: i64,
+    /// Coordinate system CID of the direction (field 4; 0 basic).
+    pub cid: i64,
+    /// F·(N1, N2, N3) (fields 5-8).
+    pub vector: [f64; 3],
+    /// A MOMENT (acting on the rotations), not a FORCE.
+    pub moment: bool,
+    /// The card.
+    pub at: CardRef,
+}
+
+/// PLOAD4 on shells: a pressure over each element's face, P1..P4 at its corners
+/// (blank P2-P4 take P1), along the element's normal or along CID's (N1, N2, N3).
+#[derive(Debug, Clone)]
+pub struct Pload4 {
+    /// Load set id (field 2).
+    pub sid: i64,
+    /// The loaded elements (EID, or EID THRU EID2).
+    pub eids: Vec<i64>,
+    /// Pressures at the corners (P1-P4).
+    pub p: [f64; 4],
+    /// Direction system CID (continuation field 2).
+    pub cid: i64,
+    /// Direction (N1, N2, N3); `None`: the element's normal.
+    pub direction: Option<[f64; 3]>,
+    /// The card.
+    pub at: CardRef,
+}
+
+/// GRAV: an acceleration A·(N1, N2, N3) in rectangular system CID, loading every
+/// mass by M·a.
+#[derive(Debug, Clone)]
+pub struct Grav {
+    /// Load set id (field 2).
+    pub sid: i64,
+    /// Coordinate system CID (field 3; 0 basic).
+    pub cid: i64,
+    /// A·(N1, N2, N3) (fields 4-7).
+    pub vector: [f64; 3],
+    /// The card.
+    pub at: CardRef,
+}
+
+/// LOAD: the load set S·Σ Sᵢ·(set Lᵢ).
+#[derive(Debug, Clone)]
+pub struct LoadCombination {
+    /// Its set id (field 2).
+    pub sid: i64,
+    /// Overall scale S (field 3).
+    pub scale: f64,
+    /// (Sᵢ, Lᵢ) pairs.
+    pub terms: Vec<(f64, i64)>,
+    /// The card.
+    pub at: CardRef,
+}
+
+/// The vector F·(N1, N2, N3) of fields `k`.. (`k + 3`), named after the card's.
+pub(super) fn scaled_vector(r: &mut Reader, k: usize, names: [&str; 4]) -> [f64; 3] {
+    let f = r.real_or(k, names[0], 0.0);
+    let n = [
+        r.real_or(k + 1, names[1], 0.0),
+        r.real_or(k + 2, names[2], 0.0),
+        r.real_or(k + 3, names[3], 0.0),
+    ];
+    if r.ok && f != 0.0 && n.iter().all(|&x| x == 0.0) {
+        r.fail(
+            k + 1,
+            names[1],
+            format!("{} has a magnitude but no direction (N1 = N2 = N3 = 0)", r.card.name),
+        );
+    }
+    n.map(|x| f * x)
+}
+
+/// A coordinate system id field: blank or 0 is the basic system.
+pub(super) fn system_id(r: &mut Reader, k: usize) -> i64 {
+    let cid = r.int_or(k, "CID", 0);
+    if cid < 0 {
+        r.fail(k, "CID", "must be 0 (basic) or a coordinate system id");
+    }
+    cid
+}
+
+/// FORCE and MOMENT: SID G CID F N1 N2 N3.
+pub(super) fn card_point_load(r: &mut Reader, b: &mut Bulk) {
+    let l = PointLoad {
+        sid: r.id(0, "SID"),
+        g: r.id(1, "G"),
+        cid: system_id(r, 2),
+        vector: scaled_vector(
+            r,
+            3,
+            if r.card.name == "FORCE" {
+                ["F", "N1", "N2", "N3"]
+            } else {
+                ["M", "N1", "N2", "N3"]
+            },
+        ),
+        moment: r.card.name == "MOMENT",
+        at: r.at(),
+    };
+    r.extra_fields(7);
+    if r.ok {
+        b.point_loads.push(l);
+    }
+}
+
+/// PLOAD4 on shells: SID EID P1 P2 P3 P4 (G1 G3 blank, or THRU EID2), then CID N1 N2
+/// N3 (SORL blank or SURF; LDIR blank or NORM).
+pub(super) fn card_pload4(r: &mut Reader, b: &mut Bulk) {
+    let sid = r.id(0, "SID");
+    let eid = r.id(1, "EID");
+    let p1 = r.real(2, "P1");
+    let p = [
+        p1,
+        r.real_or(3, "P2", p1),
+        r.real_or(4, "P3", p1),
+        r.real_or(5, "P4", p1),
+    ];
+    let mut eids = vec![eid];
+    if r.text(6).eq_ignore_ascii_case("THRU") {
+        let last = r.id(7, "EID2");
+        if r.ok && last < eid {
+            r.fail(
+                7,
+                "EID2",
+                format!("ends a THRU range that is reversed ({eid} THRU {last})"),
+            );
+        }
+        if r.ok {
+            if let Err(e) = crate::deck::take_ids(r.ids_left, (last - eid) as u128) {
+                r.fail(7, "EID2", e);
+            } else {
+                eids = (eid..=last).collect();
+            }
+        }
+    } else {
+        for (k, name) in [(6, "G1"), (7, "G3")] {
+            if !r.text(k).is_empty() {
+                r.fail(
+                    k,
+                    name,
+                    "G1 and G3 name a face of a solid element; a shell's PLOAD4 leaves them blank",
+                );
+            }
+        }
+    }
+    let cid = system_id(r, 8);
+    let n = [
+        r.real_or(9, "N1", 0.0),
+        r.real_or(10, "N2", 0.0),
+        r.real_or(11, "N3", 0.0),
+    ];
+    if cid != 0 && n.iter().all(|&x| x == 0.0) {
+        r.fail(
+            8,
+            "CID",
+            "a direction system is given but no direction (N1 = N2 = N3 = 0)",
+        );
+    }
+    for (k, name, allowed) in [(12, "SORL", "SURF"), (13, "LDIR", "NORM")] {
+        let t = r.text(k);
+        if !t.is_empty() && !t.eq_ignore_ascii_case(allowed) {
+            r.fail(
+                k,
+                name,
+                format!("only {allowed} (a pressure on the shell's surface) is supported"),
+            );
+        }
+    }
+    r.extra_fields(14);
+    let l = Pload4 {
+        sid,
+        eids,
+        p,
+        cid,
+        direction: n.iter().any(|&x| x != 0.0).then_some(n),
+        at: r.at(),
+    };
+    if r.ok {
+        b.pload4s.push(l);
+    }
+}
+
+/// GRAV: SID CID A N1 N2 N3 (MB blank or 0).
+pub(super) fn card_grav(r: &mut Reader, b: &mut Bulk) {
+    let g = Grav {
+        sid: r.id(0, "SID"),
+        cid: system_id(r, 1),
+        vector: scaled_vector(r, 2, ["A", "N1", "N2", "N3"]),
+        at: r.at(),
+    };
+    if r.int_or(6, "MB", 0) != 0 {
+        r.fail(6, "MB", "only MB = 0 (the main bulk data) is supported");
+    }
+    r.extra_fields(7);
+    if r.ok {
+        b.gravs.push(g);
+    }
+}
+
+/// LOAD: SID S S1 L1 S2 L2 ….
+pub(super) fn card_load(r: &mut Reader, b: &mut Bulk) {
+    let sid = r.id(0, "SID");
+    let scale = r.real(1, "S");
+    let mut terms = Vec::new();
+    let mut k = 2;
+    while k < r.card.fields.len() {
+        if r.text(k).is_empty() && r.text(k + 1).is_empty() {
+            k += 2;
+            continue;
+        }
+        let s = r.real(k, "Si");
+        let l = r.id(k + 1, "Li");
+        if r.ok && l == sid {
+            r.fail(k + 1, "Li", format!("LOAD {sid} cannot include itself"));
+        }
+        terms.push((s, l));
+        k += 2;
+    }
+    if r.ok && terms.is_empty() {
+        r.fail(2, "S1", "LOAD combines no set");
+    }
+    let l = LoadCombination {
+        sid,
+        scale,
+        terms,
+        at: r.at(),
+    };
+    if r.ok {
+        b.load_combinations.push(l);
+    }
+}

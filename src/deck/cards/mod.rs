@@ -1,0 +1,707 @@
+//! Typed bulk data cards, read from raw cards field by field.
+//!
+//! Field index `k` is the card's data field counted from 0 (NASTRAN field 2 of the
+//! first line), running on through continuation lines 8 fields a line.
+
+mod constraints;
+mod dynamic;
+mod elements;
+mod geometry;
+mod loads;
+mod materials;
+mod properties;
+
+pub use constraints::*;
+pub use dynamic::*;
+pub use elements::*;
+pub use geometry::*;
+pub use loads::*;
+pub use materials::*;
+pub use properties::*;
+
+use super::bulk::RawCard;
+use super::diag::{Diagnostic, Diagnostics, Pos};
+use super::number::{parse_int, parse_real, RealToken};
+
+/// Where a card came from, for messages raised after reading (model building).
+#[derive(Debug, Clone)]
+pub struct CardRef {
+    /// Card name.
+    pub name: String,
+    /// Where the card starts.
+    pub pos: Pos,
+    /// The card's source lines, for quoting.
+    pub source: String,
+}
+
+impl CardRef {
+    /// An error about this card, quoting it.
+    pub fn error(&self, message: impl Into<String>) -> Diagnostic {
+        Diagnostic::error(Some(self.pos.clone()), message)
+            .card(&self.name)
+            .quote(&self.source)
+    }
+
+    /// A warning about this card, quoting it.
+    pub fn warning(&self, message: impl Into<String>) -> Diagnostic {
+        Diagnostic::warning(Some(self.pos.clone()), message)
+            .card(&self.name)
+            .quote(&self.source)
+    }
+
+    /// An error about one field of this card, pointing at it.
+    pub fn field_error(&self, f: &FieldRef, message: impl Into<String>) -> Diagnostic {
+        let d = Diagnostic::error(Some(f.pos.clone()), message)
+            .card(&self.name)
+            .field(f.number, f.name)
+            .quote(&self.source);
+        if f.token.is_empty() {
+            d
+        } else {
+            d.token(&f.token)
+        }
+    }
+}
+
+/// Where one field of a card was written, for messages raised after reading (a
+/// coordinate system that does not exist, three points on a line).
+#[derive(Debug, Clone)]
+pub struct FieldRef {
+    /// Where the field starts (the card's start when the field is absent).
+    pub pos: Pos,
+    /// NASTRAN field number on its line.
+    pub number: usize,
+    /// The field's name.
+    pub name: &'static str,
+    /// The field as written, trimmed; empty when blank.
+    pub token: String,
+}
+
+/// A set of DOF components 1-6 (bit i-1 for component i); empty for scalar points.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Components(pub u8);
+
+impl Components {
+    /// True when component `c` (1-6) is in the set.
+    pub fn contains(self, c: usize) -> bool {
+        (1..=6).contains(&c) && self.0 & (1 << (c - 1)) != 0
+    }
+    /// The components in the set, ascending.
+    pub fn iter(self) -> impl Iterator<Item = usize> {
+        (1..=6).filter(move |&c| self.contains(c))
+    }
+}
+
+/// All bulk data of a deck, typed.
+#[derive(Debug, Clone, Default)]
+pub struct Bulk {
+    /// GRID cards.
+    pub grids: Vec<Grid>,
+    /// The GRDSET card, or its defaults.
+    pub grdset: GrdSet,
+    /// Coordinate systems (CORD1R/C/S, CORD2R/C/S), in deck order.
+    pub cords: Vec<Cord>,
+    /// EPOINT ids (extra points), each with its card.
+    pub epoints: Vec<(i64, CardRef)>,
+    /// SPOINT ids (scalar points), each with its card.
+    pub spoints: Vec<(i64, CardRef)>,
+    /// Element cards (CROD, CQUAD4, CTRIA3), in deck order.
+    pub elements: Vec<Connection>,
+    /// PROD cards.
+    pub prods: Vec<Prod>,
+    /// PBAR, PBARL, PBEAM and PBEAML cards.
+    pub bar_properties: Vec<BarProperty>,
+    /// PSHELL cards.
+    pub pshells: Vec<Pshell>,
+    /// COSMIC's plate properties (PQUAD1 ... PTRMEM) as the PSHELL they describe, by
+    /// their card (COSMIC numbers each card's ids apart).
+    pub cosmic_plates: Vec<(&'static str, Pshell)>,
+    /// MAT1 cards.
+    pub mat1s: Vec<Mat1>,
+    /// MAT2 cards.
+    pub mat2s: Vec<Mat2>,
+    /// MAT8 cards.
+    pub mat8s: Vec<Mat8>,
+    /// PCOMP cards.
+    pub pcomps: Vec<Pcomp>,
+    /// CONM2 cards.
+    pub conm2s: Vec<Conm2>,
+    /// CELAS1-4 and CMASS1-4 cards.
+    pub scalars: Vec<ScalarCard>,
+    /// PELAS cards.
+    pub pelas: Vec<ScalarProperty>,
+    /// PMASS cards.
+    pub pmass: Vec<ScalarProperty>,
+    /// SPC1 cards, and each grid of an SPC card as one.
+    pub spc1s: Vec<Spc1>,
+    /// SPCADD cards.
+    pub spcadds: Vec<SpcAdd>,
+    /// RBE2 cards.
+    pub rbe2s: Vec<Rbe2>,
+    /// RBE3 cards.
+    pub rbe3s: Vec<Rbe3>,
+    /// TF cards.
+    pub tfs: Vec<Tf>,
+    /// TSTEP cards.
+    pub tsteps: Vec<Tstep>,
+    /// NOLIN3 cards.
+    pub nolin3s: Vec<Nolin3>,
+    /// TIC cards.
+    pub tics: Vec<Tic>,
+    /// FORCE and MOMENT cards.
+    pub point_loads: Vec<PointLoad>,
+    /// PLOAD4 cards.
+    pub pload4s: Vec<Pload4>,
+    /// GRAV cards.
+    pub gravs: Vec<Grav>,
+    /// LOAD cards.
+    pub load_combinations: Vec<LoadCombination>,
+    /// PARAM WTMASS when the deck sets it, with its card: every mass of the deck
+    /// (densities, non-structural and concentrated masses) has been multiplied by it.
+    pub wtmass: Option<(f64, CardRef)>,
+    /// How fields that COSMIC and MSC read differently were read: the reading, and
+    /// on how many cards.
+    pub readings: std::collections::BTreeMap<&'static str, usize>,
+}
+
+/// Reads the fields of one raw card, recording every problem.
+struct Reader<'a> {
+    card: &'a RawCard,
+    diags: &'a mut Diagnostics,
+    /// What is left of [`super::Limits::max_listed_ids`].
+    ids_left: &'a mut usize,
+    ok: bool,
+    /// Readings of dialect-dependent fields made on this card ([`Bulk::readings`]).
+    readings: Vec<&'static str>,
+}
+
+impl<'a> Reader<'a> {
+    fn new(card: &'a RawCard, diags: &'a mut Diagnostics, ids_left: &'a mut usize) -> Self {
+        Reader {
+            card,
+            diags,
+            ids_left,
+            ok: true,
+            readings: Vec::new(),
+        }
+    }
+
+    /// Records how a field that COSMIC and MSC read differently was read.
+    fn reading(&mut self, what: &'static str) {
+        self.readings.push(what);
+    }
+
+    fn at(&self) -> CardRef {
+        CardRef {
+            name: self.card.name.clone(),
+            pos: self.card.pos.clone(),
+            source: self.card.source.clone(),
+        }
+    }
+
+    fn text(&self, k: usize) -> &'a str {
+        self.card.text(k)
+    }
+
+    /// Where data field `k` was written (the card's start when it is absent).
+    fn field_ref(&self, k: usize, name: &'static str) -> FieldRef {
+        let (pos, number) = match self.card.field(k) {
+            Some(f) => (f.pos.clone(), f.number),
+            None => (self.card.pos.clone(), k % 8 + 2),
+        };
+        FieldRef {
+            pos,
+            number,
+            name,
+            token: self.text(k).to_string(),
+        }
+    }
+
+    fn fail(&mut self, k: usize, name: &str, message: impl Into<String>) {
+        let (pos, number) = match self.card.field(k) {
+            Some(f) => (f.pos.clone(), f.number),
+            None => (self.card.pos.clone(), k % 8 + 2),
+        };
+        let mut d = Diagnostic::error(Some(pos), message)
+            .card(&self.card.name)
+            .field(number, name)
+            .quote(&self.card.source);
+        let t = self.text(k);
+        if !t.is_empty() {
+            d = d.token(t);
+        }
+        if let Some(r) = &self.card.replicated_at {
+            d.message.push_str(&format!(" (card generated by replication at {r})"));
+        }
+        self.diags.push(d);
+        self.ok = false;
+    }
+
+    fn warn(&mut self, k: usize, name: &str, message: impl Into<String>) {
+        let (pos, number) = match self.card.field(k) {
+            Some(f) => (f.pos.clone(), f.number),
+            None => (self.card.pos.clone(), k % 8 + 2),
+        };
+        let mut d = Diagnostic::warning(Some(pos), message)
+            .card(&self.card.name)
+            .field(number, name)
+            .quote(&self.card.source);
+        let t = self.text(k);
+        if !t.is_empty() {
+            d = d.token(t);
+        }
+        self.diags.push(d);
+    }
+
+    fn int_opt(&mut self, k: usize, name: &str) -> Option<i64> {
+        let t = self.text(k);
+        if t.is_empty() {
+            return None;
+        }
+        match parse_int(t) {
+            Some(v) => Some(v),
+            None => {
+                self.fail(k, name, "is not an integer");
+                None
+            }
+        }
+    }
+
+    fn int(&mut self, k: usize, name: &str) -> i64 {
+        if self.text(k).is_empty() {
+            self.fail(k, name, "is blank: an integer is required");
+            return 0;
+        }
+        self.int_opt(k, name).unwrap_or(0)
+    }
+
+    /// A required identification number: a positive integer.
+    fn id(&mut self, k: usize, name: &str) -> i64 {
+        let v = self.int(k, name);
+        if self.text(k).is_empty() || parse_int(self.text(k)).is_none() {
+            return v;
+        }
+        if v <= 0 {
+            self.fail(k, name, "must be a positive integer");
+        }
+        v
+    }
+
+    fn int_or(&mut self, k: usize, name: &str, default: i64) -> i64 {
+        self.int_opt(k, name).unwrap_or(default)
+    }
+
+    fn real_opt(&mut self, k: usize, name: &str) -> Option<f64> {
+        let t = self.text(k);
+        if t.is_empty() {
+            return None;
+        }
+        match parse_real(t) {
+            Some(RealToken::Real(v)) if v != 0.0 && v.abs() < f64::MIN_POSITIVE => {
+                self.fail(
+                    k,
+                    name,
+                    "is subnormal (nonzero, below 2.2e-308 in magnitude): too small to compute with at full precision",
+                );
+                None
+            }
+            Some(RealToken::Real(v)) => Some(v),
+            Some(RealToken::Integer(v)) => {
+                self.warn(
+                    k,
+                    name,
+                    "is an integer where NASTRAN expects a real (no decimal point); read as a real",
+                );
+                Some(v)
+            }
+            None => {
+                self.fail(k, name, "is not a real number");
+                None
+            }
+        }
+    }
+
+    fn real(&mut self, k: usize, name: &str) -> f64 {
+        if self.text(k).is_empty() {
+            self.fail(k, name, "is blank: a real number is required");
+            return 0.0;
+        }
+        self.real_opt(k, name).unwrap_or(0.0)
+    }
+
+    fn real_or(&mut self, k: usize, name: &str, default: f64) -> f64 {
+        self.real_opt(k, name).unwrap_or(default)
+    }
+
+    fn positive(&mut self, k: usize, name: &str, v: f64) {
+        if self.text(k).is_empty() || parse_real(self.text(k)).is_none() {
+            return;
+        }
+        if v <= 0.0 {
+            self.fail(k, name, "must be positive");
+        }
+    }
+
+    fn non_negative(&mut self, k: usize, name: &str, v: f64) {
+        if v < 0.0 {
+            self.fail(k, name, "must not be negative");
+        }
+    }
+
+    /// Component list such as `123456`; blank gives the empty set.
+    fn components(&mut self, k: usize, name: &str) -> Components {
+        let t = self.text(k);
+        let mut c = 0u8;
+        for ch in t.chars() {
+            match ch.to_digit(10) {
+                Some(d @ 1..=6) if c & (1 << (d - 1)) == 0 => c |= 1 << (d - 1),
+                Some(0) if t.len() == 1 => {}
+                _ => {
+                    self.fail(k, name, "is not a component list (distinct digits 1-6)");
+                    return Components(0);
+                }
+            }
+        }
+        Components(c)
+    }
+
+    /// A single component: 0 or blank for a scalar point, 1-6 for a grid.
+    fn component(&mut self, k: usize, name: &str) -> usize {
+        let v = self.int_or(k, name, 0);
+        if !(0..=6).contains(&v) {
+            self.fail(k, name, "is not a component number (0-6)");
+            return 0;
+        }
+        v as usize
+    }
+
+    /// Reads ids from field k on, with `THRU` ranges.
+    fn id_list(&mut self, from: usize, name: &str) -> Vec<i64> {
+        self.id_list_in(from, self.card.fields.len(), name)
+    }
+
+    /// Reads ids from field `from` up to (not including) field `n`, with `THRU` ranges.
+    fn id_list_in(&mut self, from: usize, n: usize, name: &str) -> Vec<i64> {
+        let mut out = Vec::new();
+        let mut k = from;
+        while k < n {
+            let t = self.text(k);
+            if t.is_empty() {
+                k += 1;
+                continue;
+            }
+            if t.eq_ignore_ascii_case("THRU") {
+                let Some(&a) = out.last() else {
+                    self.fail(k, name, "THRU has no start id before it");
+                    return out;
+                };
+                let b = self.int(k + 1, name);
+                if !self.ok {
+                    return out;
+                }
+                if b < a {
+                    self.fail(
+                        k + 1,
+                        name,
+                        format!("ends a THRU range that is reversed ({a} THRU {b})"),
+                    );
+                    return out;
+                }
+                if let Err(e) = super::take_ids(self.ids_left, (b as i128 - a as i128) as u128) {
+                    self.fail(k + 1, name, e);
+                    return out;
+                }
+                out.extend(a + 1..=b);
+                k += 2;
+                continue;
+            }
+            let v = self.id(k, name);
+            if self.ok {
+                if let Err(e) = super::take_ids(self.ids_left, 1) {
+                    self.fail(k, name, e);
+                    return out;
+                }
+                out.push(v);
+            }
+            k += 1;
+        }
+        out
+    }
+
+    fn extra_fields(&mut self, max: usize) {
+        for k in max..self.card.fields.len() {
+            if !self.text(k).is_empty() {
+                self.fail(
+                    k,
+                    "unused",
+                    format!("{} has no field here; this value would be ignored", self.card.name),
+                );
+                return;
+            }
+        }
+    }
+}
+
+/// Cards the reader knows. `PARAM` is accepted and ignored with a warning.
+/// Element cards are those of [`crate::elements::KINDS`] besides these.
+pub const KNOWN_CARDS: [&str; 66] = [
+    "GRID", "GRDSET", "CORD1R", "CORD1C", "CORD1S", "CORD2R", "CORD2C", "CORD2S", "EPOINT", "SPOINT", "PROD", "PBAR",
+    "PBARL", "PBEAM", "PBEAML", "PSHELL", "PCOMP", "MAT1", "MAT2", "MAT8", "CONM2", "RBE2", "RBE3", "SPC1", "SPC",
+    "SPCADD", "TF", "TSTEP", "NOLIN3", "TIC", "FORCE", "MOMENT", "PLOAD4", "GRAV", "LOAD", "PARAM", "INCLUDE",
+    "ENDDATA", "BAROR", "PTUBE", "CELAS1", "CELAS2", "CELAS3", "CELAS4", "CMASS1", "CMASS2", "CMASS3", "CMASS4",
+    "PELAS", "PMASS", "CQUAD1", "CQUAD2", "CQDMEM", "CQDMEM1", "CQDMEM2", "CTRIA1", "CTRIA2", "CTRMEM", "PQUAD1",
+    "PTRIA1", "PQUAD2", "PTRIA2", "PQDMEM", "PQDMEM1", "PQDMEM2", "PTRMEM",
+];
+
+/// Every card the reader types: the element cards of [`crate::elements::KINDS`] and
+/// [`KNOWN_CARDS`], in alphabetical order.
+pub fn supported() -> Vec<&'static str> {
+    let mut all: Vec<&'static str> = crate::elements::KINDS
+        .iter()
+        .map(|k| k.card)
+        .chain(KNOWN_CARDS)
+        .collect();
+    all.sort_unstable();
+    all
+}
+
+/// Types all raw cards. Unknown card names are collected and returned. `ids_left` is
+/// what remains of [`super::Limits::max_listed_ids`].
+pub fn type_cards(raw: &[RawCard], ids_left: &mut usize, diags: &mut Diagnostics) -> (Bulk, Vec<super::UnknownCard>) {
+    let mut b = Bulk::default();
+    let mut unknown = Vec::new();
+    let mut barors = raw.iter().filter(|c| c.name == "BAROR");
+    let baror = barors.next();
+    for extra in barors {
+        let first = baror.map(|c| c.pos.to_string()).unwrap_or_default();
+        diags.push(
+            Diagnostic::error(
+                Some(extra.pos.clone()),
+                format!("only one BAROR card may appear in the bulk data (the first is at {first})"),
+            )
+            .card("BAROR")
+            .quote(&extra.source),
+        );
+    }
+    for whole in raw {
+        for piece in pieces(whole, baror) {
+            let card: &RawCard = &piece;
+            let mut r = Reader::new(card, diags, ids_left);
+            match card.name.as_str() {
+                "BAROR" => r.extra_fields(8),
+                "GRID" => card_grid(&mut r, &mut b),
+                "GRDSET" => card_grdset(&mut r, &mut b),
+                "CORD1R" | "CORD1C" | "CORD1S" => card_cord1(&mut r, &mut b),
+                "CORD2R" | "CORD2C" | "CORD2S" => card_cord2(&mut r, &mut b),
+                "EPOINT" | "SPOINT" => card_points(&mut r, &mut b, card),
+                "PROD" => card_prod(&mut r, &mut b),
+                "PTUBE" => card_ptube(&mut r, &mut b),
+                "CELAS1" | "CELAS2" | "CELAS3" | "CELAS4" | "CMASS1" | "CMASS2" | "CMASS3" | "CMASS4" => {
+                    card_scalar(&mut r, &mut b)
+                }
+                "PELAS" | "PMASS" => card_scalar_property(&mut r, &mut b),
+                "CQUAD1" | "CQUAD2" | "CQDMEM" | "CQDMEM1" | "CQDMEM2" | "CTRIA1" | "CTRIA2" | "CTRMEM" => {
+                    card_cosmic_plate(&mut r, &mut b)
+                }
+                "PQUAD1" | "PTRIA1" | "PQUAD2" | "PTRIA2" | "PQDMEM" | "PQDMEM1" | "PQDMEM2" | "PTRMEM" => {
+                    card_cosmic_plate_property(&mut r, &mut b)
+                }
+                "CONROD" => card_conrod(&mut r, &mut b),
+                "PBAR" | "PBEAM" => card_pbar(&mut r, &mut b),
+                "PBARL" | "PBEAML" => card_pbarl(&mut r, &mut b),
+                "PSHELL" => card_pshell(&mut r, &mut b),
+                "MAT1" => card_mat1(&mut r, &mut b),
+                "MAT2" => card_mat2(&mut r, &mut b),
+                "MAT8" => card_mat8(&mut r, &mut b),
+                "PCOMP" => card_pcomp(&mut r, &mut b),
+                "CONM2" => card_conm2(&mut r, &mut b),
+                "SPC1" => card_spc1(&mut r, &mut b),
+                "SPC" => card_spc(&mut r, &mut b),
+                "SPCADD" => card_spcadd(&mut r, &mut b),
+                "RBE2" => card_rbe2(&mut r, &mut b),
+                "RBE3" => card_rbe3(&mut r, &mut b),
+                "TF" => card_tf(&mut r, &mut b, card),
+                "TSTEP" => card_tstep(&mut r, &mut b, card),
+                "NOLIN3" => card_nolin3(&mut r, &mut b),
+                "TIC" => card_tic(&mut r, &mut b),
+                "FORCE" | "MOMENT" => card_point_load(&mut r, &mut b),
+                "PLOAD4" => card_pload4(&mut r, &mut b),
+                "GRAV" => card_grav(&mut r, &mut b),
+                "LOAD" => card_load(&mut r, &mut b),
+                "PARAM" => card_param(&mut r, &mut b, card),
+                name => match crate::elements::kind(name) {
+                    Some(kind) => card_element(&mut r, &mut b, kind),
+                    None => unknown.push(super::UnknownCard {
+                        name: card.name.clone(),
+                        pos: card.pos.clone(),
+                        line: card.source.lines().next().unwrap_or("").to_string(),
+                    }),
+                },
+            }
+            for what in r.readings {
+                *b.readings.entry(what).or_default() += 1;
+            }
+        }
+    }
+    if let Some((w, _)) = &b.wtmass {
+        let w = *w;
+        b.scale_masses(w);
+    }
+    implicit_scalar_points(&mut b);
+    (b, unknown)
+}
+
+/// Scalar points defined by their use: "a scalar point ... referenced on a scalar
+/// connection card need not be defined on an SPOINT card" (BULK.TXT, SPOINT): a
+/// scalar element's terminal of component 0 that no GRID, SPOINT or EPOINT defines.
+fn implicit_scalar_points(b: &mut Bulk) {
+    let known: std::collections::HashSet<i64> = b
+        .grids
+        .iter()
+        .map(|g| g.id)
+        .chain(b.spoints.iter().chain(&b.epoints).map(|(i, _)| *i))
+        .collect();
+    let mut added = std::collections::HashSet::new();
+    for c in &b.scalars {
+        for &(g, comp) in &c.terminals {
+            if g > 0 && comp == 0 && !known.contains(&g) && added.insert(g) {
+                b.spoints.push((g, c.at.clone()));
+            }
+        }
+    }
+}
+
+/// Cards that define up to two elements or properties (fields 2-5 and 6-9; "one or
+/// two ROD elements may be defined on a single card", COSMIC's CROD), or four (PMASS,
+/// PDAMP: fields 2-3, 4-5, 6-7, 8-9): the fields of one.
+fn per_card(name: &str) -> Option<usize> {
+    match name {
+        "CROD" | "CELAS3" | "CELAS4" | "CMASS3" | "CMASS4" | "CDAMP3" | "CDAMP4" | "PELAS" | "PQUAD2" | "PTRIA2"
+        | "PQDMEM" | "PQDMEM1" | "PQDMEM2" | "PTRMEM" | "PSHEAR" => Some(4),
+        "PMASS" | "PDAMP" => Some(2),
+        _ => None,
+    }
+}
+
+/// The cards one raw card stands for: one for each element or property written on a
+/// card of several ([`per_card`]); a CBAR with its blank fields 3 and 6-9 taken from
+/// BAROR ("the contents of fields on this card will be assumed for any CBAR card
+/// whose corresponding fields are blank"); the card itself otherwise.
+fn pieces<'a>(card: &'a RawCard, baror: Option<&RawCard>) -> Vec<std::borrow::Cow<'a, RawCard>> {
+    use std::borrow::Cow;
+    if let Some(w) = per_card(&card.name).filter(|&w| card.fields.len() > w) {
+        let first_line = card.fields.len().min(8);
+        let mut out: Vec<RawCard> = (0..first_line)
+            .step_by(w)
+            .filter(|&k| {
+                card.fields[k..(k + w).min(first_line)]
+                    .iter()
+                    .any(|f| !f.text.is_empty())
+            })
+            .map(|k| RawCard {
+                fields: card.fields[k..(k + w).min(first_line)].to_vec(),
+                ..card.clone()
+            })
+            .collect();
+        // Continuation fields, if any, go to the last for its reader to refuse.
+        if let Some(last) = out.last_mut() {
+            last.fields.extend(card.fields.iter().skip(8).cloned());
+        }
+        return out.into_iter().map(Cow::Owned).collect();
+    }
+    match baror {
+        Some(d) if card.name == "CBAR" => {
+            let mut c = card.clone();
+            let g0_given =
+                parse_int(card.text(7)) == Some(2) || parse_int(d.text(7)) == Some(2) && card.text(7).is_empty();
+            for k in [1, 4, 5, 6, 7] {
+                if g0_given && (k == 5 || k == 6) {
+                    continue;
+                }
+                if c.text(k).is_empty() && !d.text(k).is_empty() {
+                    while c.fields.len() <= k {
+                        c.fields.push(super::bulk::Field {
+                            text: String::new(),
+                            pos: c.pos.clone(),
+                            number: c.fields.len() % 8 + 2,
+                        });
+                    }
+                    c.fields[k] = d.fields[k].clone();
+                }
+            }
+            vec![Cow::Owned(c)]
+        }
+        _ => vec![Cow::Borrowed(card)],
+    }
+}
+
+/// PARAM: not used by impactlab and ignored with a warning, except WTMASS other than
+/// 1.0, which scales every mass of the deck and is refused (masses are taken as
+/// written: multiply the densities and masses by it and remove the PARAM).
+fn card_param(r: &mut Reader, b: &mut Bulk, card: &RawCard) {
+    if r.text(0).eq_ignore_ascii_case("WTMASS") {
+        let w = r.real_or(1, "V1", 1.0);
+        r.positive(1, "V1", w);
+        if r.ok {
+            b.wtmass = Some((w, r.at()));
+        }
+        return;
+    }
+    r.diags.push(
+        Diagnostic::warning(Some(card.pos.clone()), "PARAM cards are not used by impactlab; ignored")
+            .card("PARAM")
+            .quote(&card.source),
+    );
+}
+
+impl Bulk {
+    /// Multiplies every term of the mass by PARAM WTMASS, as NASTRAN does ("the terms
+    /// of the structural mass matrix are multiplied by the value of this parameter"):
+    /// the materials' densities, the properties' non-structural masses and the
+    /// concentrated masses and inertias.
+    fn scale_masses(&mut self, w: f64) {
+        for m in &mut self.mat1s {
+            m.rho *= w;
+        }
+        for m in &mut self.mat2s {
+            m.rho *= w;
+        }
+        for m in &mut self.mat8s {
+            m.rho *= w;
+        }
+        for p in self
+            .prods
+            .iter_mut()
+            .chain(self.elements.iter_mut().filter_map(|c| c.rod.as_mut()))
+        {
+            p.nsm *= w;
+        }
+        for p in &mut self.bar_properties {
+            p.nsm *= w;
+        }
+        for p in self
+            .pshells
+            .iter_mut()
+            .chain(self.cosmic_plates.iter_mut().map(|(_, p)| p))
+        {
+            p.nsm *= w;
+        }
+        for p in &mut self.pcomps {
+            p.nsm *= w;
+        }
+        for p in &mut self.pmass {
+            p.value *= w;
+        }
+        for c in self.scalars.iter_mut().filter(|c| !c.spring) {
+            if let ScalarValue::Value(m) = &mut c.value {
+                *m *= w;
+            }
+        }
+        for c in &mut self.conm2s {
+            c.mass *= w;
+            for i in &mut c.inertia {
+                *i *= w;
+            }
+        }
+    }
+}
