@@ -227,3 +227,30 @@ fn conrod_and_tube_sections() {
     assert_eq!(r.elements.get("CONROD"), Some(&1));
     assert_eq!(r.elements.get("CTUBE"), Some(&1));
 }
+
+/// PCOMP1: "all plies are composed of the same material and are of equal thickness"
+/// (PID ZOC NSM SBOND FT MID TPLY LOPT / TH1 TH2 ...); PCOMP2: "all plies are composed
+/// of the same material" (... / T1 TH1 T2 TH2 ...). Read as the PCOMP they describe.
+#[test]
+fn cosmic_uniform_laminates_are_the_pcomp_they_describe() {
+    let d = deck(
+        "PCOMP1  3                       1.2 E+04HILL    3       .0666666        +PCOMP1\n\
+         +PCOMP1 0.0     90.0    0.0\n\
+         PCOMP2,4,,,,STRAIN,3,,SYM,+PC1\n+PC1,0.025,45.,0.05,-45.",
+    );
+    let plies = |pid: i64| -> Vec<(i64, f64, f64)> {
+        let p = d.bulk.pcomps.iter().find(|p| p.pid == pid).unwrap();
+        p.plies.iter().map(|p| (p.mid, p.t, p.theta)).collect()
+    };
+    assert_eq!(
+        plies(3),
+        [(3, 0.0666666, 0.0), (3, 0.0666666, 90.0), (3, 0.0666666, 0.0)]
+    );
+    assert_eq!(plies(4), [(3, 0.025, 45.0), (3, 0.05, -45.0)]);
+    let p4 = d.bulk.pcomps.iter().find(|p| p.pid == 4).unwrap();
+    assert_eq!(
+        (p4.lam, p4.ft.as_deref()),
+        (impactlab::deck::cards::Lam::Sym, Some("STRN"))
+    );
+    assert_eq!(d.bulk.pcomps[0].sb, Some(1.2e4));
+}

@@ -293,6 +293,14 @@ pub fn check(deck: &Deck) -> CheckReport {
             report.weight = Some(Weight::from(m).in_input_units(w));
             warnings.extend(diags.iter().map(Diagnostic::to_string));
             report.takes = report.unsupported.is_empty();
+            if b.grids.is_empty() && s.elements.is_empty() && report.unsupported.is_empty() {
+                // A DMAP or matrix deck: nothing to take.
+                report.takes = false;
+                report.errors = vec![format!(
+                    "{}: the deck defines no structure (no grid, scalar point or element)",
+                    deck.name
+                )];
+            }
         }
         Err(e) => {
             report.errors = e

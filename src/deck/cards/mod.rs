@@ -444,13 +444,13 @@ impl<'a> Reader<'a> {
 
 /// Cards the reader knows. `PARAM` is accepted and ignored with a warning.
 /// Element cards are those of [`crate::elements::KINDS`] besides these.
-pub const KNOWN_CARDS: [&str; 66] = [
+pub const KNOWN_CARDS: [&str; 68] = [
     "GRID", "GRDSET", "CORD1R", "CORD1C", "CORD1S", "CORD2R", "CORD2C", "CORD2S", "EPOINT", "SPOINT", "PROD", "PBAR",
     "PBARL", "PBEAM", "PBEAML", "PSHELL", "PCOMP", "MAT1", "MAT2", "MAT8", "CONM2", "RBE2", "RBE3", "SPC1", "SPC",
     "SPCADD", "TF", "TSTEP", "NOLIN3", "TIC", "FORCE", "MOMENT", "PLOAD4", "GRAV", "LOAD", "PARAM", "INCLUDE",
     "ENDDATA", "BAROR", "PTUBE", "CELAS1", "CELAS2", "CELAS3", "CELAS4", "CMASS1", "CMASS2", "CMASS3", "CMASS4",
     "PELAS", "PMASS", "CQUAD1", "CQUAD2", "CQDMEM", "CQDMEM1", "CQDMEM2", "CTRIA1", "CTRIA2", "CTRMEM", "PQUAD1",
-    "PTRIA1", "PQUAD2", "PTRIA2", "PQDMEM", "PQDMEM1", "PQDMEM2", "PTRMEM",
+    "PTRIA1", "PQUAD2", "PTRIA2", "PQDMEM", "PQDMEM1", "PQDMEM2", "PTRMEM", "PCOMP1", "PCOMP2",
 ];
 
 /// Every card the reader types: the element cards of [`crate::elements::KINDS`] and
@@ -500,6 +500,7 @@ pub fn type_cards(raw: &[RawCard], ids_left: &mut usize, diags: &mut Diagnostics
                     card_scalar(&mut r, &mut b)
                 }
                 "PELAS" | "PMASS" => card_scalar_property(&mut r, &mut b),
+                "PCOMP1" | "PCOMP2" => card_pcomp_uniform(&mut r, &mut b),
                 "CQUAD1" | "CQUAD2" | "CQDMEM" | "CQDMEM1" | "CQDMEM2" | "CTRIA1" | "CTRIA2" | "CTRMEM" => {
                     card_cosmic_plate(&mut r, &mut b)
                 }

@@ -585,3 +585,103 @@ pub(super) fn card_pcomp(r: &mut Reader, b: &mut Bulk) {
         b.pcomps.push(p);
     }
 }
+
+/// COSMIC's PCOMP1 (PID ZOC NSM SBOND FT MID TPLY LOPT / TH1 TH2 ...: every ply of one
+/// material and one thickness) and PCOMP2 (PID ZOC NSM SBOND FT MID _ LOPT / T1 TH1
+/// T2 TH2 ...: every ply of one material) as the PCOMP they describe. "If any of ...
+/// THi are blank, then the last non-blank values ... will be used". LOPT = SYM is
+/// read as MSC's LAM = SYM (the listed plies mirrored), and `check` says so; MEM and
+/// SYMMEM (laminates of membrane plies) and FT = STRESS are refused.
+pub(super) fn card_pcomp_uniform(r: &mut Reader, b: &mut Bulk) {
+    let one_thickness = r.card.name == "PCOMP1";
+    let pid = r.id(0, "PID");
+    let z0 = r.real_opt(1, "ZOC");
+    let nsm = r.real_or(2, "NSM", 0.0);
+    let sb = r.real_opt(3, "SBOND");
+    if let Some(v) = sb {
+        r.positive(3, "SBOND", v);
+    }
+    let ft = match r.text(4).to_ascii_uppercase().as_str() {
+        "" => None,
+        f @ ("HILL" | "HOFF" | "TSAI") => Some(f.to_string()),
+        "STRAIN" => Some("STRN".to_string()),
+        _ => {
+            r.fail(
+                4,
+                "FT",
+                "must be HILL, HOFF, TSAI or STRAIN (or blank): maximum stress is not supported",
+            );
+            None
+        }
+    };
+    let mid = r.id(5, "MID");
+    let tply = if one_thickness {
+        let t = r.real(6, "TPLY");
+        r.positive(6, "TPLY", t);
+        t
+    } else {
+        0.0
+    };
+    let lam = match r.text(7).to_ascii_uppercase().as_str() {
+        "" | "ALL" => Lam::All,
+        "SYM" => Lam::Sym,
+        other => {
+            r.fail(
+                7,
+                "LOPT",
+                format!("LOPT = {other} (membrane plies) is not supported: ALL or SYM"),
+            );
+            Lam::All
+        }
+    };
+    let width = if one_thickness { 1 } else { 2 };
+    let mut plies: Vec<Ply> = Vec::new();
+    for (i, k) in (8..r.card.fields.len()).step_by(width).enumerate() {
+        let n = i + 1;
+        let above = plies.last().cloned();
+        let t = if one_thickness {
+            tply
+        } else {
+            let name = format!("T{n}");
+            match (r.real_opt(k, &name), &above) {
+                (Some(t), _) => {
+                    r.positive(k, &name, t);
+                    t
+                }
+                (None, Some(p)) => p.t,
+                (None, None) => {
+                    r.fail(k, &name, "is blank: the first ply needs a thickness");
+                    0.0
+                }
+            }
+        };
+        let th = k + width - 1;
+        let theta = match r.real_opt(th, &format!("TH{n}")) {
+            Some(v) => v,
+            None => above.map(|p| p.theta).unwrap_or(0.0),
+        };
+        plies.push(Ply {
+            mid,
+            t,
+            theta,
+            sout: false,
+        });
+    }
+    if plies.is_empty() && r.ok {
+        r.fail(8, "TH1", "lists no ply");
+    }
+    r.reading("COSMIC's PCOMP1 and PCOMP2 read as the PCOMP they describe (LOPT = SYM as MSC's LAM = SYM)");
+    let p = Pcomp {
+        pid,
+        z0,
+        nsm,
+        sb,
+        ft,
+        plies,
+        lam,
+        at: r.at(),
+    };
+    if r.ok {
+        b.pcomps.push(p);
+    }
+}
