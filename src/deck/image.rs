@@ -509,34 +509,23 @@ fn duplicate(
                 Op::Literal(t) => t.clone(),
                 Op::Same if k == n_data => next_id(prev_text).unwrap_or_default(),
                 Op::Same => prev_text.to_string(),
-                Op::Add(inc) => match increment(prev_text, inc) {
-                    Ok(v) => v,
-                    Err(e) => {
-                        let name = img.first.text.clone();
-                        diags.push(
-                            Diagnostic::error(Some(pos.clone()), e.to_string())
-                                .card(&name)
-                                .field(k + 2, "replication increment")
-                                .token(&format!("*({inc})"))
-                                .quote(src),
-                        );
-                        ok = false;
-                        break;
-                    }
-                },
-                Op::Reach(end) => {
-                    if reach[k].is_none() {
-                        reach[k] = Some(reach_step(prev_text, end, count));
-                    }
-                    match increment(prev_text, reach[k].as_deref().unwrap_or("")) {
+                Op::Add(_) | Op::Reach(_) => {
+                    let (inc, token) = match op {
+                        Op::Add(inc) => (inc.clone(), format!("*({inc})")),
+                        Op::Reach(end) => {
+                            let step = reach[k].get_or_insert_with(|| reach_step(prev_text, end, count));
+                            (step.clone(), format!("%({end})"))
+                        }
+                        _ => unreachable!("matched above"),
+                    };
+                    match increment(prev_text, &inc) {
                         Ok(v) => v,
                         Err(e) => {
-                            let name = img.first.text.clone();
                             diags.push(
                                 Diagnostic::error(Some(pos.clone()), e.to_string())
-                                    .card(&name)
+                                    .card(&img.first.text)
                                     .field(k + 2, "replication increment")
-                                    .token(&format!("%({end})"))
+                                    .token(&token)
                                     .quote(src),
                             );
                             ok = false;

@@ -546,17 +546,7 @@ pub(super) fn card_pcomp(r: &mut Reader, b: &mut Bulk) {
         if !r.text(k).is_empty() && mid <= 0 && r.ok {
             r.fail(k, &mid_name, "must be a positive integer");
         }
-        let t = match (r.real_opt(k + 1, &t_name), &above) {
-            (Some(t), _) => {
-                r.positive(k + 1, &t_name, t);
-                t
-            }
-            (None, Some(p)) => p.t,
-            (None, None) => {
-                r.fail(k + 1, &t_name, "is blank: the first ply needs a thickness");
-                0.0
-            }
-        };
+        let t = ply_thickness(r, k + 1, &t_name, above.as_ref());
         let theta = r.real_or(k + 2, &theta_name, 0.0);
         let sout = match r.text(k + 3).to_ascii_uppercase().as_str() {
             "" | "NO" => false,
@@ -642,18 +632,7 @@ pub(super) fn card_pcomp_uniform(r: &mut Reader, b: &mut Bulk) {
         let t = if one_thickness {
             tply
         } else {
-            let name = format!("T{n}");
-            match (r.real_opt(k, &name), &above) {
-                (Some(t), _) => {
-                    r.positive(k, &name, t);
-                    t
-                }
-                (None, Some(p)) => p.t,
-                (None, None) => {
-                    r.fail(k, &name, "is blank: the first ply needs a thickness");
-                    0.0
-                }
-            }
+            ply_thickness(r, k, &format!("T{n}"), above.as_ref())
         };
         let th = k + width - 1;
         let theta = match r.real_opt(th, &format!("TH{n}")) {
@@ -683,5 +662,21 @@ pub(super) fn card_pcomp_uniform(r: &mut Reader, b: &mut Bulk) {
     };
     if r.ok {
         b.pcomps.push(p);
+    }
+}
+
+/// A ply's thickness in field `k`: as written (positive), or the ply's below it when
+/// blank ("the last non-blank values ... will be used"); the first ply needs one.
+fn ply_thickness(r: &mut Reader, k: usize, name: &str, above: Option<&Ply>) -> f64 {
+    match (r.real_opt(k, name), above) {
+        (Some(t), _) => {
+            r.positive(k, name, t);
+            t
+        }
+        (None, Some(p)) => p.t,
+        (None, None) => {
+            r.fail(k, name, "is blank: the first ply needs a thickness");
+            0.0
+        }
     }
 }
