@@ -1,7 +1,8 @@
 //! The committed `reports/` are what the code now makes from their data: a page or a
 //! figure that the code would draw differently fails here, so a stale report cannot
 //! land. Studies are too slow to re-run in a test: their pages and figures are made
-//! from their committed CSV alone, and remade here from it.
+//! from their committed CSV alone, and remade here from it. The case reports are
+//! judged in `tests/verify_gate.rs`, from the one evaluation of every case there.
 
 mod common;
 
@@ -210,77 +211,6 @@ fn assert_svgs_current(figs: &[std::path::PathBuf], dir: &std::path::Path) {
             committed.display()
         );
     }
-}
-
-/// The text of a generated file with the measured wall times masked.
-fn masked(text: &str) -> String {
-    text.lines()
-        .map(|l| if l.contains("wall time") { "(wall time)" } else { l })
-        .collect::<Vec<_>>()
-        .join("\n")
-}
-
-/// Goal: every committed case report (`reports/<case>/`: index.md, index.html and
-/// every figure's SVG) and the index `reports/README.md` are what `impactlab report`
-/// makes now, apart from measured wall times; a case report that is missing, or a
-/// file the code no longer makes, fails.
-#[test]
-fn case_reports_are_current() {
-    use impactlab::{report, study, verify};
-    let cases: Vec<verify::Case> = verify::load_cases(&[root().join("verification")])
-        .unwrap()
-        .into_iter()
-        .filter(|c| c.deck.is_some())
-        .collect();
-    let tmp = tempfile::tempdir().unwrap();
-    let mut stale = Vec::new();
-    for (name, outcome) in study::cases::evaluate_all(&cases, 2) {
-        let outcome = outcome.unwrap_or_else(|e| panic!("{name}: {e}"));
-        let fresh = tmp.path().join(&name);
-        report::report_case(&outcome, &fresh).unwrap();
-        let committed = root().join("reports").join(&name);
-        let mut files: Vec<String> = std::fs::read_dir(&fresh)
-            .unwrap()
-            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-            .collect();
-        files.sort();
-        let mut on_disk: Vec<String> = std::fs::read_dir(&committed)
-            .map(|d| {
-                d.map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-                    .collect()
-            })
-            .unwrap_or_default();
-        on_disk.sort();
-        if files != on_disk {
-            stale.push(format!("{name}: files {on_disk:?}, the code makes {files:?}"));
-            continue;
-        }
-        for f in files.iter().filter(|f| !f.ends_with(".png")) {
-            let a = std::fs::read_to_string(fresh.join(f)).unwrap();
-            let b = std::fs::read_to_string(committed.join(f)).unwrap();
-            if masked(&a) != masked(&b) {
-                stale.push(format!("{name}/{f}"));
-            }
-        }
-    }
-    let index = report::index(tmp.path());
-    if index != std::fs::read_to_string(root().join("reports/README.md")).unwrap() {
-        stale.push("README.md (the index)".into());
-    }
-    // index.html and the study pages' HTML, from the committed markdown.
-    for (rel, html) in report::html_pages(&root().join("reports"), &index) {
-        if std::fs::read_to_string(root().join("reports").join(&rel))
-            .ok()
-            .as_deref()
-            != Some(html.as_str())
-        {
-            stale.push(rel.display().to_string());
-        }
-    }
-    assert!(
-        stale.is_empty(),
-        "stale reports (regenerate with `cargo run --release -- report`): {stale:?}"
-    );
 }
 
 /// Goal: every page under `reports/` links only to what is there: each relative

@@ -1,13 +1,19 @@
-//! The verification gate: `impactlab verify` over every case in `verification/`
-//! passes, writes a JUnit report CI can read, and fails (exit 1) when a check moves or
-//! a gold file is missing. Snapshots of each case's summary and ledger (insta) make
-//! any numerical change visible in review.
+//! The verification gate: every case in `verification/` passes, its verdicts make the
+//! verify.json and JUnit report CI reads, and `impactlab verify` fails (exit 1) when a
+//! check moves or a gold file is missing. Snapshots of each case's summary and ledger
+//! (insta) make any numerical change visible in review, and the committed case reports
+//! are what those outcomes draw.
+//!
+//! Every case is evaluated once for this file ([`outcomes`]), as `impactlab verify`
+//! and `impactlab report` evaluate them (`study::cases::evaluate_all`), and the gate,
+//! the snapshots and the reports are judged from that one evaluation.
 
 mod common;
 
 use common::{impactlab, root};
-use impactlab::verify::{self, Case};
+use impactlab::verify::{self, Case, CaseOutcome};
 use std::path::Path;
+use std::sync::OnceLock;
 
 fn cases() -> Vec<Case> {
     verify::case_files(&[root().join("verification")])
@@ -17,24 +23,30 @@ fn cases() -> Vec<Case> {
         .collect()
 }
 
-/// Goal: the full case set passes; verify.json and junit.xml agree on the checks, and
-/// junit.xml is the standard schema (testsuites > testsuite > testcase).
+/// Every case of `verification/` evaluated once (on two threads), in case order.
+fn outcomes() -> &'static [(String, Result<CaseOutcome, String>)] {
+    static OUTCOMES: OnceLock<Vec<(String, Result<CaseOutcome, String>)>> = OnceLock::new();
+    OUTCOMES.get_or_init(|| {
+        let cases = verify::load_cases(&[root().join("verification")]).unwrap();
+        impactlab::study::cases::evaluate_all(&cases, 2)
+            .into_iter()
+            .map(|(name, o)| (name, o.map_err(|e| e.to_string())))
+            .collect()
+    })
+}
+
+/// Goal: the full case set passes; verify.json and junit.xml (as `impactlab verify`
+/// writes them from the verdicts) agree on the checks, and junit.xml is the standard
+/// schema (testsuites > testsuite > testcase).
 #[test]
 fn verify_passes_on_every_case_and_reports_junit() {
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("v");
-    let o = impactlab(&["verify", "verification", "--out", out.to_str().unwrap()]);
-    let stdout = String::from_utf8_lossy(&o.stdout);
-    assert_eq!(
-        o.status.code(),
-        Some(0),
-        "{stdout}\n{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    let json: serde_json::Value = serde_json::from_slice(&std::fs::read(out.join("verify.json")).unwrap()).unwrap();
+    let v = verify::Verdicts::of(outcomes());
+    assert!(v.passed(), "{}", verify::table(&v));
+    let json: serde_json::Value = serde_json::from_slice(&verify::json(&v)).unwrap();
+    assert_eq!(json["passed"], serde_json::json!(true));
     let n = json["results"].as_array().unwrap().len();
     assert!(n >= 30, "{n} checks");
-    let xml = std::fs::read_to_string(out.join("junit.xml")).unwrap();
+    let xml = String::from_utf8(verify::junit(&v)).unwrap();
     assert!(xml.starts_with("<?xml"));
     assert!(xml.contains("<testsuites"));
     assert_eq!(xml.matches("<testcase ").count(), n);
@@ -221,14 +233,17 @@ fn rounded(v: &serde_json::Value) -> serde_json::Value {
 /// absolute, so round-off-level values read 0).
 #[test]
 fn verify_case_snapshots() {
-    for case in cases() {
+    for (name, outcome) in outcomes() {
+        let outcome = outcome.as_ref().unwrap_or_else(|e| panic!("{name}: {e}"));
+        let case = &outcome.case;
         if case.plate_mesh.is_some() || !case.statics.is_empty() {
             // A study over meshes (its summary that of its first mesh), or static decks,
             // whose deflections are the checks' values.
             continue;
         }
-        let model = verify::case_model(&case).unwrap();
-        let run = impactlab::run::run_model(&model, &verify::case_options(&case)).unwrap();
+        let verify::Solved::Transient { run, .. } = &outcome.solved else {
+            panic!("{name}: a transient case solved no run")
+        };
         let mut s = serde_json::to_value(&run.summary).unwrap();
         s.as_object_mut().unwrap().remove("impactlab_version");
         for k in ["wall_s", "factor_s", "solve_s", "assembly_s", "contact_iterations"] {
@@ -559,5 +574,74 @@ fn written_files_catch_what_the_in_memory_checks_cannot() {
         !r.passed && r.detail.contains("the deck's time unit is s"),
         "{}",
         r.detail
+    );
+}
+
+/// The text of a generated file with the measured wall times masked.
+fn masked(text: &str) -> String {
+    text.lines()
+        .map(|l| if l.contains("wall time") { "(wall time)" } else { l })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// Goal: every committed case report (`reports/<case>/`: index.md, index.html and
+/// every figure's SVG) and the index `reports/README.md` are what `impactlab report`
+/// makes now, apart from measured wall times; a case report that is missing, or a
+/// file the code no longer makes, fails.
+#[test]
+fn case_reports_are_current() {
+    use impactlab::report;
+    let tmp = tempfile::tempdir().unwrap();
+    let mut stale = Vec::new();
+    for (name, outcome) in outcomes() {
+        let outcome = outcome.as_ref().unwrap_or_else(|e| panic!("{name}: {e}"));
+        if outcome.case.deck.is_none() {
+            continue;
+        }
+        let fresh = tmp.path().join(name);
+        report::report_case(outcome, &fresh).unwrap();
+        let committed = root().join("reports").join(name);
+        let mut files: Vec<String> = std::fs::read_dir(&fresh)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        files.sort();
+        let mut on_disk: Vec<String> = std::fs::read_dir(&committed)
+            .map(|d| {
+                d.map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+                    .collect()
+            })
+            .unwrap_or_default();
+        on_disk.sort();
+        if files != on_disk {
+            stale.push(format!("{name}: files {on_disk:?}, the code makes {files:?}"));
+            continue;
+        }
+        for f in files.iter().filter(|f| !f.ends_with(".png")) {
+            let a = std::fs::read_to_string(fresh.join(f)).unwrap();
+            let b = std::fs::read_to_string(committed.join(f)).unwrap();
+            if masked(&a) != masked(&b) {
+                stale.push(format!("{name}/{f}"));
+            }
+        }
+    }
+    let index = report::index(tmp.path());
+    if index != std::fs::read_to_string(root().join("reports/README.md")).unwrap() {
+        stale.push("README.md (the index)".into());
+    }
+    // index.html and the study pages' HTML, from the committed markdown.
+    for (rel, html) in report::html_pages(&root().join("reports"), &index) {
+        if std::fs::read_to_string(root().join("reports").join(&rel))
+            .ok()
+            .as_deref()
+            != Some(html.as_str())
+        {
+            stale.push(rel.display().to_string());
+        }
+    }
+    assert!(
+        stale.is_empty(),
+        "stale reports (regenerate with `cargo run --release -- report`): {stale:?}"
     );
 }
