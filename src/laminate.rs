@@ -168,12 +168,13 @@ impl PlyLayer {
 
 /// The plies of a laminate for its results, bottom to top, in axes from which the
 /// plies' reference is turned by `material_angle` degrees (as [`Laminate::new`]); z
-/// from the mid-plane, the bottom at −t/2. When every ply gives G1Z and G2Z, each
+/// from the reference plane, the bottom at `z0` (`None`: at −t/2, the mid-plane the
+/// reference). When every ply gives G1Z and G2Z, each
 /// ply but the top one has its [`Interface`] with the ply above, of bond allowable
 /// `bond_allowable`.
-pub fn ply_layers(plies: &[Ply], material_angle: f64, bond_allowable: Option<f64>) -> Vec<PlyLayer> {
+pub fn ply_layers(plies: &[Ply], z0: Option<f64>, material_angle: f64, bond_allowable: Option<f64>) -> Vec<PlyLayer> {
     let shear = shear_distributions(plies, material_angle);
-    let mut z = -0.5 * plies.iter().map(|p| p.t).sum::<f64>();
+    let mut z = z0.unwrap_or(-0.5 * plies.iter().map(|p| p.t).sum::<f64>());
     plies
         .iter()
         .enumerate()
@@ -554,7 +555,7 @@ mod tests {
     #[test]
     fn ply_strains_are_the_laminate_strain_in_ply_axes() {
         let t = 0.01;
-        let layers = ply_layers(&[glass(0.0, t), glass(90.0, t), glass(0.0, t)], 0.0, None);
+        let layers = ply_layers(&[glass(0.0, t), glass(90.0, t), glass(0.0, t)], None, 0.0, None);
         assert_relative_eq!(layers[0].z[0], -1.5 * t, max_relative = 1e-15);
         assert_relative_eq!(layers[1].z[0], -0.5 * t, max_relative = 1e-15);
         assert_relative_eq!(layers[2].z[1], 1.5 * t, max_relative = 1e-15);
@@ -566,9 +567,9 @@ mod tests {
         assert_relative_eq!(q0, layers[0].q * e, max_relative = 1e-12);
         let (s90, _) = layers[1].at(&e0, &k, z);
         assert_relative_eq!(s90, Vector3::new(e[1], e[0], -e[2]), epsilon = 1e-15);
-        let (s45, _) = ply_layers(&[glass(45.0, t)], 0.0, None)[0].at(&e0, &k, z);
+        let (s45, _) = ply_layers(&[glass(45.0, t)], None, 0.0, None)[0].at(&e0, &k, z);
         assert_relative_eq!(s45[0], (e[0] + e[1] + e[2]) / 2.0, max_relative = 1e-12);
-        let (turned, _) = ply_layers(&[glass(0.0, t)], 90.0, None)[0].at(&e0, &k, z);
+        let (turned, _) = ply_layers(&[glass(0.0, t)], None, 90.0, None)[0].at(&e0, &k, z);
         assert_relative_eq!(turned, s90, epsilon = 1e-15);
     }
 
@@ -669,7 +670,7 @@ mod tests {
             rho: 0.0,
             criteria: Vec::new(),
         };
-        let layers = ply_layers(&[half.clone(), half], 0.0, Some(1.0e3));
+        let layers = ply_layers(&[half.clone(), half], None, 0.0, Some(1.0e3));
         let bond = layers[0].interface.as_ref().unwrap();
         let tau = bond.stresses([2.0, -4.0]);
         assert_relative_eq!(tau[0], 1.5 * 2.0 / t, max_relative = 1e-12);
@@ -699,7 +700,7 @@ mod tests {
         };
         let (d11, d22) = (d(q11, q22), d(q22, q11));
         let lift = h * h / 4.0 - h * h / 36.0;
-        let layers = ply_layers(&plies, 0.0, None);
+        let layers = ply_layers(&plies, None, 0.0, None);
         let (qx, qy) = (3.0, 5.0);
         let below = layers[4].interface.as_ref().unwrap().stresses([qx, qy]);
         assert_relative_eq!(below[0], qx * q11 * lift / (2.0 * d11), max_relative = 1e-12);
@@ -724,6 +725,8 @@ mod tests {
                 ..p.clone()
             })
             .collect();
-        assert!(ply_layers(&thin, 0.0, Some(1.0)).iter().all(|l| l.interface.is_none()));
+        assert!(ply_layers(&thin, None, 0.0, Some(1.0))
+            .iter()
+            .all(|l| l.interface.is_none()));
     }
 }

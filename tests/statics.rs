@@ -75,6 +75,41 @@ fn a_cantilever_strip_takes_an_end_force_and_moment_exactly() {
     }
 }
 
+/// Goal: a PCOMP whose Z0 puts its plies off the grids' plane (an offset laminate)
+/// couples membrane and bending as an eccentric bar does. Model: [`strip`] on 1 and 4
+/// elements with its PSHELL replaced by a PCOMP of one ply (the MAT1, t = 0.1) whose
+/// mid-plane sits zc = Z0 + t/2 above the grids (zc = 0.02, then −0.02), pulled along
+/// x by N = 1 at the grids (two FORCEs of ½). Reference: the laminate about the grids'
+/// plane, A = E t, B = E t zc, D = E (t³/12 + t zc²) (ν = 0): the load's moment −zc N
+/// about y lifts the tip by zc N L²/2EI (I = t³/12), and the grids' plane stretches
+/// by N L (1 + 12 zc²/t²)/E t. Constant strain and curvature: exact on any mesh,
+/// tolerance 1e-9 relative. With the offset ignored (Z0 = −t/2) the tip stays on the
+/// axis, so the test fails if Z0 is dropped.
+#[test]
+fn an_offset_laminate_bends_under_a_load_in_its_reference_plane() {
+    let (e, t, l) = (1.0e7, 0.1, 10.0);
+    let ei = e * t * t * t / 12.0;
+    for n in [1, 4] {
+        for zc in [0.02, -0.02] {
+            let deck = strip(n, "FORCE,1,TIP,,0.5,1.0,0.0,0.0\nFORCE,1,TIP2,,0.5,1.0,0.0,0.0\n").replace(
+                "PSHELL,1,1,0.1,1\n",
+                &format!("PCOMP,1,{:?}\n,1,0.1,0.0\n", zc - 0.5 * t),
+            );
+            let s = static_deck(&deck);
+            let lift = zc * l * l / (2.0 * ei);
+            assert!(
+                (tip(&s, n) / lift - 1.0).abs() < 1e-9,
+                "n = {n}, zc = {zc}: {}",
+                tip(&s, n)
+            );
+            let g = (n + 1) as i64;
+            let stretch = 0.5 * (s.displacement(g, 1).unwrap() + s.displacement(g + 100, 1).unwrap());
+            let exact = l * (1.0 + 12.0 * zc * zc / (t * t)) / (e * t);
+            assert!((stretch / exact - 1.0).abs() < 1e-9, "n = {n}, zc = {zc}: {stretch}");
+        }
+    }
+}
+
 /// Goal: PLOAD4's consistent forces converge on the uniformly loaded cantilever at the
 /// element's order. Model: [`strip`] on 4, 8, 16 elements under a pressure q = 2 (a
 /// line load of 2 along the strip), positive along the shells' normal (+z). Reference:

@@ -1975,8 +1975,10 @@ fn section_is_definite(s: &ShellSection) -> bool {
 /// counter-clockwise from basic x (its plies' fibres at θ + `axes` in basic axes): its
 /// plies (MAT8 or MAT1) through the lamination stage, the laminate's A/t, 12D/t³ and,
 /// for an unsymmetric laminate, B/t² as the plate's membrane, bending and coupling
-/// materials (NASTRAN's MID1, MID2 and MID4 equivalents). The reference plane is the
-/// mid-plane: a Z0 other than −T/2 (an offset plate) is refused.
+/// materials (NASTRAN's MID1, MID2 and MID4 equivalents). A, B and D are taken about
+/// the reference plane (the grids' plane), Z0 from it to the bottom surface: a Z0
+/// other than −T/2 (an offset laminate) couples membrane and bending through B, as
+/// NASTRAN's equivalent PSHELL does with its MID4.
 fn laminate_section(
     cx: &mut Ctx,
     p: &crate::deck::cards::Pcomp,
@@ -1999,18 +2001,6 @@ fn laminate_section(
             return None;
         }
     };
-    if p.z0
-        .is_some_and(|z0| (z0 + 0.5 * lam.thickness).abs() > 1e-9 * lam.thickness)
-    {
-        cx.err(p.at.error(format!(
-            "PCOMP {}: Z0 = {:e} puts the reference plane off the mid-plane (Z0 = −T/2 = {:e}): an offset \
-             plate is not supported",
-            p.pid,
-            p.z0.unwrap_or_default(),
-            -0.5 * lam.thickness
-        )));
-        return None;
-    }
     // Transverse shear: the plies' integral with the shear correction factor 5/6
     // (first-order shear deformation theory's), reordered from (yz, xz) to (xz, yz).
     let shear = lam
@@ -2056,7 +2046,7 @@ fn laminate_section(
     }
     Some((
         section,
-        std::sync::Arc::new(ply_layers(&plies, axes, p.sb.filter(|_| p.ft.is_some()))),
+        std::sync::Arc::new(ply_layers(&plies, p.z0, axes, p.sb.filter(|_| p.ft.is_some()))),
     ))
 }
 
