@@ -17,12 +17,14 @@
 pub mod bar;
 pub mod dkmt;
 pub mod drill;
+pub mod general;
 pub mod mass;
 pub mod mitc4;
 pub mod quad4;
 pub mod rod;
 pub mod scalar;
 pub mod section;
+pub mod shear;
 pub mod shell;
 pub mod tria3;
 
@@ -326,6 +328,8 @@ pub enum Build {
     /// From a PBAR, PBARL, PBEAM or PBEAML and its MAT1, with the pin flags; its ends
     /// given in its own axes, after its offsets.
     Bar(Builder<bar::BarSpec>),
+    /// From a PSHEAR and its MAT1, its corners in the basic system.
+    Panel(Builder<shear::PanelSection>),
 }
 
 /// An element card: its name, how many grids it connects (fields 4 on) and how it
@@ -342,7 +346,7 @@ pub struct Kind {
 
 /// Every element card, one line per kind (CONM2, a mass rather than an element
 /// connecting grids, is read on its own).
-pub static KINDS: [Kind; 7] = [
+pub static KINDS: [Kind; 8] = [
     Kind {
         card: "CROD",
         grids: 2,
@@ -367,6 +371,11 @@ pub static KINDS: [Kind; 7] = [
         card: "CTRIA3",
         grids: 3,
         build: Build::Shell(dkmt::ctria3),
+    },
+    Kind {
+        card: "CSHEAR",
+        grids: 4,
+        build: Build::Panel(|x, s| Ok(Box::new(shear::ShearPanel::build(x, s)?))),
     },
     Kind {
         card: "CBAR",
@@ -469,6 +478,10 @@ pub enum Family<'a> {
     Support,
     /// A scalar spring or mass between two DOFs ([`scalar::Scalar`]).
     Scalar,
+    /// A shear panel (CSHEAR) of this section.
+    Panel(&'a shear::PanelSection),
+    /// A general element (GENEL, [`general::General`]): a stiffness over listed DOFs.
+    General,
 }
 
 impl<'a> Family<'a> {

@@ -161,8 +161,9 @@ impl Numbering<'_> {
             (None, Some(t)) if is_grid && t.ties(c - 1) => {
                 cx.err(at.error(match t.whole() {
                     Some((gn, _)) => format!(
-                        "{what} uses {l}, a DOF an RBE2 makes dependent (its motion is grid {gn}'s): name grid {gn} \
-                         instead"
+                        "{what} uses {l}, a DOF {} makes dependent (its motion is grid {gn}'s): name grid {gn} \
+                         instead",
+                        t.name
                     ),
                     None => format!(
                         "{what} uses {l}, a DOF {} makes dependent: name an independent DOF instead",
@@ -579,9 +580,9 @@ fn rigid_elements(cx: &mut Ctx, deck: &Deck, geo: &Geometry, sel: &Selected) -> 
             }
             cx.err(s.at.error(match t.whole() {
                 Some((gn, _)) => format!(
-                    "SPC1 constrains grid {gm}, which the RBE2 at {} makes dependent: constrain its independent grid \
+                    "SPC1 constrains grid {gm}, which {} (at {}) makes dependent: constrain its independent grid \
                      {gn} instead",
-                    t.at.pos
+                    t.name, t.at.pos
                 ),
                 None => format!(
                     "SPC1 constrains components of grid {gm} that {} (at {}) makes dependent: constrain the grids \
@@ -597,8 +598,9 @@ fn rigid_elements(cx: &mut Ctx, deck: &Deck, geo: &Geometry, sel: &Selected) -> 
         let held = |g: &i64| ps.get(g).copied().unwrap_or(0);
         match t.whole() {
             Some((gn, _)) if held(gm) & !held(&gn) != 0 => cx.warn(t.at.warning(format!(
-                "grid {gm}'s PS holds components its independent grid {gn} does not: the RBE2 ties them to grid \
-                 {gn}'s motion instead"
+                "grid {gm}'s PS holds components its independent grid {gn} does not: {} ties them to grid \
+                 {gn}'s motion instead",
+                t.name
             ))),
             None if held(gm) & t.dependent != 0 => cx.warn(t.at.warning(format!(
                 "grid {gm}'s PS holds components {} makes dependent: they follow the tie instead",
@@ -665,6 +667,7 @@ fn build_elements(
     connected(cx, deck, num, geo, &mut out);
     point_masses(cx, deck, num, geo, &mut out);
     scalar_elements(cx, deck, num, geo, rigid, &mut out);
+    general_elements(cx, deck, num, geo, rigid, &mut out);
     // Elements and masses on dependent grids, attached through their ties. An
     // independent grid that a grid follows whole carries that grid's elements.
     if !rigid.ties.is_empty() {
@@ -817,6 +820,13 @@ fn connected(cx: &mut Ctx, deck: &Deck, num: &Numbering, geo: &Geometry, out: &m
             let (kernel, placement) = match kind.build {
                 Build::Rod(build) => {
                     let Some(section) = props.rod(cx, c) else { continue };
+                    if !ok {
+                        continue;
+                    }
+                    (build(&xyz, section), frames_only(&c.g, geo, &xyz))
+                }
+                Build::Panel(build) => {
+                    let Some(section) = props.panel(cx, c) else { continue };
                     if !ok {
                         continue;
                     }
@@ -1048,6 +1058,7 @@ struct Properties<'d> {
     bulk: &'d crate::deck::cards::Bulk,
     mat1: HashMap<i64, &'d crate::deck::cards::Mat1>,
     prod: HashMap<i64, &'d crate::deck::cards::Prod>,
+    pshear: HashMap<i64, &'d crate::deck::cards::Pshear>,
     bars: HashMap<i64, &'d crate::deck::cards::BarProperty>,
     pshell: HashMap<i64, &'d crate::deck::cards::Pshell>,
     pcomp: HashMap<i64, &'d crate::deck::cards::Pcomp>,
@@ -1068,6 +1079,7 @@ impl<'d> Properties<'d> {
             bulk: b,
             mat1: b.mat1s.iter().map(|m| (m.mid, m)).collect(),
             prod: b.prods.iter().map(|p| (p.pid, p)).collect(),
+            pshear: b.pshears.iter().map(|p| (p.pid, p)).collect(),
             bars: b.bar_properties.iter().map(|p| (p.pid, p)).collect(),
             pshell,
             pcomp: b.pcomps.iter().map(|p| (p.pid, p)).collect(),
@@ -1100,6 +1112,38 @@ impl<'d> Properties<'d> {
             g: m.g,
             area: p.a,
             torsion: p.j,
+            rho: m.rho,
+            nsm: p.nsm,
+        })
+    }
+
+    /// A shear panel's PSHEAR and MAT1.
+    fn panel(&self, cx: &mut Ctx, c: &Connection) -> Option<crate::elements::shear::PanelSection> {
+        let Some(p) = self.pshear.get(&c.pid) else {
+            cx.err(c.at.error(format!(
+                "{} {} references PSHEAR {}, which does not exist",
+                c.kind.card, c.eid, c.pid
+            )));
+            return None;
+        };
+        let Some(m) = self.mat1.get(&p.mid) else {
+            cx.err(p.at.error(format!(
+                "PSHEAR {} references MAT1 {}, which does not exist",
+                p.pid, p.mid
+            )));
+            return None;
+        };
+        if m.g <= 0.0 {
+            cx.err(p.at.error(format!(
+                "PSHEAR {}: its MAT1 {} gives no shear modulus (G = {:e}): a shear panel has no other stiffness",
+                p.pid, p.mid, m.g
+            )));
+            return None;
+        }
+        Some(crate::elements::shear::PanelSection {
+            g: m.g,
+            nu: m.nu,
+            t: p.t,
             rho: m.rho,
             nsm: p.nsm,
         })
@@ -1408,6 +1452,134 @@ fn scalar_elements(
             points,
         };
         out.list.push(Element::new(c.eid, grids, dofs, kernel));
+    }
+}
+
+/// The GENELs: each a [`crate::elements::general::General`] over its {uᵢ} and {u_d}
+/// (grid components in their displacement frames, scalar points), K given or Z
+/// inverted, [S] given or computed from the grids' positions.
+fn general_elements(
+    cx: &mut Ctx,
+    deck: &Deck,
+    num: &Numbering,
+    geo: &Geometry,
+    rigid: &crate::model::rigid::Rigid,
+    out: &mut Elements,
+) {
+    use crate::elements::general::{from_lower, rigid_row, rigid_s, General};
+    for c in &deck.bulk.genels {
+        let mut points: Vec<i64> = Vec::new();
+        let mut dofs = Vec::new();
+        let mut xs = Vec::new();
+        let mut slots = Vec::new();
+        let mut ok = true;
+        for &(p, comp) in c.ui.iter().chain(&c.ud) {
+            let at = match points.iter().position(|&q| q == p) {
+                Some(i) => i,
+                None => {
+                    let (d, x) = if num.grids.contains_key(&p) {
+                        if rigid.ties.contains_key(&p) {
+                            cx.err(c.at.error(format!(
+                                "GENEL {} is on grid {p}, which a rigid element makes dependent: connect it to an \
+                                 independent grid",
+                                c.eid
+                            )));
+                            ok = false;
+                            continue;
+                        }
+                        (num.grid_dofs(p), geo.positions.get(&p).copied())
+                    } else if num.scalar.contains_key(&p) {
+                        let mut d = [None; 6];
+                        d[0] = num.index.get(&DofLabel { point: p, comp: 0 }).copied();
+                        (d, None)
+                    } else {
+                        cx.err(c.at.error(format!("GENEL {} references point {p}, which does not exist", c.eid)));
+                        ok = false;
+                        continue;
+                    };
+                    points.push(p);
+                    dofs.push(d);
+                    xs.push(x);
+                    points.len() - 1
+                }
+            };
+            let scalar = xs[at].is_none() && num.scalar.contains_key(&p);
+            if scalar != (comp == 0) {
+                cx.err(c.at.error(format!(
+                    "GENEL {}: point {p} component {comp}: a grid takes a component 1-6, a scalar point 0",
+                    c.eid
+                )));
+                ok = false;
+                continue;
+            }
+            slots.push((at, comp.saturating_sub(1)));
+        }
+        if !ok {
+            continue;
+        }
+        if points.len() > crate::elements::MAX_GRIDS {
+            cx.err(c.at.error(format!(
+                "GENEL {} connects {} points: a GENEL of more than {} is not supported",
+                c.eid,
+                points.len(),
+                crate::elements::MAX_GRIDS
+            )));
+            continue;
+        }
+        let m = c.ui.len();
+        let given = from_lower(m, &c.lower);
+        let k = if c.flexibility {
+            match General::stiffness_of_flexibility(given) {
+                Ok(k) => k,
+                Err(e) => {
+                    cx.err(c.at.error(format!("GENEL {} {e}", c.eid)));
+                    continue;
+                }
+            }
+        } else {
+            given
+        };
+        let n = c.ud.len();
+        let s = match (&c.s, n) {
+            (_, 0) => None,
+            (Some(v), _) => Some(nalgebra::DMatrix::from_row_slice(m, n, v)),
+            (None, _) => {
+                let at_dof = |&(p, comp): &(i64, usize)| {
+                    let i = points.iter().position(|&q| q == p).expect("resolved above");
+                    xs[i].map(|x| (x, geo.frame(p), comp))
+                };
+                let Some(x0) = at_dof(&c.ud[0]).map(|d| d.0) else {
+                    cx.err(c.at.error(format!(
+                        "GENEL {}: [S] is not given and a scalar point has no position to compute it from: give [S]",
+                        c.eid
+                    )));
+                    continue;
+                };
+                let rows = |list: &[(i64, usize)]| -> Option<nalgebra::DMatrix<f64>> {
+                    let r: Option<Vec<[f64; 6]>> = list
+                        .iter()
+                        .map(|d| at_dof(d).map(|(x, t, comp)| rigid_row(x, &t, comp, x0)))
+                        .collect();
+                    r.map(|r| nalgebra::DMatrix::from_row_iterator(r.len(), 6, r.into_iter().flatten()))
+                };
+                let (Some(ri), Some(rd)) = (rows(&c.ui), rows(&c.ud)) else {
+                    cx.err(c.at.error(format!(
+                        "GENEL {}: [S] is not given and a scalar point has no position to compute it from: give [S]",
+                        c.eid
+                    )));
+                    continue;
+                };
+                match rigid_s(&ri, &rd) {
+                    Ok(s) => Some(s),
+                    Err(e) => {
+                        cx.err(c.at.error(format!("GENEL {} {e}", c.eid)));
+                        continue;
+                    }
+                }
+            }
+        };
+        let kernel = General::new(slots, k, s, xs);
+        out.list.push(Element::new(c.eid, points, dofs, kernel));
     }
 }
 

@@ -244,11 +244,15 @@ pub fn check(deck: &Deck) -> CheckReport {
         elements: BTreeMap::new(),
         free_dofs: 0,
         constrained_dofs: 0,
-        rigid: [("RBE2", b.rbe2s.len()), ("RBE3", b.rbe3s.len())]
-            .into_iter()
-            .filter(|(_, n)| *n > 0)
-            .map(|(k, n)| (k.to_string(), n))
-            .collect(),
+        rigid: b
+            .rbe2s
+            .iter()
+            .map(|r| r.card)
+            .chain(b.rbe3s.iter().map(|_| "RBE3"))
+            .fold(BTreeMap::new(), |mut m, card| {
+                *m.entry(card.to_string()).or_insert(0) += 1;
+                m
+            }),
         dependent_dofs: 0,
         scalar_points: 0,
         weight: None,

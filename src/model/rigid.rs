@@ -124,7 +124,7 @@ pub fn resolve(b: &Bulk, geo: &Geometry, errors: &mut Vec<Diagnostic>) -> Rigid 
     };
     let mut defs: BTreeMap<i64, Def> = BTreeMap::new();
     for r in &b.rbe2s {
-        let name = format!("RBE2 {}", r.eid);
+        let name = format!("{} {}", r.card, r.eid);
         if !usable(
             &name,
             &r.at,

@@ -29,9 +29,12 @@ pub struct SpcAdd {
 }
 
 /// RBE2: a rigid element; the components CM of each dependent grid GMi follow the
-/// independent grid GN's motion as a rigid body.
+/// independent grid GN's motion as a rigid body. COSMIC's CRIGD1 is the RBE2 of all six
+/// components.
 #[derive(Debug, Clone)]
 pub struct Rbe2 {
+    /// The card's name: `RBE2` or `CRIGD1`.
+    pub card: &'static str,
     /// Element id (field 2).
     pub eid: i64,
     /// Independent grid GN (field 3).
@@ -167,9 +170,49 @@ pub(super) fn card_rbe2(r: &mut Reader, b: &mut Bulk) {
     }
     if r.ok {
         b.rbe2s.push(Rbe2 {
+            card: "RBE2",
             eid,
             gn,
             cm,
+            gm,
+            at: r.at(),
+        });
+    }
+}
+
+/// CRIGD1 (COSMIC): EID, IG, then the dependent grids G1, G2, … (or `GID1 THRU GID2`),
+/// every one of whose six components follows the reference grid IG as a rigid body
+/// (`manual/BULK.TXT`, CRIGD1): an RBE2 with CM = 123456.
+pub(super) fn card_crigd1(r: &mut Reader, b: &mut Bulk) {
+    let (eid, ig) = (r.id(0, "EID"), r.id(1, "IG"));
+    let n = r.card.fields.len();
+    let gm = r.id_list_in(2, n, "Gi");
+    if r.ok && gm.is_empty() {
+        r.fail(2, "G1", "names no dependent grid");
+    }
+    if r.ok && gm.contains(&ig) {
+        // The field that names it (or ends the THRU range that holds it).
+        let int = |k: usize| parse_int(r.text(k)).unwrap_or(i64::MIN);
+        let k = (2..n)
+            .find(|&k| int(k) == ig)
+            .or_else(|| {
+                (3..n.saturating_sub(1))
+                    .find(|&k| r.text(k).eq_ignore_ascii_case("THRU") && int(k - 1) <= ig && ig <= int(k + 1))
+                    .map(|k| k + 1)
+            })
+            .unwrap_or(2);
+        r.fail(
+            k,
+            "Gi",
+            format!("names the reference grid IG = {ig} as a dependent grid"),
+        );
+    }
+    if r.ok {
+        b.rbe2s.push(Rbe2 {
+            card: "CRIGD1",
+            eid,
+            gn: ig,
+            cm: Components(0b11_1111),
             gm,
             at: r.at(),
         });

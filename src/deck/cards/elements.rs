@@ -112,6 +112,25 @@ pub struct ScalarCard {
     pub at: CardRef,
 }
 
+/// GENEL: a general element, its stiffness given as a matrix over listed DOFs.
+#[derive(Debug, Clone)]
+pub struct GenelCard {
+    /// Element id (field 2).
+    pub eid: i64,
+    /// The independent DOFs {uᵢ}: (point, component; 0 for a scalar point).
+    pub ui: Vec<(i64, usize)>,
+    /// The dependent DOFs {u_d}, after `UD`; empty when none.
+    pub ud: Vec<(i64, usize)>,
+    /// The matrix after `K` (stiffness) or `Z` (flexibility): true for `Z`.
+    pub flexibility: bool,
+    /// Its lower triangle by columns from the diagonal, m(m+1)/2 values.
+    pub lower: Vec<f64>,
+    /// \[S\] by rows (m × n) after `S`; `None` when not given.
+    pub s: Option<Vec<f64>>,
+    /// The card.
+    pub at: CardRef,
+}
+
 /// Where a scalar element's stiffness or mass is given.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum ScalarValue {
@@ -324,6 +343,147 @@ pub(super) fn card_scalar(r: &mut Reader, b: &mut Bulk) {
             at: r.at(),
         });
     }
+}
+
+/// GENEL: EID, blank, then the {uᵢ} list as pairs UIj CIj from field 4 on, then at
+/// the start of a continuation `UD` (field 3 blank) and the {u_d} pairs, `K` or `Z`
+/// and the lower triangle of the m × m matrix by columns from the diagonal (m the
+/// length of {uᵢ}), and `S` and \[S\] by rows (m × n, n the length of {u_d}):
+/// `manual/BULK.TXT`, GENEL. Blank fields are skipped; the counts must match.
+pub(super) fn card_genel(r: &mut Reader, b: &mut Bulk) {
+    let eid = r.id(0, "EID");
+    let n = r.card.fields.len();
+    let keyword = |t: &str| {
+        ["UD", "K", "Z", "S"]
+            .iter()
+            .find(|w| t.eq_ignore_ascii_case(w))
+            .copied()
+    };
+    // Sections: (keyword, first field after it, end); the UI list first.
+    let mut marks: Vec<(&str, usize)> = vec![("UI", 2)];
+    for k in 2..n {
+        if let Some(w) = keyword(r.text(k)) {
+            if k % 8 != 0 {
+                r.fail(
+                    k,
+                    w,
+                    "starts a section of the GENEL: it belongs in field 2 of a continuation",
+                );
+                return;
+            }
+            marks.push((w, k + 1));
+        }
+    }
+    let mut ui = Vec::new();
+    let mut ud = Vec::new();
+    let mut matrix: Option<(bool, Vec<f64>)> = None;
+    let mut s_rows = None;
+    for (i, &(w, from)) in marks.iter().enumerate() {
+        let to = marks.get(i + 1).map(|m| m.1 - 1).unwrap_or(n);
+        if marks[..i]
+            .iter()
+            .any(|m| m.0 == w || (m.0 == "K" || m.0 == "Z") && (w == "K" || w == "Z"))
+        {
+            r.fail(from - 1, w, "is given twice");
+            return;
+        }
+        match w {
+            "UI" | "UD" => {
+                // Pairs start in fields 4, 6, 8 of the first line and 2, 4, 6, 8 of a
+                // continuation; UD's field 3 is blank.
+                let start = if w == "UD" { from + 1 } else { from };
+                if w == "UD" && !r.text(from).is_empty() {
+                    r.fail(from, "UD", "field 3 after UD must be blank");
+                    return;
+                }
+                let list = if w == "UI" { &mut ui } else { &mut ud };
+                let mut k = start;
+                while k < to && k < n {
+                    if r.text(k).is_empty() && r.text(k + 1).is_empty() {
+                        k += 2;
+                        continue;
+                    }
+                    let name = if w == "UI" { ("UI", "CI") } else { ("UD", "CD") };
+                    let (p, c) = (r.id(k, name.0), r.component(k + 1, name.1));
+                    list.push((p, c));
+                    k += 2;
+                }
+            }
+            _ => {
+                let mut values = Vec::new();
+                for k in from..to.min(n) {
+                    if !r.text(k).is_empty() {
+                        values.push(r.real(k, w));
+                    }
+                }
+                if w == "S" {
+                    s_rows = Some(values);
+                } else {
+                    matrix = Some((w == "Z", values));
+                }
+            }
+        }
+        if !r.ok {
+            return;
+        }
+    }
+    let m = ui.len();
+    if m == 0 {
+        r.fail(2, "UI1", "names no independent DOF");
+        return;
+    }
+    let Some((flexibility, lower)) = matrix else {
+        r.fail(2, "K/Z", "gives no K or Z matrix");
+        return;
+    };
+    let at_of = |w: &str| marks.iter().find(|x| x.0 == w).map(|x| x.1 - 1).unwrap_or(2);
+    if lower.len() != m * (m + 1) / 2 {
+        let k = at_of(if flexibility { "Z" } else { "K" });
+        r.fail(
+            k,
+            if flexibility { "Z" } else { "K" },
+            format!(
+                "has {} values: the lower triangle of a {m} × {m} matrix (the UI list's length) has {}",
+                lower.len(),
+                m * (m + 1) / 2
+            ),
+        );
+        return;
+    }
+    if let Some(sv) = &s_rows {
+        if ud.is_empty() {
+            r.fail(at_of("S"), "S", "is given without a UD list");
+            return;
+        }
+        if sv.len() != m * ud.len() {
+            r.fail(
+                at_of("S"),
+                "S",
+                format!(
+                    "has {} values: [S] is {m} × {} (UI by UD), {} values",
+                    sv.len(),
+                    ud.len(),
+                    m * ud.len()
+                ),
+            );
+            return;
+        }
+    }
+    let mut all: Vec<(i64, usize)> = ui.iter().chain(&ud).copied().collect();
+    all.sort_unstable();
+    if let Some(w) = all.windows(2).find(|w| w[0] == w[1]) {
+        r.fail(2, "UI/UD", format!("lists point {} component {} twice", w[0].0, w[0].1));
+        return;
+    }
+    b.genels.push(GenelCard {
+        eid,
+        ui,
+        ud,
+        flexibility,
+        lower,
+        s: s_rows,
+        at: r.at(),
+    });
 }
 
 /// COSMIC's plates, EID PID G1 G2 G3 (G4) THETA, read as impactlab's CQUAD4 and

@@ -109,6 +109,8 @@ pub struct Bulk {
     pub elements: Vec<Connection>,
     /// PROD cards.
     pub prods: Vec<Prod>,
+    /// PSHEAR cards.
+    pub pshears: Vec<Pshear>,
     /// PBAR, PBARL, PBEAM and PBEAML cards.
     pub bar_properties: Vec<BarProperty>,
     /// PSHELL cards.
@@ -128,6 +130,8 @@ pub struct Bulk {
     pub conm2s: Vec<Conm2>,
     /// CELAS1-4 and CMASS1-4 cards.
     pub scalars: Vec<ScalarCard>,
+    /// GENEL cards.
+    pub genels: Vec<GenelCard>,
     /// PELAS cards.
     pub pelas: Vec<ScalarProperty>,
     /// PMASS cards.
@@ -444,13 +448,14 @@ impl<'a> Reader<'a> {
 
 /// Cards the reader knows. `PARAM` is accepted and ignored with a warning.
 /// Element cards are those of [`crate::elements::KINDS`] besides these.
-pub const KNOWN_CARDS: [&str; 68] = [
+pub const KNOWN_CARDS: [&str; 71] = [
     "GRID", "GRDSET", "CORD1R", "CORD1C", "CORD1S", "CORD2R", "CORD2C", "CORD2S", "EPOINT", "SPOINT", "PROD", "PBAR",
     "PBARL", "PBEAM", "PBEAML", "PSHELL", "PCOMP", "MAT1", "MAT2", "MAT8", "CONM2", "RBE2", "RBE3", "SPC1", "SPC",
     "SPCADD", "TF", "TSTEP", "NOLIN3", "TIC", "FORCE", "MOMENT", "PLOAD4", "GRAV", "LOAD", "PARAM", "INCLUDE",
     "ENDDATA", "BAROR", "PTUBE", "CELAS1", "CELAS2", "CELAS3", "CELAS4", "CMASS1", "CMASS2", "CMASS3", "CMASS4",
     "PELAS", "PMASS", "CQUAD1", "CQUAD2", "CQDMEM", "CQDMEM1", "CQDMEM2", "CTRIA1", "CTRIA2", "CTRMEM", "PQUAD1",
-    "PTRIA1", "PQUAD2", "PTRIA2", "PQDMEM", "PQDMEM1", "PQDMEM2", "PTRMEM", "PCOMP1", "PCOMP2",
+    "PTRIA1", "PQUAD2", "PTRIA2", "PQDMEM", "PQDMEM1", "PQDMEM2", "PTRMEM", "PCOMP1", "PCOMP2", "CRIGD1", "PSHEAR",
+    "GENEL",
 ];
 
 /// Every card the reader types: the element cards of [`crate::elements::KINDS`] and
@@ -520,6 +525,9 @@ pub fn type_cards(raw: &[RawCard], ids_left: &mut usize, diags: &mut Diagnostics
                 "SPC" => card_spc(&mut r, &mut b),
                 "SPCADD" => card_spcadd(&mut r, &mut b),
                 "RBE2" => card_rbe2(&mut r, &mut b),
+                "CRIGD1" => card_crigd1(&mut r, &mut b),
+                "PSHEAR" => card_pshear(&mut r, &mut b),
+                "GENEL" => card_genel(&mut r, &mut b),
                 "RBE3" => card_rbe3(&mut r, &mut b),
                 "TF" => card_tf(&mut r, &mut b, card),
                 "TSTEP" => card_tstep(&mut r, &mut b, card),
@@ -590,7 +598,10 @@ fn per_card(name: &str) -> Option<usize> {
 /// whose corresponding fields are blank"); the card itself otherwise.
 fn pieces<'a>(card: &'a RawCard, baror: Option<&RawCard>) -> Vec<std::borrow::Cow<'a, RawCard>> {
     use std::borrow::Cow;
-    if let Some(w) = per_card(&card.name).filter(|&w| card.fields.len() > w) {
+    // COSMIC's PSHEAR holds two properties; MSC's, one with its F1 F2 (reals) after it.
+    let msc_pshear =
+        card.name == "PSHEAR" && parse_real(card.text(4)).is_some_and(|t| !matches!(t, RealToken::Integer(_)));
+    if let Some(w) = per_card(&card.name).filter(|&w| card.fields.len() > w && !msc_pshear) {
         let first_line = card.fields.len().min(8);
         let mut out: Vec<RawCard> = (0..first_line)
             .step_by(w)

@@ -44,6 +44,21 @@ pub struct Prod {
     pub at: CardRef,
 }
 
+/// PSHEAR: shear panel properties.
+#[derive(Debug, Clone)]
+pub struct Pshear {
+    /// Property id (field 2).
+    pub pid: i64,
+    /// MAT1 id (field 3).
+    pub mid: i64,
+    /// Thickness T (field 4).
+    pub t: f64,
+    /// Non-structural mass per unit area, NSM (field 5).
+    pub nsm: f64,
+    /// The card.
+    pub at: CardRef,
+}
+
 /// PSHELL: shell properties.
 #[derive(Debug, Clone)]
 pub struct Pshell {
@@ -304,6 +319,36 @@ pub(super) fn card_prod(r: &mut Reader, b: &mut Bulk) {
     r.extra_fields(6);
     if r.ok {
         b.prods.push(p);
+    }
+}
+
+/// PSHEAR: PID MID T NSM, then MSC's F1 F2 (the edges' effectiveness in
+/// extension): blank or 0 (a panel of shear only, NASTRAN-95's and MSC's default);
+/// other values are refused, the panel's extension is not modelled. COSMIC writes a
+/// second property in fields 6-9 ([`super::pieces`] splits it off when field 6 is an
+/// integer).
+pub(super) fn card_pshear(r: &mut Reader, b: &mut Bulk) {
+    let p = Pshear {
+        pid: r.id(0, "PID"),
+        mid: r.id(1, "MID"),
+        t: r.real(2, "T"),
+        nsm: r.real_or(3, "NSM", 0.0),
+        at: r.at(),
+    };
+    r.positive(2, "T", p.t);
+    r.non_negative(3, "NSM", p.nsm);
+    for (k, name) in [(4, "F1"), (5, "F2")] {
+        if r.real_or(k, name, 0.0) != 0.0 && r.ok {
+            r.fail(
+                k,
+                name,
+                "gives the panel's edges extensional stiffness, which is not supported: leave it blank",
+            );
+        }
+    }
+    r.extra_fields(6);
+    if r.ok {
+        b.pshears.push(p);
     }
 }
 
