@@ -49,6 +49,10 @@ pub enum Command {
     /// Compare two runs' (or two `verify` runs') output directories: what moved and
     /// by how much; exit 1 when anything moved beyond tolerance.
     Audit(AuditArgs),
+    /// Compare a static run's displacements with NASTRAN's printed output (.f06, .out):
+    /// the largest differences by grid and component, per SUBCASE; exit 1 when one
+    /// exceeds --tolerance.
+    Compare(CompareArgs),
     /// Time the paper's 49×49 plate (3000 steps) and report where the time goes.
     Bench(BenchArgs),
     /// Sweep a deck over impact velocity, impactor mass, Hertz K and exponent on the
@@ -390,6 +394,21 @@ pub struct AuditArgs {
     pub format: AuditFormat,
 }
 
+#[derive(clap::Args)]
+pub struct CompareArgs {
+    /// The output directory of `impactlab run` on a static deck.
+    pub run: PathBuf,
+    /// NASTRAN's printed output of the same deck (its DISPLACEMENT VECTOR tables).
+    pub nastran: PathBuf,
+    /// How many of the largest differences to list per SUBCASE.
+    #[arg(long, default_value_t = 10)]
+    pub top: usize,
+    /// The largest difference allowed, relative to the largest printed translation
+    /// (rotation for R1-R3); exit 1 beyond it. None by default.
+    #[arg(long)]
+    pub tolerance: Option<f64>,
+}
+
 #[derive(Clone, Copy, clap::ValueEnum)]
 pub enum AuditFormat {
     Text,
@@ -460,6 +479,7 @@ fn main() -> ExitCode {
         Command::Verify(a) => cli::verify(a),
         Command::Report(a) => cli::report(a),
         Command::Audit(a) => cli::audit(a),
+        Command::Compare(a) => cli::compare(a),
         Command::Bench(a) => cli::bench(a),
         Command::Sweep(a) => cli::sweep(a),
         Command::Collect(a) => cli::collect(a),

@@ -376,31 +376,14 @@ fn an_offset_pressure_reaches_its_grids_with_its_moment() {
     }
 }
 
-/// NASTRAN-95's demonstration deck d01141a (`reference-data/nastran95-demos/inp/`) with
-/// its case control's two SUBCASEs reduced to one, `LOAD = load`: impactlab solves
-/// one load case a deck.
-fn d01141a(load: i64) -> StaticSolution {
-    let text = std::fs::read_to_string(common::root().join("reference-data/nastran95-demos/inp/d01141a.inp")).unwrap();
-    let (case, bulk) = text.split_at(text.find("BEGIN BULK").unwrap());
-    let case: String = case
-        .lines()
-        .filter(|l| {
-            let t = l.trim_start();
-            !(t.starts_with("SUBCASE") || t.starts_with("LABEL") || t.starts_with("LOAD"))
-        })
-        .map(|l| format!("{l}\n"))
-        .collect();
-    static_deck(&format!("{case}LOAD = {load}\n{bulk}"))
-}
-
 /// Goal: the general element (GENEL) in every form the manual gives, as NASTRAN-95's
 /// demonstration deck d01141a uses them: a cantilever of length 6 (EA = 6, EI = 0.5)
 /// built from five GENELs of length 1 (a flexibility Z with no UD; a 6 × 6 K; K with
 /// UD and [S]; K with UD and [S] computed from the grids; Z with UD and [S]) and one
-/// CBAR, clamped at grid 1 and loaded at grid 7. Reference: under the axial load
-/// (LOAD 1) the sum of the elements' axial flexibilities as the deck writes them
+/// CBAR, clamped at grid 1 and loaded at grid 7, its two SUBCASEs solved on one
+/// factorisation. Reference: under the axial load (SUBCASE 1, LOAD 1) the sum of the elements' axial flexibilities as the deck writes them
 /// (GENEL 1's Z11 = .1666667, GENEL 5's .166666: the tip moves 1 − 6.3e-7, as
-/// NASTRAN-95 printed, 9.999993E-01), to 1e-12; under the transverse one (LOAD 2)
+/// NASTRAN-95 printed, 9.999993E-01), to 1e-12; under the transverse one (SUBCASE 2)
 /// Euler-Bernoulli's closed forms, exact for an end load, v = P x²(3L − x)/6EI and
 /// θ = P x(2L − x)/2EI (NASTRAN-95 printed v = 5.666667, 21.33333, 45, 74.66666,
 /// 108.3333, 144), to 1e-6 of the largest value: the deck's flexibilities are given to
@@ -411,8 +394,17 @@ fn nastran95_genel_cantilever_answers_euler_bernoulli_exactly() {
     // Each element's axial flexibility as the deck writes it: GENEL 1's Z11 and
     // GENEL 5's to 7 and 6 digits, K11 = 6 = EA/L for the others and the CBAR.
     let flexibilities = [0.1666667, 1.0 / 6.0, 1.0 / 6.0, 1.0 / 6.0, 0.166666, 1.0 / 6.0];
-    let axial = d01141a(1);
-    let bending = d01141a(2);
+    // NASTRAN-95's deck as it is: SUBCASE 1 the axial load, SUBCASE 2 the transverse.
+    let deck = impactlab::deck::read_deck(
+        &common::root().join("reference-data/nastran95-demos/inp/d01141a.inp"),
+        Default::default(),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let (solutions, _) = impactlab::run::statics::solve_subcases(&deck).unwrap_or_else(|e| panic!("{e}"));
+    let [axial, bending] = &solutions[..] else {
+        panic!("{} solutions", solutions.len())
+    };
+    assert_eq!((axial.subcase, bending.subcase), (Some(1), Some(2)));
     for g in 1..=7 {
         let x = (g - 1) as f64;
         let u = axial.displacement(g, 1).unwrap();
@@ -423,4 +415,33 @@ fn nastran95_genel_cantilever_answers_euler_bernoulli_exactly() {
         assert!((v - v0).abs() < 1e-6 * 144.0, "grid {g}: v = {v}, exact {v0}");
         assert!((th - th0).abs() < 1e-6 * 36.0, "grid {g}: θ = {th}, exact {th0}");
     }
+}
+
+/// Goal: SUBCASEs as NASTRAN reads them: a SUBCASE takes the LOAD and SPC above the
+/// first SUBCASE unless it selects its own, each is solved on the one factorisation,
+/// and SUBCASEs of different SPC sets are refused naming both. Model: [`strip`] on 4
+/// elements, FORCE set 1 the end force (P = 1), set 2 twice it. Reference: the tip's
+/// deflection P L³/3EI for SUBCASE 1 (LOAD = 1 from above), twice it for SUBCASE 2
+/// (LOAD = 2), to 1e-9.
+#[test]
+fn subcases_inherit_the_selections_above_them_and_share_one_factorisation() {
+    let loads = "FORCE,1,TIP,,0.5,0.0,0.0,-1.0\nFORCE,1,TIP2,,0.5,0.0,0.0,-1.0\n\
+                 FORCE,2,TIP,,1.0,0.0,0.0,-1.0\nFORCE,2,TIP2,,1.0,0.0,0.0,-1.0\n";
+    let deck = strip(4, loads).replace("  LOAD = 1\n", "  LOAD = 1\nSUBCASE 1\nSUBCASE 2\n  LOAD = 2\n");
+    let d = impactlab::deck::parse_deck_str("s.bdf", &deck, Default::default()).unwrap_or_else(|e| panic!("{e}"));
+    let (s, _) = impactlab::run::statics::solve_subcases(&d).unwrap_or_else(|e| panic!("{e}"));
+    let ei = 1.0e7 * 0.1f64.powi(3) / 12.0;
+    let exact = 1000.0 / (3.0 * ei);
+    assert_eq!(
+        (s[0].subcase, s[0].load_set, s[1].subcase, s[1].load_set),
+        (Some(1), 1, Some(2), 2)
+    );
+    assert!((-tip(&s[0], 4) / exact - 1.0).abs() < 1e-9, "{}", tip(&s[0], 4));
+    assert!((-tip(&s[1], 4) / (2.0 * exact) - 1.0).abs() < 1e-9, "{}", tip(&s[1], 4));
+    let other_spc = deck
+        .replace("SUBCASE 2\n", "SUBCASE 2\n  SPC = 2\n")
+        .replace("ENDDATA", "SPC1,2,123456,1,101\nENDDATA");
+    let d = impactlab::deck::parse_deck_str("s.bdf", &other_spc, Default::default()).unwrap_or_else(|e| panic!("{e}"));
+    let e = impactlab::run::statics::solve_subcases(&d).unwrap_err().to_string();
+    assert!(e.contains("SUBCASE 2 selects SPC = 2, SUBCASE 1 (at s.bdf:"), "{e}");
 }

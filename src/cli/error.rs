@@ -43,6 +43,9 @@ pub enum Error {
     /// An audit could not read its inputs.
     #[error("{0}")]
     Audit(#[from] impactlab::verify::audit::AuditError),
+    /// A comparison could not read its inputs.
+    #[error("{0}")]
+    Compare(#[from] impactlab::verify::printed::PrintedError),
     /// A study could not be run or written.
     #[error("{0}")]
     Study(#[from] StudyError),

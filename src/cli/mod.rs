@@ -5,8 +5,8 @@
 pub mod error;
 
 use crate::{
-    AuditArgs, AuditFormat, BenchArgs, CheckArgs, CollectArgs, MeshKind, ReportArgs, RunArgs, SceneArgs, StudyKind,
-    SweepArgs, VerifyArgs,
+    AuditArgs, AuditFormat, BenchArgs, CheckArgs, CollectArgs, CompareArgs, MeshKind, ReportArgs, RunArgs, SceneArgs,
+    StudyKind, SweepArgs, VerifyArgs,
 };
 use error::Error;
 use impactlab::run::RunOptions;
@@ -304,13 +304,15 @@ fn run_static(a: &RunArgs, d: &deck::Deck) -> Result<u8, Error> {
     for w in &d.warnings {
         say_err(&w.to_string());
     }
-    let (solution, warnings) = impactlab::run::statics::solve(d)?;
+    let (solutions, warnings) = impactlab::run::statics::solve_subcases(d)?;
     for w in &warnings {
         say_err(&w.to_string());
     }
     let dir = a.out.clone().unwrap_or_else(|| PathBuf::from("out").join(&d.name));
-    output::write_dir_atomically(&dir, &output::static_files(&solution)).map_err(io_error(&dir))?;
-    say(&output::static_summary(&solution));
+    output::write_dir_atomically(&dir, &output::static_files(&solutions)).map_err(io_error(&dir))?;
+    for s in &solutions {
+        say(&output::static_summary(s));
+    }
     sayln(&format!("  outputs:  {}", dir.display()));
     Ok(0)
 }
@@ -748,6 +750,32 @@ pub fn report(a: ReportArgs) -> Result<u8, Error> {
     }
     sayln(&format!("index: {} and index.html", index.display()));
     Ok(0)
+}
+
+/// `impactlab compare`: a static run against NASTRAN's printed displacements.
+pub fn compare(a: CompareArgs) -> Result<u8, Error> {
+    use impactlab::verify::printed::{compare, read_printed_file, read_run, render};
+    let theirs = read_printed_file(&a.nastran)?;
+    let ours = read_run(&a.run)?;
+    let comparisons = compare(&ours, &theirs);
+    if comparisons.is_empty() {
+        return Err(Error::Usage(format!(
+            "{} prints SUBCASE {:?} and {} holds {:?}: no SUBCASE in common",
+            a.nastran.display(),
+            theirs.subcases.keys().collect::<Vec<_>>(),
+            a.run.display(),
+            ours.subcases.keys().collect::<Vec<_>>()
+        )));
+    }
+    say(&render(&comparisons, a.top));
+    let worst = comparisons.iter().map(|c| c.worst()).fold(0.0, f64::max);
+    Ok(match a.tolerance {
+        Some(t) if worst > t => {
+            sayln(&format!("largest difference {worst:.2e} exceeds --tolerance {t:e}"));
+            1
+        }
+        _ => 0,
+    })
 }
 
 /// `impactlab audit`: what moved between two runs; exit 1 when anything moved

@@ -103,6 +103,25 @@ pub struct CaseControl {
     /// Output requests of quantities impactlab does not write (SPCFORCES, OLOAD,
     /// ESE ...), with where each is asked for.
     pub not_written: Vec<(String, Pos)>,
+    /// A static deck's SUBCASEs, in deck order, each with the LOAD, SPC and LABEL it
+    /// selects (its own, or those above the first SUBCASE); empty when it has none.
+    /// The deck's `load`, `spc` and `label` are then the first one's.
+    pub subcases: Vec<Subcase>,
+}
+
+/// One SUBCASE of a static deck: a load case.
+#[derive(Debug, Clone)]
+pub struct Subcase {
+    /// Its number (SUBCASE n).
+    pub id: i64,
+    /// LABEL.
+    pub label: String,
+    /// LOAD selection.
+    pub load: Option<Selection>,
+    /// SPC selection.
+    pub spc: Option<Selection>,
+    /// Where its SUBCASE line is.
+    pub pos: Pos,
 }
 
 /// Reads executive control (ID, SOL, TIME) from its lines; for a deck read for its
@@ -356,8 +375,8 @@ fn is_plot_section(t: &str) -> bool {
 pub enum Subcases {
     /// A transient deck: one case, no SUBCASE.
     None,
-    /// A static deck: at most one SUBCASE, whose selections are the deck's.
-    One,
+    /// A static deck: each SUBCASE a load case ([`CaseControl::subcases`]).
+    Static,
     /// A deck read for its structure alone: any, their SPC selections read as the deck's.
     Any,
 }
@@ -366,7 +385,10 @@ pub enum Subcases {
 /// remains of [`super::Limits::max_listed_ids`]; `subcases` says how SUBCASE is taken.
 pub fn parse_case(lines: &[SrcLine], subcases: Subcases, ids_left: &mut usize, diags: &mut Diagnostics) -> CaseControl {
     let mut cc = CaseControl::default();
-    let mut first_subcase: Option<Pos> = None;
+    // A static deck's selections above its first SUBCASE, which every SUBCASE starts
+    // from, and the SUBCASE being read.
+    let mut above: Option<(String, Option<Selection>, Option<Selection>)> = None;
+    let mut open: Option<(i64, Pos)> = None;
     let mut i = 0;
     while i < lines.len() {
         let l = &lines[i];
@@ -393,7 +415,7 @@ pub fn parse_case(lines: &[SrcLine], subcases: Subcases, ids_left: &mut usize, d
             .next()
             .is_some_and(|w| w.eq_ignore_ascii_case("SUBCASE"))
         {
-            subcase(subcases, &mut first_subcase, pos, &l.text, diags);
+            subcase(subcases, &mut cc, &mut above, &mut open, pos, &l.text, diags);
             continue;
         }
         let Some(eq) = t.find('=') else {
@@ -425,7 +447,7 @@ pub fn parse_case(lines: &[SrcLine], subcases: Subcases, ids_left: &mut usize, d
                 let key = output_key(k).expect("matched");
                 output_request(&mut cc, key, &rhs, pos, &l.text, diags)
             }
-            ["SUBCASE"] | ["SUBCASE", ..] => subcase(subcases, &mut first_subcase, pos, &l.text, diags),
+            ["SUBCASE"] | ["SUBCASE", ..] => subcase(subcases, &mut cc, &mut above, &mut open, pos, &l.text, diags),
             [k] if abbreviates(k, NOT_WRITTEN).is_some() => {
                 let name = abbreviates(k, NOT_WRITTEN).expect("matched");
                 diags.push(
@@ -447,25 +469,65 @@ pub fn parse_case(lines: &[SrcLine], subcases: Subcases, ids_left: &mut usize, d
             ),
         }
     }
+    close_subcase(&mut cc, &mut open);
+    if let Some(first) = cc.subcases.first() {
+        (cc.label, cc.load, cc.spc) = (first.label.clone(), first.load.clone(), first.spc.clone());
+    }
     check_output_sets(&mut cc, diags);
     cc
 }
 
-/// A SUBCASE line, taken as `subcases` says; `first` is where the first one was.
-fn subcase(subcases: Subcases, first: &mut Option<Pos>, pos: Pos, text: &str, diags: &mut Diagnostics) {
+/// A SUBCASE line, taken as `subcases` says: in a static deck it ends the SUBCASE
+/// being read (`open`) and starts the next from the selections `above` the first.
+fn subcase(
+    subcases: Subcases,
+    cc: &mut CaseControl,
+    above: &mut Option<(String, Option<Selection>, Option<Selection>)>,
+    open: &mut Option<(i64, Pos)>,
+    pos: Pos,
+    text: &str,
+    diags: &mut Diagnostics,
+) {
     let refuse = |message: String| {
         Diagnostic::error(Some(pos.clone()), message)
             .card("SUBCASE")
             .quote(text)
     };
-    match (subcases, &first) {
-        (Subcases::Any, _) => {}
-        (Subcases::One, None) => *first = Some(pos),
-        (Subcases::One, Some(at)) => diags.push(refuse(format!(
-            "a second SUBCASE (the first at {at}): impactlab solves one static load case a deck; give each its own \
-             deck"
-        ))),
-        (Subcases::None, _) => diags.push(refuse("SUBCASE is not supported: one transient case per deck".into())),
+    match subcases {
+        Subcases::Any => {}
+        Subcases::None => diags.push(refuse("SUBCASE is not supported: one transient case per deck".into())),
+        Subcases::Static => {
+            let id = without_comment(text).split_whitespace().nth(1).and_then(parse_int);
+            let Some(id) = id.filter(|&n| n > 0) else {
+                diags.push(refuse(
+                    "SUBCASE needs its number, a positive integer (SUBCASE 1)".into(),
+                ));
+                return;
+            };
+            close_subcase(cc, open);
+            if let Some(s) = cc.subcases.iter().find(|s| s.id == id) {
+                diags.push(refuse(format!("SUBCASE {id} is given twice (first at {})", s.pos)));
+                return;
+            }
+            let (label, load, spc) = above
+                .get_or_insert_with(|| (cc.label.clone(), cc.load.clone(), cc.spc.clone()))
+                .clone();
+            (cc.label, cc.load, cc.spc) = (label, load, spc);
+            *open = Some((id, pos));
+        }
+    }
+}
+
+/// Ends the SUBCASE being read: its selections join [`CaseControl::subcases`].
+fn close_subcase(cc: &mut CaseControl, open: &mut Option<(i64, Pos)>) {
+    if let Some((id, pos)) = open.take() {
+        cc.subcases.push(Subcase {
+            id,
+            label: cc.label.clone(),
+            load: cc.load.clone(),
+            spc: cc.spc.clone(),
+            pos,
+        });
     }
 }
 

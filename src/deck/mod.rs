@@ -259,7 +259,7 @@ fn finish(
     let subcases = if opts.structure {
         case::Subcases::Any
     } else if executive.sol == Some(STATICS) {
-        case::Subcases::One
+        case::Subcases::Static
     } else {
         case::Subcases::None
     };

@@ -20,6 +20,7 @@
 use super::{ModelError, Structure};
 use crate::deck::cards::CardRef;
 use crate::deck::cards::CoordKind;
+use crate::deck::case::Selection;
 use crate::deck::{Deck, Diagnostic};
 use crate::elements::Family;
 use nalgebra::{Matrix3, Vector3};
@@ -30,9 +31,14 @@ pub type GridLoads = BTreeMap<i64, [f64; 6]>;
 
 /// The static load the case control's LOAD selects (see the module's doc).
 pub fn static_load(deck: &Deck, s: &Structure) -> Result<GridLoads, ModelError> {
+    static_load_of(deck, s, deck.case.load.as_ref())
+}
+
+/// [`static_load`] of the LOAD selection `sel` (a SUBCASE's).
+pub fn static_load_of(deck: &Deck, s: &Structure, sel: Option<&Selection>) -> Result<GridLoads, ModelError> {
     let mut errors = Vec::new();
     let mut out = GridLoads::new();
-    let Some(sel) = &deck.case.load else {
+    let Some(sel) = sel else {
         errors.push(Diagnostic::error(
             deck.case.at.clone(),
             "a static deck needs a load: LOAD = n in case control, selecting FORCE, MOMENT, PLOAD4, GRAV or LOAD \

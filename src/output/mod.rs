@@ -288,15 +288,31 @@ pub fn human_summary(model: &Model, run: &RunResult) -> String {
 }
 
 /// A static solution's files: `displacements.csv` (every grid's T1..R3 in its
-/// displacement frame, the frame's system in `cd`) and `summary.json`.
-pub fn static_files(s: &crate::run::statics::StaticSolution) -> Vec<(&'static str, Vec<u8>)> {
+/// displacement frame, the frame's system in `cd`) and `summary.json`. A deck of
+/// several SUBCASEs writes every one's: `displacements.csv` with its `subcase` first,
+/// and `summary.json` with each one's summary under `subcases`.
+pub fn static_files(solutions: &[crate::run::statics::StaticSolution]) -> Vec<(&'static str, Vec<u8>)> {
+    let several = solutions.len() > 1;
     let mut w = csv::Writer::from_writer(Vec::new());
-    w.write_record(["grid", "cd", "T1", "T2", "T3", "R1", "R2", "R3"])
-        .expect("writing to memory");
-    for d in &s.grids {
-        let mut row = vec![d.grid.to_string(), d.cd.to_string()];
-        row.extend(d.u.iter().map(|v| format!("{v:e}")));
-        w.write_record(&row).expect("writing to memory");
+    let header = ["grid", "cd", "T1", "T2", "T3", "R1", "R2", "R3"];
+    if several {
+        w.write_record(std::iter::once("subcase").chain(header))
+    } else {
+        w.write_record(header)
+    }
+    .expect("writing to memory");
+    for s in solutions {
+        for d in &s.grids {
+            let mut row: Vec<String> = s
+                .subcase
+                .filter(|_| several)
+                .map(|n| n.to_string())
+                .into_iter()
+                .collect();
+            row.extend([d.grid.to_string(), d.cd.to_string()]);
+            row.extend(d.u.iter().map(|v| format!("{v:e}")));
+            w.write_record(&row).expect("writing to memory");
+        }
     }
     #[derive(serde::Serialize)]
     struct Summary<'a> {
@@ -304,14 +320,30 @@ pub fn static_files(s: &crate::run::statics::StaticSolution) -> Vec<(&'static st
         #[serde(flatten)]
         solved: &'a crate::run::statics::StaticSolution,
     }
-    let mut json = serde_json::to_value(Summary {
-        solution: "linear static (SOL 101)",
-        solved: s,
-    })
-    .expect("plain data");
-    if let Some(o) = json.as_object_mut() {
-        o.remove("grids");
-    }
+    let without_grids = |s| {
+        let mut json = serde_json::to_value(Summary {
+            solution: "linear static (SOL 101)",
+            solved: s,
+        })
+        .expect("plain data");
+        if let Some(o) = json.as_object_mut() {
+            o.remove("grids");
+        }
+        json
+    };
+    let json = match solutions {
+        [one] => without_grids(one),
+        _ => serde_json::json!({
+            "solution": "linear static (SOL 101)",
+            "subcases": solutions.iter().map(|s| {
+                let mut v = without_grids(s);
+                if let Some(o) = v.as_object_mut() {
+                    o.remove("solution");
+                }
+                v
+            }).collect::<Vec<_>>(),
+        }),
+    };
     let mut summary = serde_json::to_vec_pretty(&json).expect("plain data");
     summary.push(b'\n');
     vec![
@@ -324,8 +356,9 @@ pub fn static_files(s: &crate::run::statics::StaticSolution) -> Vec<(&'static st
 pub fn static_summary(s: &crate::run::statics::StaticSolution) -> String {
     let (a, u) = (&s.applied, &s.units);
     let (t, g) = s.largest_translation;
+    let subcase = s.subcase.map(|n| format!("SUBCASE {n}, ")).unwrap_or_default();
     format!(
-        "{}: linear static, LOAD = {}, {} DOF solved ({} unstiffened held)\n  applied force ({:.6e}, {:.6e}, {:.6e}) {}, \
+        "{}: linear static, {subcase}LOAD = {}, {} DOF solved ({} unstiffened held)\n  applied force ({:.6e}, {:.6e}, {:.6e}) {}, \
          moment about the origin ({:.6e}, {:.6e}, {:.6e}) {}*{} (basic axes)\n  largest translation: {t:.6e} {} at grid \
          {g}\n  strain energy: {:.6e} {}\n  residual ‖Ku − f‖/‖f‖: {:.1e}\n",
         s.deck,

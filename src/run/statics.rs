@@ -5,13 +5,15 @@
 //! SPCs leave free but those no element stiffens and no load reaches, which are held
 //! as NASTRAN's AUTOSPC holds them (a flat shell's rotation about its normal). Exact
 //! up to the factorisation's round-off, which the residual ‖K u − f‖ / ‖f‖ reports.
+//! A deck's SUBCASEs are its load cases ([`solve_subcases`]): one factorisation, one
+//! solve for each.
 
 use super::UnitSystem;
 use crate::assembly::assemble_elements;
 use crate::deck::{Deck, Diagnostic};
 use crate::integrate::linear::Factor;
 use crate::integrate::SolveError;
-use crate::model::loads::{resultant, static_load};
+use crate::model::loads::{resultant, static_load_of};
 use crate::model::{build_structure, ModelError, Structure};
 use serde::Serialize;
 
@@ -53,6 +55,9 @@ pub struct StaticSolution {
     pub deck_sha256: String,
     /// The deck's units.
     pub units: UnitSystem,
+    /// The SUBCASE solved, when the deck has several.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub subcase: Option<i64>,
     /// The LOAD set solved for.
     pub load_set: i64,
     /// Solved DOFs.
@@ -89,9 +94,58 @@ impl StaticSolution {
     }
 }
 
-/// Solves a static deck (read with [`crate::deck::STATICS`] as its solution):
-/// the solution and the model builder's warnings.
+/// Solves a static deck (read with [`crate::deck::STATICS`] as its solution) for its
+/// LOAD selection (its first SUBCASE's): the solution and the model builder's
+/// warnings.
 pub fn solve(deck: &Deck) -> Result<(StaticSolution, Vec<Diagnostic>), StaticError> {
+    let (mut all, warnings) = solve_loads(deck, &[(None, deck.case.load.as_ref())])?;
+    Ok((all.remove(0), warnings))
+}
+
+/// Solves every SUBCASE of a static deck (the deck's one load case when it has one
+/// SUBCASE or none): the structure built and its stiffness factorised once, one solve
+/// for each SUBCASE's LOAD. Every SUBCASE must select the SPC the first selects (a
+/// constraint set is a factorisation).
+pub fn solve_subcases(deck: &Deck) -> Result<(Vec<StaticSolution>, Vec<Diagnostic>), StaticError> {
+    let subcases = &deck.case.subcases;
+    if subcases.len() <= 1 {
+        let (s, w) = solve(deck)?;
+        return Ok((vec![s], w));
+    }
+    let first = &subcases[0];
+    let spc_id = |s: &crate::deck::case::Subcase| s.spc.as_ref().map(|x| x.id);
+    let differ: Vec<Diagnostic> = subcases[1..]
+        .iter()
+        .filter(|s| spc_id(s) != spc_id(first))
+        .map(|s| {
+            let name = |id: Option<i64>| id.map_or("none".to_string(), |i| format!("SPC = {i}"));
+            Diagnostic::error(
+                Some(s.pos.clone()),
+                format!(
+                    "SUBCASE {} selects {}, SUBCASE {} (at {}) {}: impactlab solves the SUBCASEs of one constraint \
+                     set (one factorisation); give the others their own deck",
+                    s.id,
+                    name(spc_id(s)),
+                    first.id,
+                    first.pos,
+                    name(spc_id(first))
+                ),
+            )
+            .card("SUBCASE")
+        })
+        .collect();
+    if !differ.is_empty() {
+        return Err(ModelError { diagnostics: differ }.into());
+    }
+    let cases: Vec<_> = subcases.iter().map(|s| (Some(s.id), s.load.as_ref())).collect();
+    solve_loads(deck, &cases)
+}
+
+/// The solutions of the structure for each (SUBCASE, LOAD selection) of `cases`.
+fn solve_loads(
+    deck: &Deck,
+    cases: &[(Option<i64>, Option<&crate::deck::case::Selection>)],
+) -> Result<(Vec<StaticSolution>, Vec<Diagnostic>), StaticError> {
     let (s, mut warnings) = build_structure(deck)?;
     if !s.enforced.is_empty() {
         return Err(ModelError {
@@ -108,70 +162,79 @@ pub fn solve(deck: &Deck) -> Result<(StaticSolution, Vec<Diagnostic>), StaticErr
             ),
         ));
     }
-    let loads = static_load(deck, &s)?;
     let n = s.dofs.len();
     let index: std::collections::HashMap<_, _> = s.dofs.iter().enumerate().map(|(i, l)| (*l, i)).collect();
-    let mut f = vec![0.0; n];
-    for (g, l) in &loads {
-        // A load on a dependent grid is carried by the grids it follows.
-        for (g, l) in s.rigid.carry(*g, *l) {
-            for (c, v) in l.iter().enumerate() {
-                if let Some(&i) = index.get(&crate::model::DofLabel {
-                    point: g,
-                    comp: c as u8 + 1,
-                }) {
-                    f[i] += v;
+    let mut loads = Vec::new();
+    let mut forces = Vec::new();
+    for (_, sel) in cases {
+        let l = static_load_of(deck, &s, *sel)?;
+        let mut f = vec![0.0; n];
+        for (g, l) in &l {
+            // A load on a dependent grid is carried by the grids it follows.
+            for (g, l) in s.rigid.carry(*g, *l) {
+                for (c, v) in l.iter().enumerate() {
+                    if let Some(&i) = index.get(&crate::model::DofLabel {
+                        point: g,
+                        comp: c as u8 + 1,
+                    }) {
+                        f[i] += v;
+                    }
                 }
             }
         }
+        loads.push(l);
+        forces.push(f);
     }
     // AUTOSPC, as NASTRAN's statics does: a DOF no element stiffens (a flat shell's
-    // rotation about its normal) is held, unless it is loaded.
+    // rotation about its normal) is held, unless a load case loads it.
     let full = assemble_elements(&s.elements, n);
     let diag = full.k_diag();
     let mut map = vec![None; n];
     let mut kept = Vec::new();
     for i in 0..n {
-        if diag[i] != 0.0 || f[i] != 0.0 {
+        if diag[i] != 0.0 || forces.iter().any(|f| f[i] != 0.0) {
             map[i] = Some(kept.len());
             kept.push(i);
         }
     }
     let sys = full.restricted(&map, kept.len());
     let labels: Vec<_> = kept.iter().map(|&i| s.dofs[i]).collect();
-    let mut uk: Vec<f64> = kept.iter().map(|&i| f[i]).collect();
-    Factor::new(&sys.k_csc, &labels)?.solve_in_place(&mut uk);
-    let mut u = vec![0.0; n];
-    for (k, &i) in kept.iter().enumerate() {
-        u[i] = uk[k];
-    }
-    let mut ku = vec![0.0; n];
-    full.k_mul(&u, &mut ku);
-    let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
-    let diff: Vec<f64> = ku.iter().zip(&f).map(|(a, b)| a - b).collect();
-    let residual = if norm(&f) > 0.0 { norm(&diff) / norm(&f) } else { 0.0 };
-    let strain_energy = 0.5 * u.iter().zip(&ku).map(|(a, b)| a * b).sum::<f64>();
-    let grids = displacements(deck, &s, &u);
-    let largest_translation = grids
-        .iter()
-        .map(|d| (d.u[0].hypot(d.u[1]).hypot(d.u[2]), d.grid))
-        .fold((0.0, 0), |a, b| if b.0 > a.0 { b } else { a });
-    Ok((
-        StaticSolution {
+    let mut factor = Factor::new(&sys.k_csc, &labels)?;
+    let mut out = Vec::new();
+    for (((subcase, sel), f), loads) in cases.iter().zip(&forces).zip(&loads) {
+        let mut uk: Vec<f64> = kept.iter().map(|&i| f[i]).collect();
+        factor.solve_in_place(&mut uk);
+        let mut u = vec![0.0; n];
+        for (k, &i) in kept.iter().enumerate() {
+            u[i] = uk[k];
+        }
+        let mut ku = vec![0.0; n];
+        full.k_mul(&u, &mut ku);
+        let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let diff: Vec<f64> = ku.iter().zip(f).map(|(a, b)| a - b).collect();
+        let residual = if norm(f) > 0.0 { norm(&diff) / norm(f) } else { 0.0 };
+        let strain_energy = 0.5 * u.iter().zip(&ku).map(|(a, b)| a * b).sum::<f64>();
+        let grids = displacements(deck, &s, &u);
+        let largest_translation = grids
+            .iter()
+            .map(|d| (d.u[0].hypot(d.u[1]).hypot(d.u[2]), d.grid))
+            .fold((0.0, 0), |a, b| if b.0 > a.0 { b } else { a });
+        out.push(StaticSolution {
             deck: deck.name.clone(),
             deck_sha256: deck.sha256.clone(),
             units: UnitSystem::of(&deck.units),
-            load_set: deck.case.load.as_ref().map_or(0, |l| l.id),
+            subcase: *subcase,
+            load_set: sel.map_or(0, |l| l.id),
             dofs: kept.len(),
             autospc: n - kept.len(),
-            applied: resultant(&loads, &s),
+            applied: resultant(loads, &s),
             strain_energy,
             residual,
             largest_translation,
             grids,
-        },
-        warnings,
-    ))
+        });
+    }
+    Ok((out, warnings))
 }
 
 /// Every grid's displacement from the solved DOFs' `u`.

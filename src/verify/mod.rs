@@ -14,6 +14,7 @@ pub mod case;
 pub mod checks;
 pub mod external;
 pub mod gold;
+pub mod printed;
 
 pub use case::{
     case_files, case_model, case_options, load_cases, read_case, Case, CaseError, CheckSpec, Quantity, RodQuantity, Tol,

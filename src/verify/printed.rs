@@ -1,0 +1,423 @@
+//! NASTRAN's printed output (the `.f06` of MSC, the `.out` of NASTRAN-95) read for
+//! its displacements, and an impactlab static run compared with it.
+//!
+//! The page format: every page starts with a line whose first column is `1`, then
+//! the title, the subtitle and a line (first column `0`) that ends with `SUBCASE n`;
+//! a table of real displacements is headed `D I S P L A C E M E N T   V E C T O R`
+//! (the complex and eigenvector tables are other titles and are not read), then
+//! `POINT ID.   TYPE   T1 T2 T3 R1 R2 R3`, then one row a grid (`id G` and its six
+//! components, in its displacement frame) or a row of up to six scalar points from
+//! `id` on (`id S` and their values). A table runs on over page breaks until a row
+//! that is neither. SORT2 output (`DISPLACEMENTS (SORT2)`) prints a table a point,
+//! `POINT-ID = n` above its title and a row a SUBCASE (`SUBCASE TYPE T1 …`).
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+/// The displacements a printed output holds: per SUBCASE, each point's components
+/// (grids: T1..R3 as 1..6; scalar points: 0).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Printed {
+    /// SUBCASE → (point, component) → value.
+    pub subcases: BTreeMap<i64, BTreeMap<(i64, u8), f64>>,
+}
+
+/// Why a printed output or a run directory cannot be compared.
+#[derive(Debug, thiserror::Error)]
+pub enum PrintedError {
+    /// A file could not be read.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: String,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// A file is not what it should be.
+    #[error("{path}:{line}: {message}")]
+    Format {
+        /// The file.
+        path: String,
+        /// Its line (1-based; 0 for the file as a whole).
+        line: usize,
+        /// What is wrong.
+        message: String,
+    },
+}
+
+const TITLE: &str = "D I S P L A C E M E N T   V E C T O R";
+
+/// Reads the real displacement tables of a printed output's text.
+pub fn read_printed(text: &str) -> Printed {
+    let mut out = Printed::default();
+    // NASTRAN prints SUBCASE 1 for a deck of none.
+    let mut subcase = 1;
+    let mut in_table = false;
+    // SORT2: the point of the table, and whether rows are SUBCASEs.
+    let mut point = None;
+    let mut sort2 = false;
+    for line in text.lines() {
+        let trimmed = line.trim_end();
+        if let Some((_, n)) = trimmed.split_once("POINT-ID =") {
+            point = n.trim().parse::<i64>().ok();
+        }
+        if line.starts_with('0') {
+            let words: Vec<&str> = trimmed.split_whitespace().collect();
+            if let [.., "SUBCASE", n] = words.as_slice() {
+                if let Ok(n) = n.parse() {
+                    subcase = n;
+                }
+            }
+        }
+        if trimmed.contains(TITLE) {
+            // "C O M P L E X   D I S P L A C E M E N T   V E C T O R" and the like are
+            // other tables.
+            in_table = trimmed.trim_start().starts_with(TITLE);
+            continue;
+        }
+        if !in_table || trimmed.trim().is_empty() {
+            continue;
+        }
+        if trimmed.contains("POINT ID.") || trimmed.contains("SUBCASE") && trimmed.contains("TYPE") {
+            sort2 = !trimmed.contains("POINT ID.");
+            continue;
+        }
+        if line.starts_with('1') {
+            // A page break: the table goes on after the next page's title.
+            in_table = false;
+            continue;
+        }
+        let words: Vec<&str> = trimmed.split_whitespace().collect();
+        let (Some(id), Some(kind)) = (words.first().and_then(|w| w.parse::<i64>().ok()), words.get(1)) else {
+            in_table = false;
+            continue;
+        };
+        let values: Option<Vec<f64>> = words[2..].iter().map(|w| w.parse::<f64>().ok()).collect();
+        let Some(values) = values else {
+            in_table = false;
+            continue;
+        };
+        let (id, table) = match (sort2, point) {
+            (true, Some(p)) => (p, out.subcases.entry(id).or_default()),
+            (true, None) => {
+                in_table = false;
+                continue;
+            }
+            (false, _) => (id, out.subcases.entry(subcase).or_default()),
+        };
+        match *kind {
+            "G" if values.len() == 6 => {
+                for (c, v) in values.iter().enumerate() {
+                    table.insert((id, c as u8 + 1), *v);
+                }
+            }
+            "S" => {
+                for (k, v) in values.iter().enumerate() {
+                    table.insert((id + k as i64, 0), *v);
+                }
+            }
+            _ => in_table = false,
+        }
+    }
+    out.subcases.retain(|_, t| !t.is_empty());
+    out
+}
+
+/// Reads a printed output file.
+pub fn read_printed_file(path: &Path) -> Result<Printed, PrintedError> {
+    let bytes = std::fs::read(path).map_err(|source| PrintedError::Io {
+        path: path.display().to_string(),
+        source,
+    })?;
+    let printed = read_printed(&String::from_utf8_lossy(&bytes));
+    if printed.subcases.is_empty() {
+        return Err(PrintedError::Format {
+            path: path.display().to_string(),
+            line: 0,
+            message: format!("holds no real displacement table ({TITLE})"),
+        });
+    }
+    Ok(printed)
+}
+
+/// An impactlab static run's displacements (`displacements.csv` of its directory),
+/// in the same form: per SUBCASE (1 for a deck of one), each grid's T1..R3.
+pub fn read_run(dir: &Path) -> Result<Printed, PrintedError> {
+    let path = dir.join("displacements.csv");
+    let name = path.display().to_string();
+    let mut r = csv::Reader::from_path(&path).map_err(|e| PrintedError::Io {
+        path: name.clone(),
+        source: std::io::Error::other(e.to_string()),
+    })?;
+    let format = |line: usize, message: String| PrintedError::Format {
+        path: name.clone(),
+        line,
+        message,
+    };
+    let headers = r.headers().map_err(|e| format(1, e.to_string()))?.clone();
+    let col = |h: &str| headers.iter().position(|x| x == h);
+    let (Some(grid), Some(t1)) = (col("grid"), col("T1")) else {
+        return Err(format(
+            1,
+            "is not a static run's displacements.csv (no grid and T1 columns)".into(),
+        ));
+    };
+    let subcase_col = col("subcase");
+    let mut out = Printed::default();
+    for (k, row) in r.records().enumerate() {
+        let line = k + 2;
+        let row = row.map_err(|e| format(line, e.to_string()))?;
+        let int = |i: usize| row.get(i).and_then(|t| t.parse::<i64>().ok());
+        let g = int(grid).ok_or_else(|| format(line, "grid is not an integer".into()))?;
+        let sc = match subcase_col {
+            Some(i) => int(i).ok_or_else(|| format(line, "subcase is not an integer".into()))?,
+            None => 1,
+        };
+        let table = out.subcases.entry(sc).or_default();
+        for c in 0..6 {
+            let v = row
+                .get(t1 + c)
+                .and_then(|t| t.parse::<f64>().ok())
+                .ok_or_else(|| format(line, format!("T{} is not a number", c + 1)))?;
+            table.insert((g, c as u8 + 1), v);
+        }
+    }
+    Ok(out)
+}
+
+/// One component's difference.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Difference {
+    /// The point.
+    pub point: i64,
+    /// Its component (1..6; 0 for a scalar point).
+    pub component: u8,
+    /// impactlab's value.
+    pub ours: f64,
+    /// NASTRAN's printed value.
+    pub theirs: f64,
+}
+
+impl Difference {
+    /// ours − theirs.
+    pub fn delta(&self) -> f64 {
+        self.ours - self.theirs
+    }
+}
+
+/// One SUBCASE compared: the largest printed translation and rotation (the scales
+/// differences are read against, [`SubcaseComparison::relative`]) and every component's difference, largest first
+/// relative to its scale.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SubcaseComparison {
+    /// The SUBCASE.
+    pub subcase: i64,
+    /// The largest |T1..T3| (and scalar point value) NASTRAN printed.
+    pub translation_scale: f64,
+    /// The largest |R1..R3| NASTRAN printed.
+    pub rotation_scale: f64,
+    /// Every component both give, the largest relative difference first.
+    pub differences: Vec<Difference>,
+    /// Grids NASTRAN printed that the run does not have.
+    pub missing: Vec<i64>,
+}
+
+impl SubcaseComparison {
+    /// A difference relative to its component's scale (0 where the scale is 0 and
+    /// the difference too). Rotations that NASTRAN prints as round-off (a membrane
+    /// model's, ~1e-18) are no scale: the rotations' scale is at least 1e-9 of the
+    /// largest translation's value.
+    pub fn relative(&self, d: &Difference) -> f64 {
+        let scale = if (4..=6).contains(&d.component) {
+            self.rotation_scale.max(1e-9 * self.translation_scale)
+        } else {
+            self.translation_scale
+        };
+        if d.delta() == 0.0 {
+            0.0
+        } else if scale == 0.0 {
+            f64::INFINITY
+        } else {
+            d.delta().abs() / scale
+        }
+    }
+
+    /// The largest relative difference.
+    pub fn worst(&self) -> f64 {
+        self.differences.first().map_or(0.0, |d| self.relative(d))
+    }
+
+    /// The largest relative difference among the rotations (R1-R3, `rotations`) or
+    /// the other components, with the component it is of.
+    pub fn worst_of(&self, rotations: bool) -> Option<(f64, &Difference)> {
+        self.differences
+            .iter()
+            .find(|d| (4..=6).contains(&d.component) == rotations)
+            .map(|d| (self.relative(d), d))
+    }
+}
+
+/// Compares a run with a printed output, SUBCASE by SUBCASE (those of the printed
+/// output the run has).
+pub fn compare(ours: &Printed, theirs: &Printed) -> Vec<SubcaseComparison> {
+    let mut out = Vec::new();
+    for (sc, printed) in &theirs.subcases {
+        let Some(run) = ours.subcases.get(sc) else { continue };
+        let scale = |rot: bool| {
+            printed
+                .iter()
+                .filter(|((_, c), _)| (4..=6).contains(c) == rot)
+                .fold(0.0f64, |m, (_, v)| m.max(v.abs()))
+        };
+        let mut cmp = SubcaseComparison {
+            subcase: *sc,
+            translation_scale: scale(false),
+            rotation_scale: scale(true),
+            differences: Vec::new(),
+            missing: Vec::new(),
+        };
+        for (&(p, c), &v) in printed {
+            match run.get(&(p, c)) {
+                Some(&ours) => cmp.differences.push(Difference {
+                    point: p,
+                    component: c,
+                    ours,
+                    theirs: v,
+                }),
+                None if !cmp.missing.contains(&p) => cmp.missing.push(p),
+                None => {}
+            }
+        }
+        let mut diffs = std::mem::take(&mut cmp.differences);
+        diffs.sort_by(|a, b| cmp.relative(b).total_cmp(&cmp.relative(a)));
+        cmp.differences = diffs;
+        out.push(cmp);
+    }
+    out
+}
+
+/// The comparison as a table: per SUBCASE the scales, the largest relative
+/// difference and the `top` largest differences by grid and component.
+pub fn render(comparisons: &[SubcaseComparison], top: usize) -> String {
+    let name = |c: u8| match c {
+        0 => "S".to_string(),
+        1..=3 => format!("T{c}"),
+        _ => format!("R{}", c - 3),
+    };
+    let mut s = String::new();
+    for c in comparisons {
+        s += &format!(
+            "SUBCASE {}: {} components; largest printed translation {:.6e}, rotation {:.6e}; largest difference {:.2e} \
+             of its scale\n",
+            c.subcase,
+            c.differences.len(),
+            c.translation_scale,
+            c.rotation_scale,
+            c.worst()
+        );
+        if !c.missing.is_empty() {
+            s += &format!(
+                "  not in the run: {} grid(s), first {}\n",
+                c.missing.len(),
+                c.missing[0]
+            );
+        }
+        s += &format!(
+            "  {:>9} {:>4} {:>14} {:>14} {:>12} {:>10}\n",
+            "point", "comp", "impactlab", "NASTRAN", "difference", "relative"
+        );
+        for d in c.differences.iter().take(top) {
+            s += &format!(
+                "  {:>9} {:>4} {:>14.6e} {:>14.6e} {:>12.3e} {:>10.2e}\n",
+                d.point,
+                name(d.component),
+                d.ours,
+                d.theirs,
+                d.delta(),
+                c.relative(d)
+            );
+        }
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const PAGE: &str = "\
+1     STATIC ANALYSIS OF A BEAM                                   /    95 SUN SOLARIS NASTRAN    / MAY 17, 95 / PAGE     8
+      NASTRAN DEMONSTRATION PROBLEM NO. D01-14-1A
+0     BENDING LOAD                                                                               SUBCASE 2
+ 
+                                             D I S P L A C E M E N T   V E C T O R
+ 
+      POINT ID.   TYPE          T1             T2             T3             R1             R2             R3
+             1      G      0.0            0.0            0.0            0.0            0.0            0.0
+             2      G      0.0            5.666667E+00   0.0            0.0            0.0            1.100000E+01
+1     STATIC ANALYSIS OF A BEAM                                   /    95 SUN SOLARIS NASTRAN    / MAY 17, 95 / PAGE     9
+      NASTRAN DEMONSTRATION PROBLEM NO. D01-14-1A
+0     BENDING LOAD                                                                               SUBCASE 2
+ 
+                                             D I S P L A C E M E N T   V E C T O R
+ 
+      POINT ID.   TYPE          T1             T2             T3             R1             R2             R3
+             7      G      0.0            1.440000E+02   0.0            0.0            0.0            3.600000E+01
+            10      S      1.0           -2.0            3.5E-01
+1     STATIC ANALYSIS OF A BEAM                                   /    95 SUN SOLARIS NASTRAN    / MAY 17, 95 / PAGE    10
+0                                                                                                SUBCASE 2
+                               C O M P L E X   D I S P L A C E M E N T   V E C T O R
+      POINT ID.   TYPE          T1             T2             T3             R1             R2             R3
+             7      G      9.0            9.0            9.0            9.0            9.0            9.0
+";
+
+    /// Goal: the page format as NASTRAN-95 prints it: a table over a page break, its
+    /// SUBCASE from the page header, grid rows and a row of scalar points; a complex
+    /// table is not read.
+    #[test]
+    fn a_displacement_table_is_read_over_page_breaks() {
+        let p = read_printed(PAGE);
+        assert_eq!(p.subcases.keys().copied().collect::<Vec<_>>(), [2]);
+        let t = &p.subcases[&2];
+        assert_eq!(t[&(2, 2)], 5.666667);
+        assert_eq!(t[&(2, 6)], 11.0);
+        assert_eq!(t[&(7, 2)], 144.0);
+        assert_eq!(t[&(7, 1)], 0.0);
+        assert_eq!((t[&(10, 0)], t[&(11, 0)], t[&(12, 0)]), (1.0, -2.0, 0.35));
+        assert_eq!(t.len(), 3 * 6 + 3);
+    }
+
+    /// Goal: SORT2's tables (a point a table, a SUBCASE a row) read as SORT1's.
+    #[test]
+    fn a_sort2_table_is_read_by_point() {
+        let page = "\
+1     STATIC ANALYSIS OF A DELTA WING                       /    95 SUN SOLARIS NASTRAN    / MAY 17, 95 / PAGE
+0
+      POINT-ID =      12
+                                             D I S P L A C E M E N T   V E C T O R
+ 
+      SUBCASE     TYPE          T1             T2             T3             R1             R2             R3
+         1          G      6.614148E-04   6.103728E-04   3.598766E-02   0.0            0.0            0.0
+         2          G      7.075042E-04   5.407654E-04   3.301679E-02   0.0            0.0            0.0
+";
+        let p = read_printed(page);
+        assert_eq!(p.subcases[&1][&(12, 3)], 3.598766E-02);
+        assert_eq!(p.subcases[&2][&(12, 1)], 7.075042E-04);
+        assert_eq!(p.subcases[&2].len(), 6);
+    }
+
+    /// Goal: differences are read against the largest printed translation (rotation),
+    /// largest first.
+    #[test]
+    fn differences_are_relative_to_the_largest_printed_value() {
+        let theirs = read_printed(PAGE);
+        let mut ours = theirs.clone();
+        ours.subcases.get_mut(&2).unwrap().insert((2, 2), 5.666667 + 1.44e-3);
+        ours.subcases.get_mut(&2).unwrap().insert((7, 6), 36.0 - 3.6e-6);
+        let c = &compare(&ours, &theirs)[0];
+        assert_eq!((c.translation_scale, c.rotation_scale), (144.0, 36.0));
+        assert_eq!((c.differences[0].point, c.differences[0].component), (2, 2));
+        assert!((c.worst() - 1e-5).abs() < 1e-12);
+        assert!((c.relative(&c.differences[1]) - 1e-7).abs() < 1e-12);
+    }
+}
