@@ -445,3 +445,34 @@ fn subcases_inherit_the_selections_above_them_and_share_one_factorisation() {
     let e = impactlab::run::statics::solve_subcases(&d).unwrap_err().to_string();
     assert!(e.contains("SUBCASE 2 selects SPC = 2, SUBCASE 1 (at s.bdf:"), "{e}");
 }
+
+/// Goal: enforced displacements as NASTRAN poses them: an SPC's D and an SPCD of the
+/// LOAD set (which overrides the SPC's value), applied exactly. Model: [`strip`] on 4
+/// elements with its tip's T3 held by SPC (set 1 with the root's SPC1) and no force:
+/// the tip moved by δ = −0.01 through the SPC's D, then through an SPCD of load set 1
+/// over an SPC of D = 0.5 (which the SPCD overrides). Reference: a cantilever whose
+/// tip is moved with no moment there, v(x) = δ x²(3L − x)/2L³ (cubic, so exact on the
+/// DKQ strip), to 1e-9 of δ at every grid along the strip.
+#[test]
+fn enforced_displacements_by_spc_and_spcd_move_the_tip_exactly() {
+    let delta = -0.01;
+    let by_spc = strip(
+        4,
+        &format!("SPC,1,TIP,3,{delta:?},TIP2,3,{delta:?}\nFORCE,1,TIP,,0.0,0.0,0.0,1.0\n"),
+    );
+    let by_spcd = strip(
+        4,
+        &format!("SPC,1,TIP,3,0.5,TIP2,3,0.5\nSPCD,1,TIP,3,{delta:?},TIP2,3,{delta:?}\nFORCE,1,TIP,,0.0,0.0,0.0,1.0\n"),
+    );
+    for deck in [by_spc, by_spcd] {
+        let s = static_deck(&deck);
+        for i in 0..=4 {
+            let x = 2.5 * i as f64;
+            let exact = delta * x * x * (30.0 - x) / (2.0 * 1000.0);
+            for g in [i + 1, i + 101] {
+                let v = s.displacement(g, 3).unwrap();
+                assert!((v - exact).abs() < 1e-9 * delta.abs(), "grid {g}: {v}, exact {exact}");
+            }
+        }
+    }
+}

@@ -303,7 +303,35 @@ fn finish(
     })
 }
 
+/// Cards impactlab does not read that change nothing it computes: plot elements and
+/// NASTRAN's sequencing and congruence hints. A run warns of them and goes on.
+const HARMLESS: [(&str, &str); 4] = [
+    ("PLOTEL", "a plot element"),
+    ("SEQGP", "a hint to NASTRAN's grid sequencing"),
+    ("SEQEP", "a hint to NASTRAN's extra point sequencing"),
+    (
+        "CNGRNT",
+        "a hint that elements are congruent (NASTRAN computes their matrices once)",
+    ),
+];
+
 fn report_unknown(unknown: &[UnknownCard], opts: ReadOptions, diags: &mut Diagnostics) {
+    let harmless = |n: &str| HARMLESS.iter().find(|h| h.0 == n).map(|h| h.1);
+    // One warning a kind, at its first card.
+    for (name, what) in HARMLESS {
+        let mut these = unknown.iter().filter(|u| u.name == name);
+        if let Some(first) = these.next() {
+            let n = 1 + these.count();
+            diags.push(
+                Diagnostic::warning(
+                    Some(first.pos.clone()),
+                    format!("{n} card(s), {what}: they change nothing impactlab computes; ignored"),
+                )
+                .card(name),
+            );
+        }
+    }
+    let unknown: Vec<&UnknownCard> = unknown.iter().filter(|u| harmless(&u.name).is_none()).collect();
     if unknown.is_empty() {
         return;
     }
@@ -311,7 +339,7 @@ fn report_unknown(unknown: &[UnknownCard], opts: ReadOptions, diags: &mut Diagno
     names.sort();
     names.dedup();
     let list = names.join(", ");
-    for UnknownCard { name: n, pos, .. } in unknown {
+    for &UnknownCard { name: n, pos, .. } in &unknown {
         let msg = format!(
             "unknown card (this deck has {} unknown card type(s): {list}); supported: {}",
             names.len(),

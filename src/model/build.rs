@@ -298,9 +298,11 @@ pub struct Structure {
     pub scalar_points: usize,
     /// The solved DOFs, in the order the elements' DOF indices count them.
     pub dofs: Vec<DofLabel>,
-    /// The selected SPCs' nonzero enforced values (SPC's D): a load on the
-    /// structure, not part of it; refused by a solution that cannot apply it.
-    pub enforced: Vec<Diagnostic>,
+    /// The solved DOFs whose values a static solution prescribes: the components a
+    /// selected SPC holds at D ≠ 0 and those an SPCD names (they are numbered among
+    /// [`Structure::dofs`], not constrained), each with its SPC's D (0 for an SPCD's
+    /// component the SPC holds at zero; the SPCD of the solved LOAD set overrides it).
+    pub prescribed: Vec<(usize, f64)>,
 }
 
 impl Structure {
@@ -328,12 +330,22 @@ pub fn build_structure(deck: &Deck) -> Result<(Structure, Vec<Diagnostic>), Mode
         tics: Vec::new(),
         tsteps: Vec::new(),
     };
-    let constrained = constrained_grids(&mut cx, deck, &sel);
-    let enforced = enforced_values(&sel);
+    let mut constrained = constrained_grids(&mut cx, deck, &sel);
+    let values = prescribed_values(&mut cx, deck, &sel, &constrained);
+    // Prescribed components are solved DOFs whose values the solution sets.
+    for l in values.keys() {
+        if let Some(c) = constrained.get_mut(&l.point) {
+            *c &= !(1 << (l.comp - 1));
+        }
+    }
     let rigid = rigid_elements(&mut cx, deck, &geometry, &sel);
     let num = number_dofs(deck, &constrained, &BTreeMap::new(), &rigid);
     let elements = build_elements(&mut cx, deck, &num, &geometry, &rigid);
-    let grid_dofs = num.dofs.iter().filter(|d| d.comp != 0).count();
+    let prescribed: Vec<(usize, f64)> = values
+        .iter()
+        .filter_map(|(l, &d)| Some((*num.index.get(l)?, d)))
+        .collect();
+    let grid_dofs = num.dofs.iter().filter(|d| d.comp != 0).count() - prescribed.len();
     let structure = Structure {
         geometry,
         elements: elements.list,
@@ -343,7 +355,7 @@ pub fn build_structure(deck: &Deck) -> Result<(Structure, Vec<Diagnostic>), Mode
         scalar_points: num.scalar.len(),
         dofs: num.dofs,
         rigid,
-        enforced,
+        prescribed,
     };
     if cx.diags.iter().any(|d| d.is_error()) {
         Err(ModelError { diagnostics: cx.diags })
@@ -363,6 +375,7 @@ fn no_static_loads(cx: &mut Ctx, deck: &Deck) {
         b.point_loads.first().map(|l| &l.at),
         b.pload4s.first().map(|l| &l.at),
         b.gravs.first().map(|l| &l.at),
+        b.spcds.first().map(|l| &l.at),
         b.load_combinations.first().map(|l| &l.at),
     ];
     for at in firsts.into_iter().flatten() {
@@ -480,6 +493,64 @@ fn transfer_functions<'d>(cx: &mut Ctx, sel: &Selected<'d>, deck: &Deck) -> BTre
     }
 
     tf_of
+}
+
+/// The components a static solution prescribes (see [`Structure::prescribed`]), each
+/// with its selected SPC's D: those held at D ≠ 0, and every component an SPCD names,
+/// which a selected SPC must hold (SPCD remark 1).
+fn prescribed_values(
+    cx: &mut Ctx,
+    deck: &Deck,
+    sel: &Selected,
+    constrained: &HashMap<i64, u8>,
+) -> BTreeMap<DofLabel, f64> {
+    let mut out = BTreeMap::new();
+    for s in &sel.spcs {
+        if let Some((d, _)) = &s.enforced {
+            for &g in &s.grids {
+                for comp in s.c.iter() {
+                    out.insert(
+                        DofLabel {
+                            point: g,
+                            comp: comp as u8,
+                        },
+                        *d,
+                    );
+                }
+            }
+        }
+    }
+    for p in &deck.bulk.spcds {
+        if p.c.0 == 0 {
+            cx.err(p.at.field_error(
+                &p.at_point,
+                format!(
+                    "SPCD {} names point {} with no component: a scalar point's value cannot be enforced",
+                    p.sid, p.point
+                ),
+            ));
+        }
+        for comp in p.c.iter() {
+            let l = DofLabel {
+                point: p.point,
+                comp: comp as u8,
+            };
+            let held = constrained.get(&p.point).is_some_and(|c| c & (1 << (comp - 1)) != 0);
+            if !held {
+                cx.err(p.at.field_error(
+                    &p.at_point,
+                    format!(
+                        "SPCD {} enforces grid {} component {comp}, which no selected SPC (nor PS) holds: an SPCD \
+                         sets the value of a constrained component",
+                        p.sid, p.point
+                    ),
+                ));
+                continue;
+            }
+            out.entry(l).or_insert(0.0);
+        }
+    }
+    out
 }
 
 /// The selected SPCs' nonzero enforced values, as errors to raise where they cannot

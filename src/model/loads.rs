@@ -4,7 +4,7 @@
 //!
 //! - FORCE and MOMENT: F·(N1, N2, N3) in system CID (for a cylindrical or spherical
 //!   CID, its axes at the grid), on the grid's translations or rotations.
-//! - PLOAD4 on a shell: the consistent nodal forces ∫ Nᵢ p dA of the pressure p
+//! - PLOAD4 (and PLOAD2, read as one) on a shell: the consistent nodal forces ∫ Nᵢ p dA of the pressure p
 //!   interpolated from the corners (P1..P4) by the element's own shape functions over
 //!   its mean plane ([`nodal_integrals`]), along the element's normal (G1→G2→G3, right-handed; positive
 //!   pressure pushes along it, as NASTRAN's does) or along CID's (N1, N2, N3). The
@@ -191,13 +191,16 @@ impl Loads<'_> {
         errors: &mut Vec<Diagnostic>,
     ) {
         let Some(e) = self.elements.get(&eid) else {
-            errors.push(l.at.error(format!("PLOAD4 {} loads element {eid}, which does not exist", l.sid)));
+            errors.push(l.at.error(format!(
+                "{} {} loads element {eid}, which does not exist",
+                l.at.name, l.sid
+            )));
             return;
         };
         if !matches!(e.kernel.family(), Family::Shell(_)) {
             errors.push(l.at.error(format!(
-                "PLOAD4 {} loads element {eid}, which is not a shell (CQUAD4, CTRIA3)",
-                l.sid
+                "{} {} loads element {eid}, which is not a shell (CQUAD4, CTRIA3)",
+                l.at.name, l.sid
             )));
             return;
         }

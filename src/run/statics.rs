@@ -6,7 +6,8 @@
 //! as NASTRAN's AUTOSPC holds them (a flat shell's rotation about its normal). Exact
 //! up to the factorisation's round-off, which the residual ‖K u − f‖ / ‖f‖ reports.
 //! A deck's SUBCASEs are its load cases ([`solve_subcases`]): one factorisation, one
-//! solve for each.
+//! solve for each. Enforced displacements (an SPC's D ≠ 0, the SPCDs of the LOAD set)
+//! are prescribed DOFs u_e: K_kk u_k = f_k − K_ke u_e, exact.
 
 use super::UnitSystem;
 use crate::assembly::assemble_elements;
@@ -62,7 +63,8 @@ pub struct StaticSolution {
     pub load_set: i64,
     /// Solved DOFs.
     pub dofs: usize,
-    /// Free DOFs no element stiffens and no load reaches, held (NASTRAN's AUTOSPC).
+    /// Free DOFs no element stiffens and no load reaches, held (NASTRAN's AUTOSPC);
+    /// prescribed DOFs (enforced displacements) are not among them.
     pub autospc: usize,
     /// The resultant of the applied load (constrained components too) in the basic
     /// system: force, then moment about the basic origin.
@@ -147,12 +149,6 @@ fn solve_loads(
     cases: &[(Option<i64>, Option<&crate::deck::case::Selection>)],
 ) -> Result<(Vec<StaticSolution>, Vec<Diagnostic>), StaticError> {
     let (s, mut warnings) = build_structure(deck)?;
-    if !s.enforced.is_empty() {
-        return Err(ModelError {
-            diagnostics: s.enforced.clone(),
-        }
-        .into());
-    }
     for (key, r) in deck.case.outputs.iter().filter(|(k, _)| k.as_str() != "DISP") {
         warnings.push(Diagnostic::warning(
             Some(r.pos.clone()),
@@ -185,13 +181,40 @@ fn solve_loads(
         loads.push(l);
         forces.push(f);
     }
+    // Each case's prescribed values: the SPCs' D, overridden by the SPCDs of the LOAD
+    // set it selects (a LOAD combination does not select SPCDs: SPCD remark 3).
+    let mut is_prescribed = vec![false; n];
+    for &(i, _) in &s.prescribed {
+        is_prescribed[i] = true;
+    }
+    let prescribed: Vec<Vec<f64>> = cases
+        .iter()
+        .map(|(_, sel)| {
+            let mut u = vec![0.0; n];
+            for &(i, d) in &s.prescribed {
+                u[i] = d;
+            }
+            for p in deck.bulk.spcds.iter().filter(|p| sel.is_some_and(|l| l.id == p.sid)) {
+                for comp in p.c.iter() {
+                    let l = crate::model::DofLabel {
+                        point: p.point,
+                        comp: comp as u8,
+                    };
+                    if let Some(&i) = index.get(&l) {
+                        u[i] = p.d;
+                    }
+                }
+            }
+            u
+        })
+        .collect();
     // AUTOSPC, as NASTRAN's statics does: a DOF no element stiffens (a flat shell's
     // rotation about its normal) is held, unless a load case loads it.
     let full = assemble_elements(&s.elements, n);
     let diag = full.k_diag();
     let mut map = vec![None; n];
     let mut kept = Vec::new();
-    for i in 0..n {
+    for i in (0..n).filter(|&i| !is_prescribed[i]) {
         if diag[i] != 0.0 || forces.iter().any(|f| f[i] != 0.0) {
             map[i] = Some(kept.len());
             kept.push(i);
@@ -201,18 +224,31 @@ fn solve_loads(
     let labels: Vec<_> = kept.iter().map(|&i| s.dofs[i]).collect();
     let mut factor = Factor::new(&sys.k_csc, &labels)?;
     let mut out = Vec::new();
-    for (((subcase, sel), f), loads) in cases.iter().zip(&forces).zip(&loads) {
-        let mut uk: Vec<f64> = kept.iter().map(|&i| f[i]).collect();
+    for ((((subcase, sel), f), loads), ue) in cases.iter().zip(&forces).zip(&loads).zip(&prescribed) {
+        // K_kk u_k = f_k − K_ke u_e, u_e the prescribed values.
+        let mut kue = vec![0.0; n];
+        if ue.iter().any(|&v| v != 0.0) {
+            full.k_mul(ue, &mut kue);
+        }
+        let rhs: Vec<f64> = f.iter().zip(&kue).map(|(a, b)| a - b).collect();
+        let mut uk: Vec<f64> = kept.iter().map(|&i| rhs[i]).collect();
         factor.solve_in_place(&mut uk);
-        let mut u = vec![0.0; n];
+        let mut u = ue.clone();
         for (k, &i) in kept.iter().enumerate() {
             u[i] = uk[k];
         }
         let mut ku = vec![0.0; n];
         full.k_mul(&u, &mut ku);
+        // Over the DOFs not prescribed (a prescribed DOF's row holds its reaction).
+        let free = |v: &[f64]| -> Vec<f64> { (0..n).filter(|&i| !is_prescribed[i]).map(|i| v[i]).collect() };
         let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
         let diff: Vec<f64> = ku.iter().zip(f).map(|(a, b)| a - b).collect();
-        let residual = if norm(f) > 0.0 { norm(&diff) / norm(f) } else { 0.0 };
+        let (diff, rhs) = (free(&diff), free(&rhs));
+        let residual = if norm(&rhs) > 0.0 {
+            norm(&diff) / norm(&rhs)
+        } else {
+            0.0
+        };
         let strain_energy = 0.5 * u.iter().zip(&ku).map(|(a, b)| a * b).sum::<f64>();
         let grids = displacements(deck, &s, &u);
         let largest_translation = grids
@@ -226,7 +262,7 @@ fn solve_loads(
             subcase: *subcase,
             load_set: sel.map_or(0, |l| l.id),
             dofs: kept.len(),
-            autospc: n - kept.len(),
+            autospc: n - kept.len() - s.prescribed.len(),
             applied: resultant(loads, &s),
             strain_energy,
             residual,

@@ -1,4 +1,4 @@
-//! Constraints and rigid elements: SPC, SPC1, SPCADD, RBE2, RBE3.
+//! Constraints and rigid elements: SPC, SPC1, SPCADD, SPCD, RBE2, RBE3, CRIGD1.
 
 use super::*;
 
@@ -13,6 +13,24 @@ pub struct Spc1 {
     pub grids: Vec<i64>,
     /// An SPC's enforced value D when it is not zero, with where it is written.
     pub enforced: Option<(f64, FieldRef)>,
+    /// The card.
+    pub at: CardRef,
+}
+
+/// SPCD: an enforced displacement of a static load set, on components a selected SPC
+/// constrains (one SPCD card holds one or two of these).
+#[derive(Debug, Clone)]
+pub struct Spcd {
+    /// The load set id (field 2).
+    pub sid: i64,
+    /// The grid (or scalar point).
+    pub point: i64,
+    /// Its components (none for a scalar point).
+    pub c: Components,
+    /// The enforced value D.
+    pub d: f64,
+    /// Where G is written.
+    pub at_point: FieldRef,
     /// The card.
     pub at: CardRef,
 }
@@ -94,8 +112,8 @@ pub(super) fn card_spc1(r: &mut Reader, b: &mut Bulk) {
     }
 }
 
-/// SPC: SID G1 C1 D1 G2 C2 D2, each grid's components held at zero (an SPC1 each);
-/// an enforced displacement D ≠ 0 is not supported.
+/// SPC: SID G1 C1 D1 G2 C2 D2, each grid's components held (an SPC1 each), at D:
+/// a static solution enforces it, a transient run refuses D ≠ 0.
 pub(super) fn card_spc(r: &mut Reader, b: &mut Bulk) {
     let sid = r.id(0, "SID");
     let mut out = Vec::new();
@@ -119,6 +137,30 @@ pub(super) fn card_spc(r: &mut Reader, b: &mut Bulk) {
     r.extra_fields(7);
     if r.ok {
         b.spc1s.extend(out);
+    }
+}
+
+/// SPCD: SID G1 C1 D1 G2 C2 D2 (`manual/BULK.TXT`, SPCD): enforced displacements
+/// of load set SID, "requested as a LOAD", on components a selected SPC constrains.
+pub(super) fn card_spcd(r: &mut Reader, b: &mut Bulk) {
+    let sid = r.id(0, "SID");
+    let mut out = Vec::new();
+    for (k, names) in [(1, ["G1", "C1", "D1"]), (4, ["G2", "C2", "D2"])] {
+        if k == 4 && (4..7).all(|i| r.text(i).is_empty()) {
+            break;
+        }
+        out.push(Spcd {
+            sid,
+            point: r.id(k, names[0]),
+            c: r.components(k + 1, names[1]),
+            d: r.real(k + 2, names[2]),
+            at_point: r.field_ref(k, names[0]),
+            at: r.at(),
+        });
+    }
+    r.extra_fields(7);
+    if r.ok {
+        b.spcds.extend(out);
     }
 }
 

@@ -118,6 +118,63 @@ pub(super) fn card_point_load(r: &mut Reader, b: &mut Bulk) {
 
 /// PLOAD4 on shells: SID EID P1 P2 P3 P4 (G1 G3 blank, or THRU EID2), then CID N1 N2
 /// N3 (SORL blank or SURF; LDIR blank or NORM).
+/// PLOAD2 (`manual/BULK.TXT`): SID P EID … (THRU ranges; 0 or blank for an omitted
+/// entry): a uniform pressure P on each listed shell, read as a PLOAD4 of P at every
+/// corner along the element's normal (G1→G2→G3, PLOAD's +r12 × r13). On a triangle and
+/// a parallelogram its nodal forces are NASTRAN-95's (a third, a quarter of P·A); on
+/// another quadrilateral NASTRAN-95 averages four triangles, the consistent forces
+/// differ by the shape's departure from a parallelogram.
+pub(super) fn card_pload2(r: &mut Reader, b: &mut Bulk) {
+    let sid = r.id(0, "SID");
+    let p = r.real(1, "P");
+    let n = r.card.fields.len();
+    let mut eids: Vec<i64> = Vec::new();
+    let mut k = 2;
+    while r.ok && k < n {
+        let t = r.text(k);
+        if t.is_empty() || t == "0" {
+            k += 1;
+            continue;
+        }
+        if t.eq_ignore_ascii_case("THRU") {
+            let (Some(&a), last) = (eids.last(), r.id(k + 1, "EID")) else {
+                r.fail(k, "EID", "THRU has no element before it");
+                break;
+            };
+            if r.ok && last < a {
+                r.fail(
+                    k + 1,
+                    "EID",
+                    format!("ends a THRU range that is reversed ({a} THRU {last})"),
+                );
+            }
+            if let Err(e) = crate::deck::take_ids(r.ids_left, (last - a).max(0) as u128) {
+                r.fail(k + 1, "EID", e);
+            }
+            if r.ok {
+                eids.extend(a + 1..=last);
+            }
+            k += 2;
+            continue;
+        }
+        eids.push(r.id(k, "EID"));
+        k += 1;
+    }
+    if r.ok && eids.is_empty() {
+        r.fail(2, "EID", "names no element");
+    }
+    if r.ok {
+        b.pload4s.push(Pload4 {
+            sid,
+            eids,
+            p: [p; 4],
+            cid: 0,
+            direction: None,
+            at: r.at(),
+        });
+    }
+}
+
 pub(super) fn card_pload4(r: &mut Reader, b: &mut Bulk) {
     let sid = r.id(0, "SID");
     let eid = r.id(1, "EID");
