@@ -476,3 +476,24 @@ fn enforced_displacements_by_spc_and_spcd_move_the_tip_exactly() {
         }
     }
 }
+
+/// Goal: NASTRAN-95's pressure cards load a flat rectangular mesh as PLOAD4 does:
+/// PLOAD on an element's four grids (four corner triangles of P/2, each P·A/3 to its
+/// grids) and PLOAD2 on the element (read as a PLOAD4) both give a quarter of P·A to
+/// each corner of a rectangle. Model: [`strip`] on 4 elements under P = 2. Reference:
+/// the PLOAD4 solution, to 1e-12 of its tip deflection.
+#[test]
+fn pload_and_pload2_load_a_rectangle_as_pload4_does() {
+    let n = 4;
+    let by = |cards: String| tip(&static_deck(&strip(n, &cards)), n);
+    let reference = by((1..=n).map(|e| format!("PLOAD4,1,{e},2.0\n")).collect());
+    let pload: String = (1..=n)
+        .map(|i| format!("PLOAD,1,2.0,{},{},{},{}\n", i, i + 1, i + 101, i + 100))
+        .collect();
+    let pload2 = format!("PLOAD2,1,2.0,1,THRU,{n}\n");
+    for (name, cards) in [("PLOAD", pload), ("PLOAD2", pload2)] {
+        let t = by(cards);
+        assert!((t / reference - 1.0).abs() < 1e-12, "{name}: {t}, PLOAD4 {reference}");
+    }
+    assert!(reference > 0.0);
+}

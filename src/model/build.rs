@@ -374,6 +374,7 @@ fn no_static_loads(cx: &mut Ctx, deck: &Deck) {
     let firsts = [
         b.point_loads.first().map(|l| &l.at),
         b.pload4s.first().map(|l| &l.at),
+        b.ploads.first().map(|l| &l.at),
         b.gravs.first().map(|l| &l.at),
         b.spcds.first().map(|l| &l.at),
         b.load_combinations.first().map(|l| &l.at),
@@ -1161,6 +1162,15 @@ impl<'d> Properties<'d> {
         }
     }
 
+    /// The MAT1 `mid` property `pid` (its card `at`) references; an error if none.
+    fn mat1_of(&self, cx: &mut Ctx, at: &CardRef, pid: i64, mid: i64) -> Option<&'d crate::deck::cards::Mat1> {
+        let m = self.mat1.get(&mid).copied();
+        if m.is_none() {
+            cx.err(at.error(format!("{} {pid} references MAT1 {mid}, which does not exist", at.name)));
+        }
+        m
+    }
+
     /// A rod's PROD and MAT1.
     fn rod(&self, cx: &mut Ctx, c: &'d Connection) -> Option<RodSection> {
         let property = if c.kind.card == "CTUBE" { "PTUBE" } else { "PROD" };
@@ -1171,13 +1181,7 @@ impl<'d> Properties<'d> {
             )));
             return None;
         };
-        let Some(m) = self.mat1.get(&p.mid) else {
-            cx.err(p.at.error(format!(
-                "{} {} references MAT1 {}, which does not exist",
-                p.at.name, p.pid, p.mid
-            )));
-            return None;
-        };
+        let m = self.mat1_of(cx, &p.at, p.pid, p.mid)?;
         Some(RodSection {
             e: m.e,
             g: m.g,
@@ -1197,13 +1201,7 @@ impl<'d> Properties<'d> {
             )));
             return None;
         };
-        let Some(m) = self.mat1.get(&p.mid) else {
-            cx.err(p.at.error(format!(
-                "PSHEAR {} references MAT1 {}, which does not exist",
-                p.pid, p.mid
-            )));
-            return None;
-        };
+        let m = self.mat1_of(cx, &p.at, p.pid, p.mid)?;
         if m.g <= 0.0 {
             cx.err(p.at.error(format!(
                 "PSHEAR {}: its MAT1 {} gives no shear modulus (G = {:e}): a shear panel has no other stiffness",

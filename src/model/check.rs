@@ -13,11 +13,11 @@ use std::collections::BTreeMap;
 /// Bulk data cards that do not change a structure's stiffness, mass or constraints:
 /// loads, temperatures, eigenvalue and solution controls, tables, design and output
 /// cards. A deck's card of these kinds is listed as ignored, not as unsupported.
-pub const NON_STRUCTURAL: [&str; 74] = [
+pub const NON_STRUCTURAL: [&str; 71] = [
     // Static and dynamic loads.
-    "FORCE", "FORCE1", "FORCE2", "MOMENT", "MOMENT1", "MOMENT2", "PLOAD", "PLOAD1", "PLOAD2", "PLOAD4", "PLOADX1",
-    "GRAV", "LOAD", "ACCEL", "ACCEL1", "RFORCE", "DAREA", "DLOAD", "TLOAD1", "TLOAD2", "RLOAD1", "RLOAD2", "LSEQ",
-    "DELAY", "DPHASE", "SLOAD", // Temperatures.
+    "FORCE", "FORCE1", "FORCE2", "MOMENT", "MOMENT1", "MOMENT2", "PLOAD1", "PLOADX1", "GRAV", "LOAD", "ACCEL", "ACCEL1",
+    "RFORCE", "DAREA", "DLOAD", "TLOAD1", "TLOAD2", "RLOAD1", "RLOAD2", "LSEQ", "DELAY", "DPHASE",
+    "SLOAD", // Temperatures.
     "TEMP", "TEMPD", "TEMPP1", "TEMPRB", "TEMPAX", // Eigenvalue and solution controls.
     "EIGRL", "EIGR", "EIGC", "EIGB", "FREQ", "FREQ1", "FREQ2", "FREQ3", "FREQ4", "FREQ5", "TSTEPNL", "NLPARM", "NLPCI",
     "TABDMP1", // Tables.
@@ -194,6 +194,7 @@ pub fn check(deck: &Deck) -> CheckReport {
         .iter()
         .map(|l| &l.at)
         .chain(b.pload4s.iter().map(|l| &l.at))
+        .chain(b.ploads.iter().map(|l| &l.at))
         .chain(b.gravs.iter().map(|l| &l.at))
         .chain(b.spcds.iter().map(|l| &l.at))
         .chain(b.load_combinations.iter().map(|l| &l.at));

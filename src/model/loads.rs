@@ -12,6 +12,8 @@
 //!   a grid tied whole by an RBE2, a warped quadrilateral's corner projected onto its
 //!   mean plane) gives its grid the force and its moment about the grid, Λᵀ f
 //!   ([`crate::elements::Placement`]).
+//! - PLOAD on three or four grids: a triangle's P·A/3 at each grid along +r12 × r13,
+//!   a quadrilateral as its four corner triangles of P/2 (NASTRAN's rule).
 //! - GRAV: the inertia load M·a of every element's mass matrix on the rigid
 //!   acceleration a = A·(N1, N2, N3) in rectangular system CID (NASTRAN's gravity: a
 //!   mass is pushed along a).
@@ -78,7 +80,7 @@ pub fn static_load_of(deck: &Deck, s: &Structure, sel: Option<&Selection>) -> Re
         let before = errors.len();
         let found = cx.apply(deck, set, factor, &mut out, &mut errors);
         if !found && errors.len() == before {
-            let message = format!("set {set} has no FORCE, MOMENT, PLOAD4 or GRAV card");
+            let message = format!("set {set} has no FORCE, MOMENT, PLOAD, PLOAD2, PLOAD4 or GRAV card");
             errors.push(match by {
                 Some(at) => at.error(format!("LOAD {} names {message}", sel.id)),
                 None => Diagnostic::error(Some(sel.pos.clone()), format!("LOAD = {}: {message}", sel.id)).card("LOAD"),
@@ -128,6 +130,10 @@ impl Loads<'_> {
             for eid in &l.eids {
                 self.pressure(l, *eid, factor, out, errors);
             }
+        }
+        for l in b.ploads.iter().filter(|l| l.sid == set) {
+            found = true;
+            self.grid_pressure(l, factor, out, errors);
         }
         for l in b.gravs.iter().filter(|l| l.sid == set) {
             found = true;
@@ -179,6 +185,45 @@ impl Loads<'_> {
             )));
         }
         axes
+    }
+
+    /// A PLOAD's forces: a triangle's P·A/3 at each of its grids along +r12 × r13; a
+    /// quadrilateral as its four corner triangles (G1G2G3, G2G3G4, G3G4G1, G4G1G2),
+    /// each of P/2 (`manual/BULK.TXT`, PLOAD remarks 2 and 3).
+    fn grid_pressure(
+        &self,
+        l: &crate::deck::cards::Pload,
+        factor: f64,
+        out: &mut GridLoads,
+        errors: &mut Vec<Diagnostic>,
+    ) {
+        let g = &self.structure.geometry;
+        let mut x = Vec::new();
+        for id in &l.grids {
+            match g.positions.get(id) {
+                Some(p) => x.push(Vector3::from(*p)),
+                None => {
+                    errors.push(l.at.error(format!("PLOAD {} loads grid {id}, which does not exist", l.sid)));
+                    return;
+                }
+            }
+        }
+        let (triangles, share): (&[[usize; 3]], f64) = if x.len() == 3 {
+            (&[[0, 1, 2]], 1.0)
+        } else {
+            (&[[0, 1, 2], [1, 2, 3], [2, 3, 0], [3, 0, 1]], 0.5)
+        };
+        for t in triangles {
+            // (r12 × r13)/6 is A/3 along the triangle's normal.
+            let f = (x[t[1]] - x[t[0]]).cross(&(x[t[2]] - x[t[0]])) * (l.p * share * factor / 6.0);
+            for &k in t {
+                let v = g.frame(l.grids[k]).transpose() * f;
+                let slot = out.entry(l.grids[k]).or_default();
+                for c in 0..3 {
+                    slot[c] += v[c];
+                }
+            }
+        }
     }
 
     /// A PLOAD4's consistent nodal forces on shell `eid`.

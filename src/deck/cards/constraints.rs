@@ -197,19 +197,7 @@ pub(super) fn card_rbe2(r: &mut Reader, b: &mut Bulk) {
     let n = r.card.fields.len();
     let last = (3..n).rev().find(|&k| !r.text(k).is_empty());
     let alpha = last.filter(|&k| matches!(parse_real(r.text(k)), Some(RealToken::Real(_))));
-    let gm = r.id_list_in(3, alpha.unwrap_or(n), "GM");
-    if r.ok && gm.is_empty() {
-        r.fail(3, "GM1", "names no dependent grid");
-    }
-    if r.ok {
-        if let Some(&g) = gm.iter().find(|&&g| g == gn) {
-            r.fail(
-                3,
-                "GM",
-                format!("grid {g} is both the independent grid GN and a dependent grid"),
-            );
-        }
-    }
+    let gm = dependent_grids(r, 3, alpha.unwrap_or(n), gn, ["GM", "GN"]);
     if r.ok {
         b.rbe2s.push(Rbe2 {
             card: "RBE2",
@@ -222,33 +210,46 @@ pub(super) fn card_rbe2(r: &mut Reader, b: &mut Bulk) {
     }
 }
 
+/// A rigid element's dependent grids, fields `from` up to `to` (THRU ranges allowed):
+/// refused when none, or when one is the independent grid `independent` (named at the
+/// field that names it, or ends the THRU range that holds it). `names`: the list's
+/// field name and the independent grid's.
+fn dependent_grids(r: &mut Reader, from: usize, to: usize, independent: i64, names: [&str; 2]) -> Vec<i64> {
+    let gm = r.id_list_in(from, to, names[0]);
+    if r.ok && gm.is_empty() {
+        r.fail(from, names[0], "names no dependent grid");
+    }
+    if r.ok && gm.contains(&independent) {
+        let int = |k: usize| parse_int(r.text(k)).unwrap_or(i64::MIN);
+        let k = (from..to)
+            .find(|&k| int(k) == independent)
+            .or_else(|| {
+                (from + 1..to.saturating_sub(1))
+                    .find(|&k| {
+                        r.text(k).eq_ignore_ascii_case("THRU") && int(k - 1) <= independent && independent <= int(k + 1)
+                    })
+                    .map(|k| k + 1)
+            })
+            .unwrap_or(from);
+        r.fail(
+            k,
+            names[0],
+            format!(
+                "names the independent grid {} = {independent} as a dependent grid",
+                names[1]
+            ),
+        );
+    }
+    gm
+}
+
 /// CRIGD1 (COSMIC): EID, IG, then the dependent grids G1, G2, … (or `GID1 THRU GID2`),
 /// every one of whose six components follows the reference grid IG as a rigid body
 /// (`manual/BULK.TXT`, CRIGD1): an RBE2 with CM = 123456.
 pub(super) fn card_crigd1(r: &mut Reader, b: &mut Bulk) {
     let (eid, ig) = (r.id(0, "EID"), r.id(1, "IG"));
     let n = r.card.fields.len();
-    let gm = r.id_list_in(2, n, "Gi");
-    if r.ok && gm.is_empty() {
-        r.fail(2, "G1", "names no dependent grid");
-    }
-    if r.ok && gm.contains(&ig) {
-        // The field that names it (or ends the THRU range that holds it).
-        let int = |k: usize| parse_int(r.text(k)).unwrap_or(i64::MIN);
-        let k = (2..n)
-            .find(|&k| int(k) == ig)
-            .or_else(|| {
-                (3..n.saturating_sub(1))
-                    .find(|&k| r.text(k).eq_ignore_ascii_case("THRU") && int(k - 1) <= ig && ig <= int(k + 1))
-                    .map(|k| k + 1)
-            })
-            .unwrap_or(2);
-        r.fail(
-            k,
-            "Gi",
-            format!("names the reference grid IG = {ig} as a dependent grid"),
-        );
-    }
+    let gm = dependent_grids(r, 2, n, ig, ["Gi", "IG"]);
     if r.ok {
         b.rbe2s.push(Rbe2 {
             card: "CRIGD1",

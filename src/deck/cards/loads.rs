@@ -38,6 +38,19 @@ pub struct Pload4 {
     pub at: CardRef,
 }
 
+/// PLOAD: a pressure P on the triangle or quadrilateral of three or four grids.
+#[derive(Debug, Clone)]
+pub struct Pload {
+    /// Load set id (field 2).
+    pub sid: i64,
+    /// The pressure P (field 3).
+    pub p: f64,
+    /// Its grids G1..G3 (G4).
+    pub grids: Vec<i64>,
+    /// The card.
+    pub at: CardRef,
+}
+
 /// GRAV: an acceleration A·(N1, N2, N3) in rectangular system CID, loading every
 /// mass by M·a.
 #[derive(Debug, Clone)]
@@ -118,6 +131,31 @@ pub(super) fn card_point_load(r: &mut Reader, b: &mut Bulk) {
 
 /// PLOAD4 on shells: SID EID P1 P2 P3 P4 (G1 G3 blank, or THRU EID2), then CID N1 N2
 /// N3 (SORL blank or SURF; LDIR blank or NORM).
+/// PLOAD (`manual/BULK.TXT`): SID P G1 G2 G3 (G4; 0 or blank for a triangle).
+pub(super) fn card_pload(r: &mut Reader, b: &mut Bulk) {
+    let sid = r.id(0, "SID");
+    let p = r.real(1, "P");
+    let mut grids: Vec<i64> = (0..3).map(|k| r.id(2 + k, &format!("G{}", k + 1))).collect();
+    if !matches!(r.text(5), "" | "0") {
+        grids.push(r.id(5, "G4"));
+    }
+    let mut unique = grids.clone();
+    unique.sort_unstable();
+    unique.dedup();
+    if r.ok && unique.len() != grids.len() {
+        r.fail(2, "G1-G4", "the grids must be distinct");
+    }
+    r.extra_fields(6);
+    if r.ok {
+        b.ploads.push(Pload {
+            sid,
+            p,
+            grids,
+            at: r.at(),
+        });
+    }
+}
+
 /// PLOAD2 (`manual/BULK.TXT`): SID P EID … (THRU ranges; 0 or blank for an omitted
 /// entry): a uniform pressure P on each listed shell, read as a PLOAD4 of P at every
 /// corner along the element's normal (G1→G2→G3, PLOAD's +r12 × r13). On a triangle and

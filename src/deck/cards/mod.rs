@@ -109,6 +109,8 @@ pub struct Bulk {
     pub elements: Vec<Connection>,
     /// PROD cards.
     pub prods: Vec<Prod>,
+    /// PLOAD cards.
+    pub ploads: Vec<Pload>,
     /// SPCD cards (one entry per enforced value).
     pub spcds: Vec<Spcd>,
     /// PSHEAR cards.
@@ -450,14 +452,14 @@ impl<'a> Reader<'a> {
 
 /// Cards the reader knows. `PARAM` is accepted and ignored with a warning.
 /// Element cards are those of [`crate::elements::KINDS`] besides these.
-pub const KNOWN_CARDS: [&str; 73] = [
+pub const KNOWN_CARDS: [&str; 74] = [
     "GRID", "GRDSET", "CORD1R", "CORD1C", "CORD1S", "CORD2R", "CORD2C", "CORD2S", "EPOINT", "SPOINT", "PROD", "PBAR",
     "PBARL", "PBEAM", "PBEAML", "PSHELL", "PCOMP", "MAT1", "MAT2", "MAT8", "CONM2", "RBE2", "RBE3", "SPC1", "SPC",
     "SPCADD", "TF", "TSTEP", "NOLIN3", "TIC", "FORCE", "MOMENT", "PLOAD4", "GRAV", "LOAD", "PARAM", "INCLUDE",
     "ENDDATA", "BAROR", "PTUBE", "CELAS1", "CELAS2", "CELAS3", "CELAS4", "CMASS1", "CMASS2", "CMASS3", "CMASS4",
     "PELAS", "PMASS", "CQUAD1", "CQUAD2", "CQDMEM", "CQDMEM1", "CQDMEM2", "CTRIA1", "CTRIA2", "CTRMEM", "PQUAD1",
     "PTRIA1", "PQUAD2", "PTRIA2", "PQDMEM", "PQDMEM1", "PQDMEM2", "PTRMEM", "PCOMP1", "PCOMP2", "CRIGD1", "PSHEAR",
-    "GENEL", "SPCD", "PLOAD2",
+    "GENEL", "SPCD", "PLOAD2", "PLOAD",
 ];
 
 /// Every card the reader types: the element cards of [`crate::elements::KINDS`] and
@@ -532,6 +534,7 @@ pub fn type_cards(raw: &[RawCard], ids_left: &mut usize, diags: &mut Diagnostics
                 "GENEL" => card_genel(&mut r, &mut b),
                 "SPCD" => card_spcd(&mut r, &mut b),
                 "PLOAD2" => card_pload2(&mut r, &mut b),
+                "PLOAD" => card_pload(&mut r, &mut b),
                 "RBE3" => card_rbe3(&mut r, &mut b),
                 "TF" => card_tf(&mut r, &mut b, card),
                 "TSTEP" => card_tstep(&mut r, &mut b, card),
