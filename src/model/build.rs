@@ -1617,21 +1617,17 @@ fn general_elements(
                     let i = points.iter().position(|&q| q == p).expect("resolved above");
                     xs[i].map(|x| (x, geo.frame(p), comp))
                 };
-                let Some(x0) = at_dof(&c.ud[0]).map(|d| d.0) else {
-                    cx.err(c.at.error(format!(
-                        "GENEL {}: [S] is not given and a scalar point has no position to compute it from: give [S]",
-                        c.eid
-                    )));
-                    continue;
-                };
-                let rows = |list: &[(i64, usize)]| -> Option<nalgebra::DMatrix<f64>> {
+                // The rigid motions about the first dependent grid, read at each DOF;
+                // none where a DOF is a scalar point's (it has no position).
+                let rows = |list: &[(i64, usize)], x0: [f64; 3]| -> Option<nalgebra::DMatrix<f64>> {
                     let r: Option<Vec<[f64; 6]>> = list
                         .iter()
                         .map(|d| at_dof(d).map(|(x, t, comp)| rigid_row(x, &t, comp, x0)))
                         .collect();
                     r.map(|r| nalgebra::DMatrix::from_row_iterator(r.len(), 6, r.into_iter().flatten()))
                 };
-                let (Some(ri), Some(rd)) = (rows(&c.ui), rows(&c.ud)) else {
+                let computed = at_dof(&c.ud[0]).and_then(|(x0, _, _)| Some((rows(&c.ui, x0)?, rows(&c.ud, x0)?)));
+                let Some((ri, rd)) = computed else {
                     cx.err(c.at.error(format!(
                         "GENEL {}: [S] is not given and a scalar point has no position to compute it from: give [S]",
                         c.eid

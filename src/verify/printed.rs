@@ -149,15 +149,15 @@ pub fn read_run(dir: &Path) -> Result<Printed, PrintedError> {
         path: name.clone(),
         source: std::io::Error::other(e.to_string()),
     })?;
-    let format = |line: usize, message: String| PrintedError::Format {
+    let bad = |line: usize, message: String| PrintedError::Format {
         path: name.clone(),
         line,
         message,
     };
-    let headers = r.headers().map_err(|e| format(1, e.to_string()))?.clone();
+    let headers = r.headers().map_err(|e| bad(1, e.to_string()))?.clone();
     let col = |h: &str| headers.iter().position(|x| x == h);
     let (Some(grid), Some(t1)) = (col("grid"), col("T1")) else {
-        return Err(format(
+        return Err(bad(
             1,
             "is not a static run's displacements.csv (no grid and T1 columns)".into(),
         ));
@@ -166,11 +166,11 @@ pub fn read_run(dir: &Path) -> Result<Printed, PrintedError> {
     let mut out = Printed::default();
     for (k, row) in r.records().enumerate() {
         let line = k + 2;
-        let row = row.map_err(|e| format(line, e.to_string()))?;
+        let row = row.map_err(|e| bad(line, e.to_string()))?;
         let int = |i: usize| row.get(i).and_then(|t| t.parse::<i64>().ok());
-        let g = int(grid).ok_or_else(|| format(line, "grid is not an integer".into()))?;
+        let g = int(grid).ok_or_else(|| bad(line, "grid is not an integer".into()))?;
         let sc = match subcase_col {
-            Some(i) => int(i).ok_or_else(|| format(line, "subcase is not an integer".into()))?,
+            Some(i) => int(i).ok_or_else(|| bad(line, "subcase is not an integer".into()))?,
             None => 1,
         };
         let table = out.subcases.entry(sc).or_default();
@@ -178,7 +178,7 @@ pub fn read_run(dir: &Path) -> Result<Printed, PrintedError> {
             let v = row
                 .get(t1 + c)
                 .and_then(|t| t.parse::<f64>().ok())
-                .ok_or_else(|| format(line, format!("T{} is not a number", c + 1)))?;
+                .ok_or_else(|| bad(line, format!("T{} is not a number", c + 1)))?;
             table.insert((g, c as u8 + 1), v);
         }
     }
