@@ -374,6 +374,10 @@ pub struct BenchArgs {
     /// over decks up to a million lines.
     #[arg(long)]
     pub size: bool,
+    /// Instead: `check` on a 250 000-element panel deck, by stage, with its peak
+    /// memory against the deck's size (median of --repeats after a warm-up).
+    #[arg(long, conflicts_with = "size")]
+    pub check: bool,
 }
 
 #[derive(clap::Args)]

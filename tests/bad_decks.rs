@@ -141,6 +141,7 @@ fn fuzz_crash_inputs_no_longer_crash() {
             let opts = ReadOptions {
                 allow_unknown,
                 structure,
+                keep_cards: false,
                 limits: Limits::untrusted(),
             };
             if let Ok(deck) = parse_deck_str("fuzz.bdf", text, opts) {

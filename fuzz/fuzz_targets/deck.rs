@@ -12,10 +12,11 @@ use libfuzzer_sys::fuzz_target;
 fuzz_target!(|data: &[u8]| {
     let Ok(text) = std::str::from_utf8(data) else { return };
     // The first byte's low bits: unknown cards allowed; read for the structure alone
-    // (`impactlab check`).
+    // (`impactlab check`); every card kept (as a scene reads its deck).
     let opts = ReadOptions {
         allow_unknown: data.first().is_some_and(|b| b & 1 == 1),
         structure: data.first().is_some_and(|b| b & 2 == 2),
+        keep_cards: data.first().is_some_and(|b| b & 4 == 4),
         limits: Limits::untrusted(),
     };
     if let Ok(deck) = parse_deck_str("fuzz.bdf", text, opts) {

@@ -806,6 +806,10 @@ pub fn bench(a: BenchArgs) -> Result<u8, Error> {
         )?);
         return Ok(0);
     }
+    if a.check {
+        say(&impactlab::study::bench::bench_check(a.repeats.max(1))?);
+        return Ok(0);
+    }
     say(&impactlab::study::bench::bench_plate(a.repeats.max(1), a.steps)?);
     Ok(0)
 }

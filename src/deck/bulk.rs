@@ -58,14 +58,15 @@ impl RawCard {
 
 /// Assembles bulk data lines into logical cards.
 /// Stops with an error at the first card past [`Limits::max_cards`].
-pub fn assemble(lines: &[SrcLine], limits: Limits, diags: &mut Diagnostics) -> Vec<RawCard> {
+/// Each line is dropped once read.
+pub fn assemble(lines: Vec<SrcLine>, limits: Limits, diags: &mut Diagnostics) -> Vec<RawCard> {
     let mut cards: Vec<RawCard> = Vec::new();
     // Open continuation identifiers: key -> card index.
     let mut open: HashMap<String, usize> = HashMap::new();
     let mut imager = Imager::new();
     'lines: for line in lines {
         let room = limits.max_cards.saturating_sub(cards.len());
-        let Ok(images) = imager.line(line, limits.max_replication, room, diags) else {
+        let Ok(images) = imager.line(&line, limits.max_replication, room, diags) else {
             diags.push(too_many_cards(&line.pos(1), &line.text, limits.max_cards));
             break;
         };
@@ -155,7 +156,7 @@ fn pad(card: &mut RawCard, large_next: bool) {
     while card.fields.len() < whole {
         let number = card.fields.len() % 8 + 2;
         card.fields.push(Field {
-            text: String::new(),
+            text: Default::default(),
             pos: pos.clone(),
             number,
         });

@@ -25,12 +25,13 @@
 use super::diag::{Diagnostic, Diagnostics, Pos};
 use super::number::{format_real, parse_int, parse_real, RealToken};
 use super::source::SrcLine;
+use compact_str::CompactString;
 
 /// One data field of a card.
 #[derive(Debug, Clone)]
 pub struct Field {
     /// The token, trimmed; empty when blank.
-    pub text: String,
+    pub text: CompactString,
     /// Where the field starts.
     pub pos: Pos,
     /// NASTRAN field number on its physical line (2-9).
@@ -45,7 +46,7 @@ pub struct Image {
     /// Fields 2-9 (small or free field) or 2-5 (large field).
     pub data: Vec<Field>,
     /// Field 10, trimmed.
-    pub marker: String,
+    pub marker: CompactString,
     /// Field 10 was read from columns 73-80, whose first column (73) "is not referenced".
     pub fixed_marker: bool,
     /// A large-field image.
@@ -58,7 +59,7 @@ pub struct Image {
 
 fn field_at(line: &SrcLine, text: &str, col: usize, number: usize) -> Field {
     Field {
-        text: text.trim().to_string(),
+        text: text.trim().into(),
         pos: line.pos(col),
         number,
     }
@@ -92,7 +93,8 @@ fn free_tokens(d: &str) -> Vec<Token<'_>> {
     let mut out = Vec::new();
     let mut number = 1;
     // Column (from 1) of byte offset `b`.
-    let col = |b: usize| d[..b].chars().count() + 1;
+    let ascii = d.is_ascii();
+    let col = |b: usize| if ascii { b + 1 } else { d[..b].chars().count() + 1 };
     let mut piece_start = 0;
     for piece in d.split(',') {
         let start = piece_start;
@@ -278,16 +280,17 @@ impl Imager {
         let first_pos = line.pos(f1_col);
         // Fields 2-10 as written, then the line's own continuations (fields 11-20 ...).
         let width = tokens.iter().map(|t| t.number).max().unwrap_or(1).max(10);
+        let end = line.pos(d.chars().count() + 1);
         let mut fields: Vec<Field> = (2..=width)
             .map(|n| Field {
-                text: String::new(),
-                pos: line.pos(d.chars().count() + 1),
+                text: CompactString::default(),
+                pos: end.clone(),
                 number: n,
             })
             .collect();
         for t in tokens.iter().filter(|t| t.number >= 2) {
             fields[t.number - 2] = Field {
-                text: t.text.to_string(),
+                text: t.text.into(),
                 pos: line.pos(t.col),
                 number: t.number,
             };
@@ -327,7 +330,7 @@ impl Imager {
         let text = if f1 == ")" {
             self.prev.as_ref().map(|p| p.marker.clone()).unwrap_or_default()
         } else {
-            first_text
+            first_text.into()
         };
         let first = Field {
             text,
@@ -419,7 +422,7 @@ fn continue_long_line(line: &SrcLine, head: Image, extra: Vec<Field>, diags: &mu
             .collect();
         while data.len() < 8 {
             data.push(Field {
-                text: String::new(),
+                text: CompactString::default(),
                 pos: first.pos.clone(),
                 number: data.len() + 2,
             });
@@ -492,7 +495,7 @@ fn duplicate(
         img.replicated_at = Some(at.clone());
         img.first.pos = at.clone();
         if img.first.text.starts_with('+') || img.first.text.starts_with('*') {
-            img.first.text = next_id(&before.first.text).unwrap_or_default();
+            img.first.text = next_id(&before.first.text).unwrap_or_default().into();
         }
         // Fields 2-9 (or 2-5), then field 10.
         let n_data = before.data.len();
@@ -535,10 +538,10 @@ fn duplicate(
                 }
             };
             if k < n_data {
-                img.data[k].text = text;
+                img.data[k].text = text.into();
                 img.data[k].pos = pos.clone();
             } else if k == n_data {
-                img.marker = text;
+                img.marker = text.into();
             }
         }
         if !ok {
@@ -550,7 +553,7 @@ fn duplicate(
                 for f in &mut img.data[written..] {
                     f.pos = at.clone();
                 }
-                img.marker = next_id(&before.marker).unwrap_or_default();
+                img.marker = next_id(&before.marker).unwrap_or_default().into();
             }
         } else {
             for f in img.data.iter_mut().skip(written) {
@@ -662,7 +665,7 @@ fn fixed(line: &SrcLine, diags: &mut Diagnostics) -> Image {
         },
         data,
         // Column 73 kept here: the continuation's comparison leaves it out.
-        marker: slice(72, 80).trim_end().to_string(),
+        marker: slice(72, 80).trim_end().into(),
         fixed_marker: true,
         large,
         src: text.to_string(),
@@ -673,11 +676,11 @@ fn fixed(line: &SrcLine, diags: &mut Diagnostics) -> Image {
 /// A fixed field with blanks inside it, read without them where that makes a real
 /// number (`2.0  E+7`, `.50  E+6`); as written otherwise (it is then an error where a
 /// number is expected, and `1 2` is never read as 12).
-fn without_inner_blanks(t: String) -> String {
+fn without_inner_blanks(t: CompactString) -> CompactString {
     if !t.contains(char::is_whitespace) {
         return t;
     }
-    let joined: String = t.chars().filter(|c| !c.is_whitespace()).collect();
+    let joined: CompactString = t.chars().filter(|c| !c.is_whitespace()).collect();
     match parse_real(&joined) {
         Some(RealToken::Real(_)) => joined,
         _ => t,

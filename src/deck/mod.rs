@@ -111,7 +111,7 @@ pub struct Deck {
     /// deck is read with [`ReadOptions::structure`] or `allow_unknown`).
     pub unknown: Vec<UnknownCard>,
     /// Every bulk data card as read (replication and INCLUDE expanded), for a deck
-    /// read with [`ReadOptions::structure`]: a scene that strikes the deck writes its
+    /// read with [`ReadOptions::keep_cards`]: a scene that strikes the deck writes its
     /// structural cards back ([`bulk::RawCard::free_field`]). Empty otherwise.
     pub cards: Vec<bulk::RawCard>,
 }
@@ -165,6 +165,9 @@ pub struct ReadOptions {
     /// sequence, SUBCASEs and unknown cards are accepted, the unknown cards kept in
     /// [`Deck::unknown`] without a diagnostic each.
     pub structure: bool,
+    /// Every bulk data card is kept as read, in [`Deck::cards`] (a scene writes a
+    /// struck deck's structural cards back).
+    pub keep_cards: bool,
     /// What one deck may ask of the reader.
     pub limits: Limits,
 }
@@ -274,8 +277,8 @@ fn finish(
             line: l.line,
             column: 1,
         });
-    let raw = bulk::assemble(&sections.bulk, opts.limits, &mut diags);
-    let (bulk, unknown) = cards::type_cards(&raw, &mut ids_left, &mut diags);
+    let raw = bulk::assemble(sections.bulk, opts.limits, &mut diags);
+    let (bulk, unknown, cards) = cards::type_cards(raw, opts.keep_cards, &mut ids_left, &mut diags);
     if !opts.structure {
         report_unknown(&unknown, opts, &mut diags);
     }
@@ -289,7 +292,6 @@ fn finish(
             diagnostics: diags.items,
         });
     }
-    let cards = if opts.structure { raw } else { Vec::new() };
     Ok(Deck {
         name,
         executive,

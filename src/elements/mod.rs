@@ -582,6 +582,35 @@ pub struct Element {
     pub links: Option<Arc<Links>>,
 }
 
+/// Each grid's mass m when `l` (over `grids` grids) is m·I on every grid's
+/// translations and nothing else (a lumped mass: diagonal, each (grid, component)
+/// once, a grid's three translations equal; m = 0 for a grid it leaves out), as
+/// [`Element::turned`] sums it into a grid's block (so −0 reads as +0); `None`
+/// otherwise.
+fn lumped_translations(l: &LocalMatrix, grids: usize) -> Option<Vec<f64>> {
+    let k = l.at.len();
+    if (0..k).any(|a| (0..k).any(|b| a != b && l.values[(a, b)] != 0.0)) {
+        return None;
+    }
+    let mut m: Vec<Option<f64>> = vec![None; grids];
+    let mut seen = vec![0u8; grids];
+    for (a, &(g, c)) in l.at.iter().enumerate() {
+        if c >= 3 || seen[g] & (1 << c) != 0 {
+            return None;
+        }
+        seen[g] |= 1 << c;
+        let v = 0.0 + l.values[(a, a)];
+        match m[g] {
+            None => m[g] = Some(v),
+            Some(x) if x == v => {}
+            Some(_) => return None,
+        }
+    }
+    seen.iter()
+        .all(|&s| s == 0 || s == 0b111)
+        .then(|| m.into_iter().map(|m| m.unwrap_or(0.0)).collect())
+}
+
 /// Per grid of an element, per component T1..R3: the solved DOFs and coefficients
 /// it is the sum of besides its own DOF.
 pub type Links = Vec<[Vec<(usize, f64)>; 6]>;
@@ -708,20 +737,34 @@ impl Element {
         let Some(p) = &self.placement else { return local };
         let n = 6 * self.grids.len();
         let at: Vec<(usize, usize)> = (0..n).map(|k| (k / 6, k % 6)).collect();
-        let mut lambda = DMatrix::zeros(n, n);
-        for (g, t) in p.turn.iter().enumerate() {
-            lambda.view_mut((6 * g, 6 * g), (6, 6)).copy_from(t);
-        }
+        let lambda = std::cell::LazyCell::new(|| {
+            let mut lambda = DMatrix::zeros(n, n);
+            for (g, t) in p.turn.iter().enumerate() {
+                lambda.view_mut((6 * g, 6 * g), (6, 6)).copy_from(t);
+            }
+            lambda
+        });
+        let rotates_only = (0..self.grids.len()).all(|g| p.rotates_only(g));
         local
             .into_iter()
             .map(|l| {
+                if let Some(m) = lumped_translations(&l, self.grids.len()).filter(|_| rotates_only) {
+                    // What the product below gives such a matrix, without it.
+                    let mut values = DMatrix::zeros(n, n);
+                    for (g, m) in m.iter().enumerate() {
+                        for c in 0..3 {
+                            values[(6 * g + c, 6 * g + c)] = *m;
+                        }
+                    }
+                    return LocalMatrix { at: at.clone(), values };
+                }
                 let mut full = DMatrix::zeros(n, n);
                 for (a, &(ga, ca)) in l.at.iter().enumerate() {
                     for (b, &(gb, cb)) in l.at.iter().enumerate() {
                         full[(6 * ga + ca, 6 * gb + cb)] += l.values[(a, b)];
                     }
                 }
-                let mut values = lambda.transpose() * &full * &lambda;
+                let mut values = lambda.transpose() * &full * &*lambda;
                 for g in 0..self.grids.len() {
                     let r = 6 * g;
                     let m = full[(r, r)];

@@ -19,6 +19,7 @@
 use super::shell::{h_vectors, side_coefficients, ShellSection};
 use super::{BadShape, Cell, Kernel, LocalMatrix, Recovered};
 use nalgebra::{DMatrix, Matrix3, SMatrix, Vector3};
+use std::sync::OnceLock;
 
 /// Corner coordinates (x, y) of a quadrilateral, counter-clockwise.
 pub type Xy = [[f64; 2]; 4];
@@ -208,7 +209,8 @@ pub fn lumped_mass(xy: &Xy, mass_per_area: f64) -> [f64; 4] {
 /// A CQUAD4 in the plane z = `z`. The upper triangles of its stiffness matrices are
 /// kept (packed, row by row) for the strain energy the ledger books every step: half
 /// the memory of the full matrices, which is what a step's pass over all elements
-/// costs.
+/// costs. They are computed when first needed: `impactlab check` builds every element
+/// and needs none of them.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Quad4 {
     /// Corner coordinates in the element's plane.
@@ -217,9 +219,15 @@ pub struct Quad4 {
     pub z: f64,
     /// Section and materials.
     pub section: ShellSection,
-    k_membrane: Option<[f64; 36]>,
-    k_bending: Option<[f64; 78]>,
-    k_coupling: Option<SMatrix<f64, 8, 12>>,
+    kept: OnceLock<Box<Kept>>,
+}
+
+/// A [`Quad4`]'s stiffness as the ledger uses it.
+#[derive(Debug, Clone, PartialEq)]
+struct Kept {
+    membrane: Option<[f64; 36]>,
+    bending: Option<[f64; 78]>,
+    coupling: Option<SMatrix<f64, 8, 12>>,
 }
 
 impl Quad4 {
@@ -230,16 +238,25 @@ impl Quad4 {
         Ok(Quad4::new(flat(points)?, points[0][2], section))
     }
 
-    /// The element, its stiffness matrices computed once.
+    /// The element (its stiffness matrices computed once, when first needed).
     pub fn new(xy: Xy, z: f64, section: ShellSection) -> Self {
         Quad4 {
-            k_membrane: section.a().map(|a| pack(&membrane_stiffness(&xy, &a))),
-            k_bending: section.d().map(|d| pack(&bending_stiffness(&xy, &d))),
-            k_coupling: section.b().map(|b| coupling_stiffness(&xy, &b)),
             xy,
             z,
             section,
+            kept: OnceLock::new(),
         }
+    }
+
+    fn kept(&self) -> &Kept {
+        self.kept.get_or_init(|| {
+            let (xy, section) = (&self.xy, &self.section);
+            Box::new(Kept {
+                membrane: section.a().map(|a| pack(&membrane_stiffness(xy, &a))),
+                bending: section.d().map(|d| pack(&bending_stiffness(xy, &d))),
+                coupling: section.b().map(|b| coupling_stiffness(xy, &b)),
+            })
+        })
     }
 }
 
@@ -321,7 +338,8 @@ impl Kernel for Quad4 {
     fn stiffness(&self) -> Vec<LocalMatrix> {
         // Full matrices as the kernels compute them (assembly runs once).
         let mut out = Vec::new();
-        if let (Some(a), Some(d), Some(kmb)) = (self.section.a(), self.section.d(), &self.k_coupling) {
+        if let (Some(a), Some(d), Some(b)) = (self.section.a(), self.section.d(), self.section.b()) {
+            let kmb = &coupling_stiffness(&self.xy, &b);
             // Coupled: one matrix over the membrane and bending DOFs.
             let (km, kb) = (membrane_stiffness(&self.xy, &a), bending_stiffness(&self.xy, &d));
             let mut k = SMatrix::<f64, 20, 20>::zeros();
@@ -346,9 +364,10 @@ impl Kernel for Quad4 {
     }
     fn strain_energy(&self, ue: &[f64]) -> f64 {
         let (um, ub) = parts(ue);
-        let m = self.k_membrane.as_ref().map_or(0.0, |k| quad_form(k, um.as_slice()));
-        let b = self.k_bending.as_ref().map_or(0.0, |k| quad_form(k, ub.as_slice()));
-        match &self.k_coupling {
+        let kept = self.kept();
+        let m = kept.membrane.as_ref().map_or(0.0, |k| quad_form(k, um.as_slice()));
+        let b = kept.bending.as_ref().map_or(0.0, |k| quad_form(k, ub.as_slice()));
+        match &kept.coupling {
             Some(k) => 0.5 * (m + b) + (um.transpose() * k * ub)[0],
             None => 0.5 * (m + b),
         }

@@ -117,7 +117,11 @@ struct Numbering<'d> {
     grids: BTreeMap<i64, &'d crate::deck::cards::Grid>,
     scalar: BTreeMap<i64, &'d CardRef>,
     dofs: Vec<DofLabel>,
-    index: HashMap<DofLabel, usize>,
+    /// Each grid's solved DOFs: the index of its first and the components solved
+    /// (bit c−1 for component c), numbered in component order from the first.
+    grid_first: HashMap<i64, (usize, u8)>,
+    /// Each scalar point's solved DOF.
+    scalar_index: HashMap<i64, usize>,
     /// The rigid elements' dependent grids.
     rigid: &'d crate::model::rigid::Rigid,
 }
@@ -126,16 +130,24 @@ impl Numbering<'_> {
     /// The solved DOF index of T1..R3 of a grid.
     fn grid_dofs(&self, id: i64) -> [Option<usize>; 6] {
         let mut d = [None; 6];
-        for (k, slot) in d.iter_mut().enumerate() {
-            *slot = self
-                .index
-                .get(&DofLabel {
-                    point: id,
-                    comp: k as u8 + 1,
-                })
-                .copied();
+        if let Some(&(first, solved)) = self.grid_first.get(&id) {
+            let mut next = first;
+            for (k, slot) in d.iter_mut().enumerate() {
+                if solved & (1 << k) != 0 {
+                    *slot = Some(next);
+                    next += 1;
+                }
+            }
         }
         d
+    }
+
+    /// The solved DOF index of a (point, component), if it is solved.
+    fn index(&self, l: &DofLabel) -> Option<usize> {
+        match l.comp {
+            0 => self.scalar_index.get(&l.point).copied(),
+            c => self.grid_dofs(l.point)[usize::from(c) - 1],
+        }
     }
 
     /// A reference (point, component) to a solved DOF, with a clear error otherwise.
@@ -156,8 +168,8 @@ impl Numbering<'_> {
             point: g,
             comp: if is_scalar { 0 } else { c as u8 },
         };
-        match (self.index.get(&l), self.rigid.ties.get(&g)) {
-            (Some(&i), _) => Some(i),
+        match (self.index(&l), self.rigid.ties.get(&g)) {
+            (Some(i), _) => Some(i),
             (None, Some(t)) if is_grid && t.ties(c - 1) => {
                 cx.err(at.error(match t.whole() {
                     Some((gn, _)) => format!(
@@ -186,12 +198,47 @@ struct Dependent {
     index: HashMap<i64, usize>,
 }
 
+/// What a survey does with each element as it is built, with the grids' geometry.
+type Surveyor<'s> = dyn FnMut(&Element, &Geometry) + 's;
+
 /// The elements, and how many elements touch each grid.
-struct Elements {
+struct Elements<'a, 's> {
     list: Vec<Element>,
     on_element: HashMap<i64, usize>,
     /// The plies of each laminate (PCOMP) element, by its index in `list`.
     plies: HashMap<usize, PlyStack>,
+    /// The rigid elements, whose ties each element is attached through.
+    rigid: &'a crate::model::rigid::Rigid,
+    /// For a survey of the structure: each element is handed to it as it is built,
+    /// with the grids' geometry, instead of kept in `list`.
+    survey: Option<&'s mut Surveyor<'s>>,
+    /// The grids' positions and frames.
+    geo: &'a Geometry,
+    /// Elements built so far.
+    built: usize,
+}
+
+impl Elements<'_, '_> {
+    /// An element built, on grids whose DOFs are `dofs(g)`: attached through the ties
+    /// of the rigid elements (an independent grid that a grid follows whole carries
+    /// that grid's elements), then kept or surveyed.
+    fn push(&mut self, e: Element, dofs: impl Fn(i64) -> [Option<usize>; 6]) {
+        let e = if self.rigid.ties.is_empty() {
+            e
+        } else {
+            if !matches!(e.kernel.family(), Family::Point { .. }) {
+                for (gn, _) in e.grids.iter().filter_map(|g| self.rigid.ties.get(g)?.whole()) {
+                    *self.on_element.entry(gn).or_default() += 1;
+                }
+            }
+            self.rigid.attach(e, dofs)
+        };
+        self.built += 1;
+        match &mut self.survey {
+            Some(survey) => survey(&e, self.geo),
+            None => self.list.push(e),
+        }
+    }
 }
 
 /// Builds the model of a deck, collecting every error: named stages, each reporting
@@ -220,7 +267,7 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
     let tf_of = transfer_functions(&mut cx, &sel, deck);
     let num = number_dofs(deck, &constrained, &tf_of, &rigid);
     let mut dependent = dependent_points(&mut cx, &tf_of, &num);
-    let elements = build_elements(&mut cx, deck, &num, &geo, &rigid);
+    let elements = build_elements(&mut cx, deck, &num, &geo, &rigid, None);
     let tied = tied_points(&rigid, &num, &mut dependent);
     let time = time_control(&sel);
     let (u0, v0) = initial_conditions(&mut cx, &sel, &dependent, &num);
@@ -318,6 +365,55 @@ impl Structure {
 /// properties and materials, and masses, collecting every error as [`build_model`]
 /// does. TSTEP, TF, NOLIN3 and TIC cards are read but not used.
 pub fn build_structure(deck: &Deck) -> Result<(Structure, Vec<Diagnostic>), ModelError> {
+    structure(deck, None)
+}
+
+/// What `impactlab check` needs of a structure: its elements counted and weighed as
+/// they are built, none of them kept, so that a deck of any size is surveyed in the
+/// memory its cards take. No drilling supports are added (they need the shells'
+/// stiffness, which a survey does not compute).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Survey {
+    /// Elements by card (CONM2 masses included).
+    pub elements: BTreeMap<&'static str, usize>,
+    /// The grid DOFs left free (see [`Structure::free_dofs`]).
+    pub free_dofs: usize,
+    /// The grid DOFs constrained.
+    pub constrained_dofs: usize,
+    /// The grid DOFs rigid elements make dependent.
+    pub dependent_dofs: usize,
+    /// Scalar points (EPOINT, SPOINT).
+    pub scalar_points: usize,
+    /// Mass, centre of gravity and inertia (see [`super::mass_properties`]).
+    pub mass: super::MassProperties,
+}
+
+/// Surveys a deck's structure (see [`Survey`]), with the errors [`build_structure`]
+/// would report.
+pub fn survey_structure(deck: &Deck) -> Result<(Survey, Vec<Diagnostic>), ModelError> {
+    let mut elements: BTreeMap<&'static str, usize> = BTreeMap::new();
+    let mut mass = super::weight::RigidBodyMass::default();
+    let mut survey = |e: &Element, g: &Geometry| {
+        *elements.entry(e.kernel.card()).or_default() += 1;
+        mass.add(e, &|id| g.positions.get(&id).copied(), &|id| g.frame(id));
+    };
+    let (s, diags) = structure(deck, Some(&mut survey))?;
+    let survey = Survey {
+        elements,
+        free_dofs: s.free_dofs,
+        constrained_dofs: s.constrained_dofs,
+        dependent_dofs: s.dependent_dofs,
+        scalar_points: s.scalar_points,
+        mass: mass.properties(),
+    };
+    Ok((survey, diags))
+}
+
+/// [`build_structure`], or with `survey` its elements handed to it as built.
+fn structure<'s>(
+    deck: &Deck,
+    survey: Option<&'s mut Surveyor<'s>>,
+) -> Result<(Structure, Vec<Diagnostic>), ModelError> {
     let mut cx = Ctx::default();
     let (geometry, geo_errors) = crate::geometry::resolve(&deck.bulk);
     for d in geo_errors {
@@ -340,15 +436,12 @@ pub fn build_structure(deck: &Deck) -> Result<(Structure, Vec<Diagnostic>), Mode
     }
     let rigid = rigid_elements(&mut cx, deck, &geometry, &sel);
     let num = number_dofs(deck, &constrained, &BTreeMap::new(), &rigid);
-    let elements = build_elements(&mut cx, deck, &num, &geometry, &rigid);
-    let prescribed: Vec<(usize, f64)> = values
-        .iter()
-        .filter_map(|(l, &d)| Some((*num.index.get(l)?, d)))
-        .collect();
+    let elements = build_elements(&mut cx, deck, &num, &geometry, &rigid, survey).list;
+    let prescribed: Vec<(usize, f64)> = values.iter().filter_map(|(l, &d)| Some((num.index(l)?, d))).collect();
     let grid_dofs = num.dofs.iter().filter(|d| d.comp != 0).count() - prescribed.len();
     let structure = Structure {
         geometry,
-        elements: elements.list,
+        elements,
         free_dofs: grid_dofs,
         constrained_dofs: 6 * num.grids.len() - rigid.dependent_dofs() - grid_dofs,
         dependent_dofs: rigid.dependent_dofs(),
@@ -609,29 +702,27 @@ fn number_dofs<'d>(
     let grids: BTreeMap<i64, &crate::deck::cards::Grid> = deck.bulk.grids.iter().map(|g| (g.id, g)).collect();
     let scalar = scalar_points(deck);
     let mut dofs = Vec::new();
-    let mut index: HashMap<DofLabel, usize> = HashMap::new();
+    let mut grid_first = HashMap::with_capacity(grids.len());
     for &id in grids.keys() {
-        let c = constrained[&id] | rigid.dependent(id);
-        for comp in 1..=6u8 {
-            if c & (1 << (comp - 1)) == 0 {
-                let l = DofLabel { point: id, comp };
-                index.insert(l, dofs.len());
-                dofs.push(l);
-            }
+        let solved = !(constrained[&id] | rigid.dependent(id)) & 0b11_1111;
+        grid_first.insert(id, (dofs.len(), solved));
+        for comp in (1..=6u8).filter(|c| solved & (1 << (c - 1)) != 0) {
+            dofs.push(DofLabel { point: id, comp });
         }
     }
+    let mut scalar_index = HashMap::new();
     for &id in scalar.keys() {
         if !tf_of.contains_key(&id) {
-            let l = DofLabel { point: id, comp: 0 };
-            index.insert(l, dofs.len());
-            dofs.push(l);
+            scalar_index.insert(id, dofs.len());
+            dofs.push(DofLabel { point: id, comp: 0 });
         }
     }
     Numbering {
         grids,
         scalar,
         dofs,
-        index,
+        grid_first,
+        scalar_index,
         rigid,
     }
 }
@@ -724,38 +815,30 @@ fn dependent_points(cx: &mut Ctx, tf_of: &BTreeMap<i64, &crate::deck::cards::Tf>
 
 /// The element cards and CONM2s with their materials and sections resolved, then
 /// the drilling supports their grids need.
-fn build_elements(
+fn build_elements<'a, 's>(
     cx: &mut Ctx,
     deck: &Deck,
     num: &Numbering,
-    geo: &Geometry,
-    rigid: &crate::model::rigid::Rigid,
-) -> Elements {
+    geo: &'a Geometry,
+    rigid: &'a crate::model::rigid::Rigid,
+    survey: Option<&'s mut Surveyor<'s>>,
+) -> Elements<'a, 's> {
     let mut out = Elements {
         list: Vec::new(),
         on_element: HashMap::new(),
         plies: HashMap::new(),
+        rigid,
+        survey,
+        geo,
+        built: 0,
     };
     connected(cx, deck, num, geo, &mut out);
     point_masses(cx, deck, num, geo, &mut out);
     scalar_elements(cx, deck, num, geo, rigid, &mut out);
     general_elements(cx, deck, num, geo, rigid, &mut out);
-    // Elements and masses on dependent grids, attached through their ties. An
-    // independent grid that a grid follows whole carries that grid's elements.
-    if !rigid.ties.is_empty() {
-        out.list = std::mem::take(&mut out.list)
-            .into_iter()
-            .map(|e| {
-                if !matches!(e.kernel.family(), Family::Point { .. }) {
-                    for (gn, _) in e.grids.iter().filter_map(|g| rigid.ties.get(g)?.whole()) {
-                        *out.on_element.entry(gn).or_default() += 1;
-                    }
-                }
-                rigid.attach(e, |g| num.grid_dofs(g))
-            })
-            .collect();
+    if out.survey.is_none() {
+        drilling_supports(num, geo, &mut out);
     }
-    drilling_supports(num, geo, &mut out);
     out
 }
 
@@ -943,13 +1026,16 @@ fn connected(cx: &mut Ctx, deck: &Deck, num: &Numbering, geo: &Geometry, out: &m
             }
             let dofs = c.g.iter().map(|&g| num.grid_dofs(g)).collect();
             if let Some(layers) = plies {
-                out.plies.insert(out.list.len(), layers);
+                out.plies.insert(out.built, layers);
             }
             let e = Element::boxed(c.eid, c.g.clone(), dofs, kernel);
-            out.list.push(match placement {
-                Some(p) => e.placed(p),
-                None => e,
-            });
+            out.push(
+                match placement {
+                    Some(p) => e.placed(p),
+                    None => e,
+                },
+                |g| num.grid_dofs(g),
+            );
         }
     }
 }
@@ -1174,7 +1260,7 @@ impl<'d> Properties<'d> {
     /// A rod's PROD and MAT1.
     fn rod(&self, cx: &mut Ctx, c: &'d Connection) -> Option<RodSection> {
         let property = if c.kind.card == "CTUBE" { "PTUBE" } else { "PROD" };
-        let Some(p) = c.rod.as_ref().or_else(|| self.prod.get(&c.pid).copied()) else {
+        let Some(p) = c.rod.as_deref().or_else(|| self.prod.get(&c.pid).copied()) else {
             cx.err(c.at.error(format!(
                 "{} {} references {property} {}, which does not exist",
                 c.kind.card, c.eid, c.pid
@@ -1417,10 +1503,13 @@ fn point_masses(cx: &mut Ctx, deck: &Deck, num: &Numbering, geo: &Geometry, out:
                 points: vec![x],
             })
         };
-        out.list.push(match placed {
-            Some(p) => e.placed(p),
-            None => e,
-        });
+        out.push(
+            match placed {
+                Some(p) => e.placed(p),
+                None => e,
+            },
+            |g| num.grid_dofs(g),
+        );
     }
 }
 
@@ -1494,7 +1583,7 @@ fn scalar_elements(
                     ok = false;
                     continue;
                 }
-                let i = num.index.get(&DofLabel { point: g, comp: 0 }).copied();
+                let i = num.index(&DofLabel { point: g, comp: 0 });
                 let mut d = [None; 6];
                 d[0] = i;
                 (d, 0, None)
@@ -1520,7 +1609,7 @@ fn scalar_elements(
             slots,
             points,
         };
-        out.list.push(Element::new(c.eid, grids, dofs, kernel));
+        out.push(Element::new(c.eid, grids, dofs, kernel), |g| num.grid_dofs(g));
     }
 }
 
@@ -1559,7 +1648,7 @@ fn general_elements(
                         (num.grid_dofs(p), geo.positions.get(&p).copied())
                     } else if num.scalar.contains_key(&p) {
                         let mut d = [None; 6];
-                        d[0] = num.index.get(&DofLabel { point: p, comp: 0 }).copied();
+                        d[0] = num.index(&DofLabel { point: p, comp: 0 });
                         (d, None)
                     } else {
                         cx.err(c.at.error(format!("GENEL {} references point {p}, which does not exist", c.eid)));
@@ -1644,7 +1733,7 @@ fn general_elements(
             }
         };
         let kernel = General::new(slots, k, s, xs);
-        out.list.push(Element::new(c.eid, points, dofs, kernel));
+        out.push(Element::new(c.eid, points, dofs, kernel), |g| num.grid_dofs(g));
     }
 }
 
@@ -1698,7 +1787,7 @@ fn output_plan(
 ) -> OutputPlan {
     let elements = &built.list;
     let case = &deck.case;
-    let (grids, scalar, index) = (&num.grids, &num.scalar, &num.index);
+    let (grids, scalar) = (&num.grids, &num.scalar);
     let (dep_index, dependent) = (&dependent.index, &dependent.points);
     let mut outputs = OutputPlan::default();
     let set_members = |req: Option<&crate::deck::case::OutputRequest>| -> Option<Vec<i64>> {
@@ -1729,7 +1818,7 @@ fn output_plan(
                     let l = DofLabel { point: p, comp };
                     if let Some(j) = tied.get(&p).and_then(|t| t[comp as usize - 1]) {
                         list.push((l, Source::Dependent(j)));
-                    } else if let Some(&i) = index.get(&l) {
+                    } else if let Some(i) = num.index(&l) {
                         list.push((l, Source::Dof(i)));
                     }
                 }

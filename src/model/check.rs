@@ -1,10 +1,10 @@
-//! `impactlab check`: will impactlab take this deck? Its structure built alone
-//! ([`super::build_structure`]), counted and weighed, with every card that is not
-//! taken: those that would change the structure (not supported) and those that do
-//! not (loads, temperatures, eigenvalue and solution controls, output and design
-//! cards, PARAMs: ignored).
+//! `impactlab check`: will impactlab take this deck? Its structure surveyed
+//! ([`super::survey_structure`]: built element by element, counted and weighed,
+//! none kept), with every card that is not taken: those that would change the
+//! structure (not supported) and those that do not (loads, temperatures, eigenvalue
+//! and solution controls, output and design cards, PARAMs: ignored).
 
-use super::{build_structure, MassProperties};
+use super::{survey_structure, MassProperties};
 use crate::deck::cards::CoordKind;
 use crate::deck::{Deck, Diagnostic};
 use serde::Serialize;
@@ -113,7 +113,7 @@ pub struct CheckReport {
     pub takes: bool,
     /// Grids.
     pub grids: usize,
-    /// Elements by kind (CONM2 masses and drilling supports included).
+    /// Elements by kind (CONM2 masses included; not the drilling supports a run adds).
     pub elements: BTreeMap<String, usize>,
     /// Grid DOFs left free by PS, GRDSET and the selected SPC.
     pub free_dofs: usize,
@@ -284,22 +284,20 @@ pub fn check(deck: &Deck) -> CheckReport {
         report.warnings = warnings;
         return report;
     }
-    match build_structure(deck) {
+    match survey_structure(deck) {
         Ok((s, diags)) => {
-            for e in &s.elements {
-                *report.elements.entry(e.kernel.card().to_string()).or_default() += 1;
-            }
+            report.elements = s.elements.iter().map(|(k, n)| (k.to_string(), *n)).collect();
             report.free_dofs = s.free_dofs;
             report.constrained_dofs = s.constrained_dofs;
             report.dependent_dofs = s.dependent_dofs;
             report.scalar_points = s.scalar_points;
-            let m = s.mass_properties();
+            let m = s.mass;
             let w = report.wtmass.unwrap_or(1.0);
             report.scaled_mass = report.wtmass.map(|_| m.mass);
             report.weight = Some(Weight::from(m).in_input_units(w));
             warnings.extend(diags.iter().map(Diagnostic::to_string));
             report.takes = report.unsupported.is_empty();
-            if b.grids.is_empty() && s.elements.is_empty() && report.unsupported.is_empty() {
+            if b.grids.is_empty() && report.elements.is_empty() && report.unsupported.is_empty() {
                 // A DMAP or matrix deck: nothing to take.
                 report.takes = false;
                 report.errors = vec![format!(

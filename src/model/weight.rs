@@ -37,8 +37,29 @@ pub fn mass_properties(
     position: impl Fn(i64) -> Option<[f64; 3]>,
     frame: impl Fn(i64) -> Matrix3<f64>,
 ) -> MassProperties {
-    let mut m0 = Matrix6::<f64>::zeros();
+    let mut sum = RigidBodyMass::default();
     for e in elements {
+        sum.add(e, &position, &frame);
+    }
+    sum.properties()
+}
+
+/// The rigid-body mass matrix about the basic origin, `M₀ = Σₑ Dₑᵀ Mₑ Dₑ`, summed
+/// element by element (so that a structure's elements need not be held at once).
+#[derive(Debug, Clone, Default)]
+pub struct RigidBodyMass {
+    m0: Matrix6<f64>,
+}
+
+impl RigidBodyMass {
+    /// Adds an element's mass, its grids at `position(g)` (basic) and displaced in
+    /// `frame(g)` (axes as columns, basic components).
+    pub fn add(
+        &mut self,
+        e: &Element,
+        position: &impl Fn(i64) -> Option<[f64; 3]>,
+        frame: &impl Fn(i64) -> Matrix3<f64>,
+    ) {
         // A scalar point (no position) has no place in the rigid-body mass.
         let located: Vec<bool> = e.grids.iter().map(|&g| position(g).is_some()).collect();
         let d: Vec<SMatrix<f64, 6, 6>> = e
@@ -59,29 +80,34 @@ pub fn mass_properties(
                 for (b, &(gb, cb)) in l.at.iter().enumerate() {
                     let v = l.values[(a, b)];
                     if v != 0.0 && located[ga] && located[gb] {
-                        m0 += d[ga].row(ca).transpose() * d[gb].row(cb) * v;
+                        self.m0 += d[ga].row(ca).transpose() * d[gb].row(cb) * v;
                     }
                 }
             }
         }
     }
-    let mass = [m0[(0, 0)], m0[(1, 1)], m0[(2, 2)]];
-    let s = Vector3::new(m0[(5, 1)], m0[(3, 2)], m0[(4, 0)]);
-    let m = mass[0];
-    let centre = (m > 0.0).then(|| s / m);
-    let i0 = m0.fixed_view::<3, 3>(3, 3).into_owned();
-    let inertia = match centre {
-        Some(c) => i0 - (Matrix3::identity() * c.norm_squared() - c * c.transpose()) * m,
-        None => i0,
-    };
-    let mut principal: Vec<f64> = inertia.symmetric_eigenvalues().iter().copied().collect();
-    principal.sort_by(f64::total_cmp);
-    MassProperties {
-        mass,
-        centre: centre.map(|c| [c.x, c.y, c.z]),
-        inertia: std::array::from_fn(|i| std::array::from_fn(|j| inertia[(i, j)])),
-        principal: [principal[0], principal[1], principal[2]],
-        rigid_body: std::array::from_fn(|i| std::array::from_fn(|j| m0[(i, j)])),
+
+    /// The mass, centre of gravity and inertia of what was added.
+    pub fn properties(&self) -> MassProperties {
+        let m0 = self.m0;
+        let mass = [m0[(0, 0)], m0[(1, 1)], m0[(2, 2)]];
+        let s = Vector3::new(m0[(5, 1)], m0[(3, 2)], m0[(4, 0)]);
+        let m = mass[0];
+        let centre = (m > 0.0).then(|| s / m);
+        let i0 = m0.fixed_view::<3, 3>(3, 3).into_owned();
+        let inertia = match centre {
+            Some(c) => i0 - (Matrix3::identity() * c.norm_squared() - c * c.transpose()) * m,
+            None => i0,
+        };
+        let mut principal: Vec<f64> = inertia.symmetric_eigenvalues().iter().copied().collect();
+        principal.sort_by(f64::total_cmp);
+        MassProperties {
+            mass,
+            centre: centre.map(|c| [c.x, c.y, c.z]),
+            inertia: std::array::from_fn(|i| std::array::from_fn(|j| inertia[(i, j)])),
+            principal: [principal[0], principal[1], principal[2]],
+            rigid_body: std::array::from_fn(|i| std::array::from_fn(|j| m0[(i, j)])),
+        }
     }
 }
 

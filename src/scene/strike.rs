@@ -82,6 +82,7 @@ pub fn strike(s: &Scene) -> Result<Strike, SceneIssue> {
     let full = s.dir.join(path);
     let read = ReadOptions {
         structure: true,
+        keep_cards: true,
         ..Default::default()
     };
     let deck = crate::deck::read_deck(&full, read).map_err(|e| SceneIssue(format!("target.deck: {e}")))?;

@@ -400,3 +400,77 @@ pub fn bench_size(sizes: &[usize], read_sizes: &[usize], steps: usize) -> Result
     }
     Ok(out)
 }
+
+/// What `impactlab check` costs on a production-sized deck: the plate wrapped onto a
+/// cylinder (`mesh panel --n 499 --radius 100`: 250 000 grids and 249 001 CQUAD4, about
+/// 500 000 lines) written to a temporary file, then read and checked `repeats` times
+/// after a warm-up. Reports the median of each stage (the reader; the survey of the
+/// structure and the rest of the check) and the largest peak resident memory of a
+/// repeat (Linux `VmHWM`, reset before each), as a multiple of the deck's size.
+pub fn bench_check(repeats: usize) -> Result<String, StudyError> {
+    use std::time::Instant;
+    let text = crate::mesh::panel_deck(499, 100.0, crate::mesh::Cells::Quad4)?;
+    let io = |source| StudyError::Io {
+        path: "a temporary deck".into(),
+        source,
+    };
+    let dir = tempfile::tempdir().map_err(io)?;
+    let path = dir.path().join("panel499.bdf");
+    std::fs::write(&path, &text).map_err(io)?;
+    let (bytes, lines) = (text.len(), text.lines().count());
+    drop(text);
+    let read = crate::deck::ReadOptions {
+        structure: true,
+        ..Default::default()
+    };
+    let (mut reads, mut checks, mut totals, mut peak) = (Vec::new(), Vec::new(), Vec::new(), 0u64);
+    let mut elements = 0;
+    for k in 0..=repeats {
+        reset_peak_memory();
+        let t0 = Instant::now();
+        let deck = crate::deck::read_deck(&path, read).map_err(crate::model::LoadError::from)?;
+        let t1 = Instant::now();
+        let report = crate::model::check::check(&deck);
+        drop(deck);
+        let t2 = Instant::now();
+        if !report.takes {
+            return Err(StudyError::Input(format!(
+                "check refuses the panel deck: {:?}",
+                report.errors
+            )));
+        }
+        elements = report.elements.values().sum::<usize>();
+        if k > 0 {
+            reads.push((t1 - t0).as_secs_f64());
+            checks.push((t2 - t1).as_secs_f64());
+            totals.push((t2 - t0).as_secs_f64());
+            peak = peak.max(peak_memory().unwrap_or(0));
+        }
+    }
+    let mib = |b: u64| b as f64 / (1u64 << 20) as f64;
+    let mut out = format!(
+        "check of the panel deck (mesh panel --n 499 --radius 100): {lines} lines, {:.1} MiB, {elements} elements; \
+         median of {repeats} after a warm-up\n",
+        mib(bytes as u64)
+    );
+    let _ = writeln!(out, "{:>24} {:>9}", "stage", "wall [s]");
+    for (name, v) in [
+        ("read", &reads),
+        ("survey, check, deck freed", &checks),
+        ("total (goal 2 s)", &totals),
+    ] {
+        let _ = writeln!(out, "{name:>24} {:>9.3}", median(v.clone()));
+    }
+    match peak {
+        0 => out += "peak resident memory: not available on this system\n",
+        p => {
+            let _ = writeln!(
+                out,
+                "peak resident memory {:.0} MiB, {:.1}× the deck's size (goal 10×)",
+                mib(p),
+                p as f64 / bytes as f64
+            );
+        }
+    }
+    Ok(out)
+}

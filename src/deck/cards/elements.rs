@@ -24,9 +24,9 @@ pub struct Connection {
     /// (0.0 for other kinds).
     pub zoffs: f64,
     /// A bar's orientation, offsets and pin flags (CBAR, CBEAM).
-    pub bar: Option<BarCard>,
+    pub bar: Option<Box<BarCard>>,
     /// A CONROD's own property (its PID is its EID).
-    pub rod: Option<Prod>,
+    pub rod: Option<Box<Prod>>,
     /// The property card a COSMIC plate names (CQDMEM1's PQDMEM1): COSMIC numbers
     /// each property card's ids apart, so PID is looked up among that card's.
     pub property_card: Option<&'static str>,
@@ -186,7 +186,7 @@ pub(super) fn card_element(r: &mut Reader, b: &mut Bulk, kind: &'static crate::e
         }
     }
     if matches!(kind.build, crate::elements::Build::Bar(_)) {
-        c.bar = Some(card_bar(r));
+        c.bar = Some(Box::new(card_bar(r)));
     } else if !shell {
         r.extra_fields(2 + n);
     }
@@ -553,7 +553,7 @@ pub(super) fn card_conrod(r: &mut Reader, b: &mut Bulk) {
             orientation_at: None,
             zoffs: 0.0,
             bar: None,
-            rod: Some(p),
+            rod: Some(Box::new(p)),
             property_card: None,
             at: r.at(),
         });

@@ -476,11 +476,20 @@ pub fn supported() -> Vec<&'static str> {
 
 /// Types all raw cards. Unknown card names are collected and returned. `ids_left` is
 /// what remains of [`super::Limits::max_listed_ids`].
-pub fn type_cards(raw: &[RawCard], ids_left: &mut usize, diags: &mut Diagnostics) -> (Bulk, Vec<super::UnknownCard>) {
+/// The raw cards are dropped as they are typed, unless `keep` is set: they are then
+/// returned.
+pub fn type_cards(
+    raw: Vec<RawCard>,
+    keep: bool,
+    ids_left: &mut usize,
+    diags: &mut Diagnostics,
+) -> (Bulk, Vec<super::UnknownCard>, Vec<RawCard>) {
     let mut b = Bulk::default();
     let mut unknown = Vec::new();
+    let mut kept = Vec::new();
     let mut barors = raw.iter().filter(|c| c.name == "BAROR");
-    let baror = barors.next();
+    let baror = barors.next().cloned();
+    let baror = baror.as_ref();
     for extra in barors {
         let first = baror.map(|c| c.pos.to_string()).unwrap_or_default();
         diags.push(
@@ -493,7 +502,7 @@ pub fn type_cards(raw: &[RawCard], ids_left: &mut usize, diags: &mut Diagnostics
         );
     }
     for whole in raw {
-        for piece in pieces(whole, baror) {
+        for piece in pieces(&whole, baror) {
             let card: &RawCard = &piece;
             let mut r = Reader::new(card, diags, ids_left);
             match card.name.as_str() {
@@ -558,13 +567,16 @@ pub fn type_cards(raw: &[RawCard], ids_left: &mut usize, diags: &mut Diagnostics
                 *b.readings.entry(what).or_default() += 1;
             }
         }
+        if keep {
+            kept.push(whole);
+        }
     }
     if let Some((w, _)) = &b.wtmass {
         let w = *w;
         b.scale_masses(w);
     }
     implicit_scalar_points(&mut b);
-    (b, unknown)
+    (b, unknown, kept)
 }
 
 /// Scalar points defined by their use: "a scalar point ... referenced on a scalar
@@ -640,7 +652,7 @@ fn pieces<'a>(card: &'a RawCard, baror: Option<&RawCard>) -> Vec<std::borrow::Co
                 if c.text(k).is_empty() && !d.text(k).is_empty() {
                     while c.fields.len() <= k {
                         c.fields.push(super::bulk::Field {
-                            text: String::new(),
+                            text: Default::default(),
                             pos: c.pos.clone(),
                             number: c.fields.len() % 8 + 2,
                         });
@@ -691,7 +703,7 @@ impl Bulk {
         for p in self
             .prods
             .iter_mut()
-            .chain(self.elements.iter_mut().filter_map(|c| c.rod.as_mut()))
+            .chain(self.elements.iter_mut().filter_map(|c| c.rod.as_deref_mut()))
         {
             p.nsm *= w;
         }
