@@ -1,0 +1,703 @@
+//! The elements: each card's kernel with its property and frames, point masses,
+//! scalar and general elements, attached through the rigid elements' ties, and the
+//! drilling supports a run adds.
+
+use super::*;
+
+/// The elements, and how many elements touch each grid.
+pub(super) struct Elements<'a, 's> {
+    pub(super) list: Vec<Element>,
+    pub(super) on_element: HashMap<i64, usize>,
+    /// The plies of each laminate (PCOMP) element, by its index in `list`.
+    pub(super) plies: HashMap<usize, PlyStack>,
+    /// The rigid elements, whose ties each element is attached through.
+    pub(super) rigid: &'a crate::model::rigid::Rigid,
+    /// For a survey of the structure: each element is handed to it as it is built,
+    /// with the grids' geometry, instead of kept in `list`.
+    pub(super) survey: Option<&'s mut Surveyor<'s>>,
+    /// The grids' positions and frames.
+    pub(super) geo: &'a Geometry,
+    /// Elements built so far.
+    pub(super) built: usize,
+}
+
+impl Elements<'_, '_> {
+    /// An element built, on grids whose DOFs are `dofs(g)`: attached through the ties
+    /// of the rigid elements (an independent grid that a grid follows whole carries
+    /// that grid's elements), then kept or surveyed.
+    pub(super) fn push(&mut self, e: Element, dofs: impl Fn(i64) -> [Option<usize>; 6]) {
+        let e = if self.rigid.ties.is_empty() {
+            e
+        } else {
+            if !matches!(e.kernel.family(), Family::Point { .. }) {
+                for (gn, _) in e.grids.iter().filter_map(|g| self.rigid.ties.get(g)?.whole()) {
+                    *self.on_element.entry(gn).or_default() += 1;
+                }
+            }
+            self.rigid.attach(e, dofs)
+        };
+        self.built += 1;
+        match &mut self.survey {
+            Some(survey) => survey(&e, self.geo),
+            None => self.list.push(e),
+        }
+    }
+}
+
+/// The element cards and CONM2s with their materials and sections resolved, then
+/// the drilling supports their grids need.
+pub(super) fn build_elements<'a, 's>(
+    cx: &mut Ctx,
+    deck: &Deck,
+    num: &Numbering,
+    geo: &'a Geometry,
+    rigid: &'a crate::model::rigid::Rigid,
+    survey: Option<&'s mut Surveyor<'s>>,
+) -> Elements<'a, 's> {
+    let mut out = Elements {
+        list: Vec::new(),
+        on_element: HashMap::new(),
+        plies: HashMap::new(),
+        rigid,
+        survey,
+        geo,
+        built: 0,
+    };
+    connected(cx, deck, num, geo, &mut out);
+    point_masses(cx, deck, num, geo, &mut out);
+    scalar_elements(cx, deck, num, geo, rigid, &mut out);
+    general_elements(cx, deck, num, geo, rigid, &mut out);
+    if out.survey.is_none() {
+        drilling_supports(num, geo, &mut out);
+    }
+    out
+}
+
+/// A placement for an element whose kernel works in the basic axes (a rod, a mass, a
+/// shell in the basic XY plane), needed only when one of its grids is displaced in
+/// another frame.
+pub(super) fn frames_only(grids: &[i64], geo: &Geometry, points: &[[f64; 3]]) -> Option<Placement> {
+    offset_in_basic(grids, geo, points, [0.0; 3])
+}
+
+/// [`frames_only`] with the kernel's corners at the grids moved by `offset` (basic),
+/// tied to them rigidly: needed when a grid is displaced in another frame or the
+/// offset is not zero.
+pub(super) fn offset_in_basic(
+    grids: &[i64],
+    geo: &Geometry,
+    points: &[[f64; 3]],
+    offset: [f64; 3],
+) -> Option<Placement> {
+    (offset != [0.0; 3] || grids.iter().any(|g| geo.frames.contains_key(g))).then(|| Placement {
+        turn: grids
+            .iter()
+            .map(|&g| Placement::turn_of(&Matrix3::identity(), &geo.frame(g), offset))
+            .collect(),
+        points: points.to_vec(),
+    })
+}
+
+/// True when a shell's corners lie in one plane z = const of the basic system (within
+/// 1e-9 relative) and run counter-clockwise about +z: its kernel then works in the
+/// basic axes themselves, as it always has for the paper's plate.
+pub(super) fn in_basic_xy(points: &[[f64; 3]]) -> bool {
+    let z = points[0][2];
+    if points.iter().any(|p| (p[2] - z).abs() > 1e-9 * (1.0 + z.abs())) {
+        return false;
+    }
+    let n = points.len();
+    let twice_area: f64 = (0..n)
+        .map(|i| {
+            let (a, b) = (points[i], points[(i + 1) % n]);
+            a[0] * b[1] - b[0] * a[1]
+        })
+        .sum();
+    twice_area > 0.0
+}
+
+/// Every grid that a shell out of the basic XY plane touches, whose rotations some
+/// direction of no shell stiffens, gets a [`Drill`] spring along that direction.
+pub(super) fn drilling_supports(num: &Numbering, geo: &Geometry, out: &mut Elements) {
+    let mut placed: std::collections::BTreeSet<i64> = std::collections::BTreeSet::new();
+    for e in out
+        .list
+        .iter()
+        .filter(|e| e.kernel.family().shell().is_some() && e.placement.is_some())
+    {
+        placed.extend(e.grids.iter().copied());
+    }
+    if placed.is_empty() {
+        return;
+    }
+    let mut blocks: BTreeMap<i64, Matrix3<f64>> = placed.iter().map(|&g| (g, Matrix3::zeros())).collect();
+    for e in out.list.iter().filter(|e| e.kernel.family().shell().is_some()) {
+        if !e.grids.iter().any(|g| placed.contains(g)) {
+            continue;
+        }
+        for l in e.stiffness() {
+            for (a, &(ga, ca)) in l.at.iter().enumerate() {
+                for (b, &(gb, cb)) in l.at.iter().enumerate() {
+                    if ga == gb && ca >= 3 && cb >= 3 {
+                        if let Some(k) = blocks.get_mut(&e.grids[ga]) {
+                            k[(ca - 3, cb - 3)] += l.values[(a, b)];
+                        }
+                    }
+                }
+            }
+        }
+    }
+    for (g, k) in blocks {
+        let x = geo.positions.get(&g).copied().unwrap_or_default();
+        if let Some(d) = Drill::for_rotations(x, &k) {
+            out.list.push(Element::new(0, vec![g], vec![num.grid_dofs(g)], d));
+        }
+    }
+}
+
+/// The element cards of [`crate::elements::KINDS`], kind by kind in the table's
+/// order and each in deck order, with their properties and materials resolved and
+/// their frames (see [`Placement`]).
+pub(super) fn connected(cx: &mut Ctx, deck: &Deck, num: &Numbering, geo: &Geometry, out: &mut Elements) {
+    let b = &deck.bulk;
+    let mut props = Properties::new(cx, b);
+    for kind in &crate::elements::KINDS {
+        for c in b.elements.iter().filter(|c| c.kind.card == kind.card) {
+            let mut ok = true;
+            let mut xyz = Vec::with_capacity(c.g.len());
+            for g in &c.g {
+                match (num.grids.get(g), geo.positions.get(g)) {
+                    (Some(_), Some(x)) => xyz.push(*x),
+                    // A grid whose position did not resolve: its error is reported.
+                    (Some(_), None) => ok = false,
+                    (None, _) => {
+                        cx.err(c.at.error(format!(
+                            "{} {} references grid {g}, which does not exist",
+                            kind.card, c.eid
+                        )));
+                        ok = false;
+                    }
+                }
+            }
+            let mut plies = None;
+            let (kernel, placement) = match kind.build {
+                Build::Rod(build) => {
+                    let Some(section) = props.rod(cx, c) else { continue };
+                    if !ok {
+                        continue;
+                    }
+                    (build(&xyz, section), frames_only(&c.g, geo, &xyz))
+                }
+                Build::Panel(build) => {
+                    let Some(section) = props.panel(cx, c) else { continue };
+                    if !ok {
+                        continue;
+                    }
+                    (build(&xyz, section), frames_only(&c.g, geo, &xyz))
+                }
+                Build::Bar(build) => {
+                    let section = props.bar(cx, c);
+                    let Some(placed) = ok.then(|| place_bar(cx, c, &xyz, geo)).flatten() else {
+                        continue;
+                    };
+                    let Some(section) = section else { continue };
+                    let card = c.bar.as_ref().expect("a bar's card keeps its bar fields");
+                    let spec = crate::elements::bar::BarSpec {
+                        card: kind.card,
+                        section,
+                        released: card.released.map(|r| r.0),
+                    };
+                    (build(&placed.0, spec), Some(placed.1))
+                }
+                Build::Shell(build) => {
+                    let Some(placed) = ok.then(|| place_shell(cx, c, &xyz, geo)).flatten() else {
+                        // The section is still resolved, so that its errors are reported.
+                        props.shell(cx, c, None);
+                        continue;
+                    };
+                    let Some((section, layers)) = props.shell(cx, c, Some(placed.material_angle)) else {
+                        continue;
+                    };
+                    plies = layers;
+                    (build(&placed.corners, section), placed.placement)
+                }
+            };
+            let kernel = match kernel {
+                Ok(k) => k,
+                Err(BadShape(why)) => {
+                    cx.err(c.at.error(format!("{} {} {why}", kind.card, c.eid)));
+                    continue;
+                }
+            };
+            for &g in &c.g {
+                *out.on_element.entry(g).or_default() += 1;
+            }
+            let dofs = c.g.iter().map(|&g| num.grid_dofs(g)).collect();
+            if let Some(layers) = plies {
+                out.plies.insert(out.built, layers);
+            }
+            let e = Element::boxed(c.eid, c.g.clone(), dofs, kernel);
+            out.push(
+                match placement {
+                    Some(p) => e.placed(p),
+                    None => e,
+                },
+                |g| num.grid_dofs(g),
+            );
+        }
+    }
+}
+
+/// A bar's ends in its own axes (A at the origin, B along x) and its placement: its
+/// ends are its grids moved by their offsets WA, WB (in the grids' displacement frames
+/// or the basic system, as OFFT says); x runs from end A to end B, y is the part of
+/// the orientation vector v normal to x (v in GA's displacement frame or the basic
+/// system, or from GA to G0), z = x × y.
+pub(super) fn place_bar(
+    cx: &mut Ctx,
+    c: &Connection,
+    xyz: &[[f64; 3]],
+    geo: &Geometry,
+) -> Option<(Vec<[f64; 3]>, Placement)> {
+    let card = c.bar.as_ref().expect("a bar's card keeps its bar fields");
+    let frames = [geo.frame(c.g[0]), geo.frame(c.g[1])];
+    let offset = |k: usize| {
+        let w = Vector3::from(card.offsets[k]);
+        if card.offsets_basic[k] {
+            w
+        } else {
+            frames[k] * w
+        }
+    };
+    let (wa, wb) = (offset(0), offset(1));
+    let (a, b) = (Vector3::from(xyz[0]) + wa, Vector3::from(xyz[1]) + wb);
+    let l = (b - a).norm();
+    let size = (Vector3::from(xyz[0]).norm() + Vector3::from(xyz[1]).norm()).max(1e-300);
+    if l.is_nan() || l <= 1e-12 * size {
+        cx.err(c.at.error(format!(
+            "{} {} has zero length: its ends (its grids moved by WA and WB) coincide",
+            c.kind.card, c.eid
+        )));
+        return None;
+    }
+    let x = (b - a) / l;
+    let v = match card.orientation {
+        BarOrientation::Vector(v) if card.orientation_basic => Vector3::from(v),
+        BarOrientation::Vector(v) => frames[0] * Vector3::from(v),
+        BarOrientation::Grid(g0) => {
+            let Some(p) = geo.positions.get(&g0) else {
+                cx.err(c.at.field_error(
+                    &card.orientation_at,
+                    format!("{} {}: G0 = {g0} is not a grid of the deck", c.kind.card, c.eid),
+                ));
+                return None;
+            };
+            Vector3::from(*p) - Vector3::from(xyz[0])
+        }
+    };
+    let y = v - x * v.dot(&x);
+    if y.norm().is_nan() || y.norm() <= 1e-9 * v.norm() {
+        cx.err(c.at.field_error(
+            &card.orientation_at,
+            format!(
+                "{} {}: the orientation vector lies along the bar's axis, so it gives no plane 1",
+                c.kind.card, c.eid
+            ),
+        ));
+        return None;
+    }
+    let y = y.normalize();
+    let axes = Matrix3::from_columns(&[x, y, x.cross(&y)]);
+    let turn = vec![
+        Placement::turn_of(&axes, &frames[0], wa.into()),
+        Placement::turn_of(&axes, &frames[1], wb.into()),
+    ];
+    Some((
+        vec![[0.0; 3], [l, 0.0, 0.0]],
+        Placement {
+            turn,
+            points: xyz.to_vec(),
+        },
+    ))
+}
+
+/// Where a shell's kernel works and how its material axes lie.
+pub(super) struct PlacedShell {
+    /// The corners as its kernel takes them.
+    pub(super) corners: Vec<[f64; 3]>,
+    /// How its kernel's DOFs come from its grids' (`None`: they are the same).
+    pub(super) placement: Option<Placement>,
+    /// The material x axis, degrees counter-clockwise from the kernel's x axis.
+    pub(super) material_angle: f64,
+}
+
+/// A shell's frame and material axis: in the basic XY plane (counter-clockwise about
+/// +z) its kernel works in the basic axes, as for the paper's plate; anywhere else in
+/// its own frame ([`crate::geometry::shell_frame`]). The material x axis is the G1→G2
+/// side turned by THETA, or the x axis of system MCID projected onto the element.
+pub(super) fn place_shell(cx: &mut Ctx, c: &Connection, xyz: &[[f64; 3]], geo: &Geometry) -> Option<PlacedShell> {
+    let (frame, corners, placement) = if in_basic_xy(xyz) {
+        // The reference plane ZOFFS along +z.
+        let placement = offset_in_basic(&c.g, geo, xyz, [0.0, 0.0, c.zoffs]);
+        (Matrix3::identity(), xyz.to_vec(), placement)
+    } else {
+        let f = match crate::geometry::shell_frame(xyz) {
+            Ok(f) => f,
+            Err(FrameError::Degenerate) => {
+                cx.err(c.at.error(format!(
+                    "{} {} is degenerate: its corners lie on one line or coincide",
+                    c.kind.card, c.eid
+                )));
+                return None;
+            }
+            Err(FrameError::Warped(w)) => {
+                cx.err(c.at.error(format!(
+                    "{} {} is warped: its corners stand {w:.3} of its half mean diagonal off its mean plane, \
+                     beyond the {} a flat element projected onto that plane is taken to stand for",
+                    c.kind.card,
+                    c.eid,
+                    crate::geometry::MAX_WARP
+                )));
+                return None;
+            }
+        };
+        let turn =
+            c.g.iter()
+                .zip(&f.offsets)
+                .map(|(&g, &d)| {
+                    let d = Vector3::from(d) + f.axes.column(2) * c.zoffs;
+                    Placement::turn_of(&f.axes, &geo.frame(g), d.into())
+                })
+                .collect();
+        let placement = Placement {
+            turn,
+            points: xyz.to_vec(),
+        };
+        (f.axes, f.local, Some(placement))
+    };
+    let side = Vector3::from(corners[1]) - Vector3::from(corners[0]);
+    let g1g2 = if frame == Matrix3::identity() {
+        side.y.atan2(side.x).to_degrees()
+    } else {
+        0.0
+    };
+    let material_angle = match c.orientation {
+        Orientation::Theta(theta) => g1g2 + theta,
+        Orientation::Mcid(mcid) => {
+            let at = c
+                .orientation_at
+                .as_ref()
+                .expect("a shell's card keeps its THETA/MCID field");
+            let Some(sys) = geo.systems.get(&mcid) else {
+                cx.err(c.at.field_error(
+                    at,
+                    format!(
+                        "{} {}: MCID = {mcid} names a coordinate system that no CORD card defines",
+                        c.kind.card, c.eid
+                    ),
+                ));
+                return None;
+            };
+            let centroid = xyz.iter().map(|&p| Vector3::from(p)).sum::<Vector3<f64>>() / xyz.len() as f64;
+            let x_axis = sys.frame_at(&centroid).map(|f| f.column(0).into_owned());
+            match x_axis.and_then(|x| crate::geometry::angle_in_plane(&frame, &x)) {
+                Some(a) => a,
+                None => {
+                    cx.err(c.at.field_error(
+                        at,
+                        format!(
+                            "{} {}: the x axis of system {mcid} at the element is along its normal (or undefined \
+                             there), so its projection gives no material axis",
+                            c.kind.card, c.eid
+                        ),
+                    ));
+                    return None;
+                }
+            }
+        }
+    };
+    Some(PlacedShell {
+        corners,
+        placement,
+        material_angle,
+    })
+}
+
+/// CONM2s: the mass at its grid moved by its offset (X1, X2, X3 in system CID's axes
+/// at the grid; CID = −1: X1-X3 are the mass's basic location), its inertia in CID's
+/// axes (basic for CID 0 and −1), tied rigidly to its grid and turned to the grid's
+/// displacement frame.
+pub(super) fn point_masses(cx: &mut Ctx, deck: &Deck, num: &Numbering, geo: &Geometry, out: &mut Elements) {
+    let b = &deck.bulk;
+    for m in &b.conm2s {
+        if !num.grids.contains_key(&m.g) {
+            cx.err(m.at.error(format!("CONM2 {} references grid {}, which does not exist", m.eid, m.g)));
+            continue;
+        }
+        let Some(&x) = geo.positions.get(&m.g) else { continue };
+        let axes = match m.cid {
+            -1 | 0 => Matrix3::identity(),
+            cid => match geo.systems.get(&cid).and_then(|s| s.frame_at(&Vector3::from(x))) {
+                Some(f) => f,
+                None => {
+                    cx.err(m.at.error(format!(
+                        "CONM2 {}: CID = {cid} names a coordinate system that no CORD card defines (or one \
+                         undefined at its grid)",
+                        m.eid
+                    )));
+                    continue;
+                }
+            },
+        };
+        let offset = match m.cid {
+            -1 => Vector3::from(m.offset) - Vector3::from(x),
+            _ => axes * Vector3::from(m.offset),
+        };
+        let at = Vector3::from(x) + offset;
+        let point = PointMass {
+            x: at.into(),
+            mass: m.mass,
+            inertia: m.inertia,
+        };
+        let e = Element::new(m.eid, vec![m.g], vec![num.grid_dofs(m.g)], point);
+        let placed = if m.cid <= 0 {
+            offset_in_basic(&[m.g], geo, &[x], offset.into())
+        } else {
+            Some(Placement {
+                turn: vec![Placement::turn_of(&axes, &geo.frame(m.g), offset.into())],
+                points: vec![x],
+            })
+        };
+        out.push(
+            match placed {
+                Some(p) => e.placed(p),
+                None => e,
+            },
+            |g| num.grid_dofs(g),
+        );
+    }
+}
+
+/// The scalar springs and masses (CELAS1-4, CMASS1-4) between their terminals: a
+/// grid's component in its displacement frame, or a scalar point; ground left out.
+pub(super) fn scalar_elements(
+    cx: &mut Ctx,
+    deck: &Deck,
+    num: &Numbering,
+    geo: &Geometry,
+    rigid: &crate::model::rigid::Rigid,
+    out: &mut Elements,
+) {
+    use crate::deck::cards::ScalarValue;
+    use crate::elements::scalar::{Scalar, ScalarKind};
+    let b = &deck.bulk;
+    let pelas: HashMap<i64, f64> = b.pelas.iter().map(|p| (p.pid, p.value)).collect();
+    let pmass: HashMap<i64, f64> = b.pmass.iter().map(|p| (p.pid, p.value)).collect();
+    for c in &b.scalars {
+        let card = c.at.name.as_str();
+        let value = match c.value {
+            ScalarValue::Value(v) => Some(v),
+            ScalarValue::Property(pid) => {
+                let (props, name) = if c.spring { (&pelas, "PELAS") } else { (&pmass, "PMASS") };
+                let v = props.get(&pid).copied();
+                if v.is_none() {
+                    cx.err(c.at.error(format!(
+                        "{card} {} references {name} {pid}, which does not exist",
+                        c.eid
+                    )));
+                }
+                v
+            }
+        };
+        let mut grids = Vec::new();
+        let mut dofs = Vec::new();
+        let mut slots = Vec::new();
+        let mut points = Vec::new();
+        let mut ok = true;
+        for &(g, comp) in c.terminals.iter().filter(|(g, _)| *g != 0) {
+            let (d, slot, x) = if num.grids.contains_key(&g) {
+                if comp == 0 {
+                    cx.err(c.at.field_error(
+                        &c.first_at,
+                        format!(
+                            "{card} {}: grid {g} needs a component 1-6 (0 or blank is a scalar point's)",
+                            c.eid
+                        ),
+                    ));
+                    ok = false;
+                    continue;
+                }
+                if rigid.ties.contains_key(&g) {
+                    cx.err(c.at.error(format!(
+                        "{card} {} is on grid {g}, which a rigid element makes dependent: connect it to an independent grid",
+                        c.eid
+                    )));
+                    ok = false;
+                    continue;
+                }
+                (num.grid_dofs(g), comp - 1, geo.positions.get(&g).copied())
+            } else if num.scalar.contains_key(&g) {
+                if comp != 0 {
+                    cx.err(c.at.field_error(
+                        &c.first_at,
+                        format!(
+                            "{card} {}: point {g} is a scalar point: its component is 0 or blank",
+                            c.eid
+                        ),
+                    ));
+                    ok = false;
+                    continue;
+                }
+                let i = num.index(&DofLabel { point: g, comp: 0 });
+                let mut d = [None; 6];
+                d[0] = i;
+                (d, 0, None)
+            } else {
+                cx.err(c.at.error(format!("{card} {} references point {g}, which does not exist", c.eid)));
+                ok = false;
+                continue;
+            };
+            slots.push((grids.len(), slot));
+            grids.push(g);
+            dofs.push(d);
+            points.push(x);
+        }
+        let Some(v) = value.filter(|_| ok) else { continue };
+        let kind = if c.spring {
+            ScalarKind::Spring(v)
+        } else {
+            ScalarKind::Mass(v)
+        };
+        let kernel = Scalar {
+            card: crate::elements::scalar::card_name(card),
+            kind,
+            slots,
+            points,
+        };
+        out.push(Element::new(c.eid, grids, dofs, kernel), |g| num.grid_dofs(g));
+    }
+}
+
+/// The GENELs: each a [`crate::elements::general::General`] over its {uᵢ} and {u_d}
+/// (grid components in their displacement frames, scalar points), K given or Z
+/// inverted, [S] given or computed from the grids' positions.
+pub(super) fn general_elements(
+    cx: &mut Ctx,
+    deck: &Deck,
+    num: &Numbering,
+    geo: &Geometry,
+    rigid: &crate::model::rigid::Rigid,
+    out: &mut Elements,
+) {
+    use crate::elements::general::{from_lower, rigid_row, rigid_s, General};
+    for c in &deck.bulk.genels {
+        let mut points: Vec<i64> = Vec::new();
+        let mut dofs = Vec::new();
+        let mut xs = Vec::new();
+        let mut slots = Vec::new();
+        let mut ok = true;
+        for &(p, comp) in c.ui.iter().chain(&c.ud) {
+            let at = match points.iter().position(|&q| q == p) {
+                Some(i) => i,
+                None => {
+                    let (d, x) = if num.grids.contains_key(&p) {
+                        if rigid.ties.contains_key(&p) {
+                            cx.err(c.at.error(format!(
+                                "GENEL {} is on grid {p}, which a rigid element makes dependent: connect it to an \
+                                 independent grid",
+                                c.eid
+                            )));
+                            ok = false;
+                            continue;
+                        }
+                        (num.grid_dofs(p), geo.positions.get(&p).copied())
+                    } else if num.scalar.contains_key(&p) {
+                        let mut d = [None; 6];
+                        d[0] = num.index(&DofLabel { point: p, comp: 0 });
+                        (d, None)
+                    } else {
+                        cx.err(c.at.error(format!("GENEL {} references point {p}, which does not exist", c.eid)));
+                        ok = false;
+                        continue;
+                    };
+                    points.push(p);
+                    dofs.push(d);
+                    xs.push(x);
+                    points.len() - 1
+                }
+            };
+            let scalar = xs[at].is_none() && num.scalar.contains_key(&p);
+            if scalar != (comp == 0) {
+                cx.err(c.at.error(format!(
+                    "GENEL {}: point {p} component {comp}: a grid takes a component 1-6, a scalar point 0",
+                    c.eid
+                )));
+                ok = false;
+                continue;
+            }
+            slots.push((at, comp.saturating_sub(1)));
+        }
+        if !ok {
+            continue;
+        }
+        if points.len() > crate::elements::MAX_GRIDS {
+            cx.err(c.at.error(format!(
+                "GENEL {} connects {} points: a GENEL of more than {} is not supported",
+                c.eid,
+                points.len(),
+                crate::elements::MAX_GRIDS
+            )));
+            continue;
+        }
+        let m = c.ui.len();
+        let given = from_lower(m, &c.lower);
+        let k = if c.flexibility {
+            match General::stiffness_of_flexibility(given) {
+                Ok(k) => k,
+                Err(e) => {
+                    cx.err(c.at.error(format!("GENEL {} {e}", c.eid)));
+                    continue;
+                }
+            }
+        } else {
+            given
+        };
+        let n = c.ud.len();
+        let s = match (&c.s, n) {
+            (_, 0) => None,
+            (Some(v), _) => Some(nalgebra::DMatrix::from_row_slice(m, n, v)),
+            (None, _) => {
+                let at_dof = |&(p, comp): &(i64, usize)| {
+                    let i = points.iter().position(|&q| q == p).expect("resolved above");
+                    xs[i].map(|x| (x, geo.frame(p), comp))
+                };
+                // The rigid motions about the first dependent grid, read at each DOF;
+                // none where a DOF is a scalar point's (it has no position).
+                let rows = |list: &[(i64, usize)], x0: [f64; 3]| -> Option<nalgebra::DMatrix<f64>> {
+                    let r: Option<Vec<[f64; 6]>> = list
+                        .iter()
+                        .map(|d| at_dof(d).map(|(x, t, comp)| rigid_row(x, &t, comp, x0)))
+                        .collect();
+                    r.map(|r| nalgebra::DMatrix::from_row_iterator(r.len(), 6, r.into_iter().flatten()))
+                };
+                let computed = at_dof(&c.ud[0]).and_then(|(x0, _, _)| Some((rows(&c.ui, x0)?, rows(&c.ud, x0)?)));
+                let Some((ri, rd)) = computed else {
+                    cx.err(c.at.error(format!(
+                        "GENEL {}: [S] is not given and a scalar point has no position to compute it from: give [S]",
+                        c.eid
+                    )));
+                    continue;
+                };
+                match rigid_s(&ri, &rd) {
+                    Ok(s) => Some(s),
+                    Err(e) => {
+                        cx.err(c.at.error(format!("GENEL {} {e}", c.eid)));
+                        continue;
+                    }
+                }
+            }
+        };
+        let kernel = General::new(slots, k, s, xs);
+        out.push(Element::new(c.eid, points, dofs, kernel), |g| num.grid_dofs(g));
+    }
+}
