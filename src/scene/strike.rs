@@ -18,11 +18,12 @@ use nalgebra::Vector3;
 use std::fmt::Write as _;
 
 /// Cards of a deck target that the scene leaves out: the transient and impact cards
-/// it writes itself, and scalar points (a structure's EPOINT would be a DOF with no
-/// mass or stiffness once its TF is gone).
-const LEFT_OUT: [&str; 14] = [
-    "TSTEP", "TF", "NOLIN3", "TIC", "EPOINT", "SPOINT", "FORCE", "MOMENT", "PLOAD4", "GRAV", "LOAD", "PARAM",
-    "INCLUDE", "ENDDATA",
+/// it writes itself, the static loads (a struck deck's load is its impactor), and
+/// scalar points (a structure's EPOINT would be a DOF with no mass or stiffness once
+/// its TF is gone).
+const LEFT_OUT: [&str; 18] = [
+    "TSTEP", "TF", "NOLIN3", "TIC", "EPOINT", "SPOINT", "FORCE", "MOMENT", "PLOAD", "PLOAD2", "PLOAD4", "GRAV", "LOAD",
+    "SPCD", "TEMPRB", "PARAM", "INCLUDE", "ENDDATA",
 ];
 
 /// Components of d in a grid's frame smaller than this are left out of the contact.
