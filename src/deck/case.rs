@@ -107,6 +107,12 @@ pub struct CaseControl {
     /// selects (its own, or those above the first SUBCASE); empty when it has none.
     /// The deck's `load`, `spc` and `label` are then the first one's.
     pub subcases: Vec<Subcase>,
+    /// The temperature set of a thermal load: TEMPERATURE(LOAD) (or TEMP(LOAD),
+    /// TEMPERATURE(BOTH)) = n, above the SUBCASEs, applied in each.
+    pub temperature: Option<Selection>,
+    /// The `SUBSTRUCTURE PHASEn` line that opens an automated substructuring run's
+    /// Substructure Control Deck (to ENDSUBS), with where it is.
+    pub substructuring: Option<(String, Pos)>,
 }
 
 /// One SUBCASE of a static deck: a load case.
@@ -413,6 +419,32 @@ pub fn parse_case(lines: &[SrcLine], subcases: Subcases, ids_left: &mut usize, d
         }
         if t.split_whitespace()
             .next()
+            .is_some_and(|w| w.eq_ignore_ascii_case("SUBSTRUCTURE"))
+        {
+            // The Substructure Control Deck runs to ENDSUBS.
+            let end = lines[i..]
+                .iter()
+                .position(|l| {
+                    let w = without_comment(&l.text).split_whitespace().next().unwrap_or("");
+                    w.eq_ignore_ascii_case("ENDSUBS")
+                })
+                .map_or(lines.len(), |k| i + k + 1);
+            diags.push(
+                Diagnostic::warning(
+                    Some(pos.clone()),
+                    format!(
+                        "the Substructure Control Deck ({} lines to ENDSUBS) is skipped",
+                        end - i + 1
+                    ),
+                )
+                .quote(&l.text),
+            );
+            cc.substructuring = Some((t.to_string(), pos));
+            i = end;
+            continue;
+        }
+        if t.split_whitespace()
+            .next()
             .is_some_and(|w| w.eq_ignore_ascii_case("SUBCASE"))
         {
             subcase(subcases, &mut cc, &mut above, &mut open, pos, &l.text, diags);
@@ -443,6 +475,7 @@ pub fn parse_case(lines: &[SrcLine], subcases: Subcases, ids_left: &mut usize, d
                 set_definition(&mut cc, n, &rhs, &src, pos, ids_left, diags);
             }
             [k] if SELECTORS.contains(k) => selector(&mut cc, k, &rhs, pos, &l.text, diags),
+            ["TEMPERATURE"] | ["TEMP"] => temperature(&mut cc, &key_full, &rhs, open.is_some(), pos, &l.text, diags),
             [k] if output_key(k).is_some() => {
                 let key = output_key(k).expect("matched");
                 output_request(&mut cc, key, &rhs, pos, &l.text, diags)
@@ -588,6 +621,62 @@ fn selector(cc: &mut CaseControl, k: &str, rhs: &str, pos: Pos, text: &str, diag
             Diagnostic::error(Some(pos), "is not a set identification number")
                 .card(k)
                 .token(rhs)
+                .quote(text),
+        ),
+    }
+}
+
+/// `TEMPERATURE(LOAD) = n` (TEMP, BOTH alike): the thermal load's temperature set.
+/// TEMPERATURE(MATERIAL) selects temperatures for temperature-dependent materials,
+/// which impactlab does not take (MATTi tables are refused where a deck has
+/// temperatures): it is ignored, with a warning.
+fn temperature(
+    cc: &mut CaseControl,
+    key: &str,
+    rhs: &str,
+    in_subcase: bool,
+    pos: Pos,
+    text: &str,
+    diags: &mut Diagnostics,
+) {
+    let describer: String = key
+        .split_once('(')
+        .map(|(_, d)| d.trim_end_matches(')').trim().to_string())
+        .unwrap_or_else(|| "BOTH".into());
+    let card = key.split('(').next().unwrap_or("TEMPERATURE").trim();
+    // As NASTRAN-95 reads a describer, by its first four characters (its own
+    // demonstration deck d01161a writes MATERIALS).
+    match describer.get(..4).unwrap_or(&describer) {
+        "LOAD" | "BOTH" if in_subcase => diags.push(
+            Diagnostic::error(
+                Some(pos),
+                "a thermal load inside a SUBCASE: impactlab applies one temperature set in every SUBCASE; \
+                 select it above the first SUBCASE",
+            )
+            .card(card)
+            .quote(text),
+        ),
+        "LOAD" | "BOTH" => match parse_int(rhs) {
+            Some(id) => cc.temperature = Some(Selection { id, pos }),
+            None => diags.push(
+                Diagnostic::error(Some(pos), "is not a temperature set identification number")
+                    .card(card)
+                    .token(rhs)
+                    .quote(text),
+            ),
+        },
+        "MATE" => diags.push(
+            Diagnostic::warning(
+                Some(pos),
+                "temperatures for temperature-dependent materials are not used by impactlab; ignored",
+            )
+            .card(card)
+            .quote(text),
+        ),
+        other => diags.push(
+            Diagnostic::error(Some(pos), "is not LOAD, MATERIAL or BOTH")
+                .card(card)
+                .token(other)
                 .quote(text),
         ),
     }

@@ -277,6 +277,20 @@ fn finish(
             line: l.line,
             column: 1,
         });
+    if let (Some((statement, at)), false) = (&case.substructuring, opts.structure) {
+        // "Phase 3: completion of the analysis of individual substructures using the
+        // {ua} vector produced in Phase 2" (User's Manual 1.10): the answer is not in
+        // this deck.
+        diags.push(
+            Diagnostic::error(
+                Some(at.clone()),
+                "automated substructuring is not run by impactlab: the solution of this phase is made from \
+                 the substructure operating file (SOF) of earlier runs, which impactlab does not read; \
+                 `impactlab check` reads the substructure the deck defines",
+            )
+            .quote(statement),
+        );
+    }
     let raw = bulk::assemble(sections.bulk, opts.limits, &mut diags);
     let (bulk, unknown, cards) = cards::type_cards(raw, opts.keep_cards, &mut ids_left, &mut diags);
     if !opts.structure {

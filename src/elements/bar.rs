@@ -62,6 +62,22 @@ pub struct BarSection {
     /// Mass moment of inertia about the axis per unit length (ρ(I1 + I2) for a
     /// CBEAM, 0 for a CBAR).
     pub torsional_inertia: f64,
+    /// Thermal expansion coefficient α.
+    pub alpha: f64,
+    /// Reference temperature: the material is unstrained at it.
+    pub tref: f64,
+}
+
+/// A temperature field on a bar, as TEMPRB gives it: the average temperature over
+/// the section at end A and end B, and the effective linear gradients at each end,
+/// T′1 = (1/I1)∫T y dA (plane 1) and T′2 = (1/I2)∫T z dA (plane 2). Each varies
+/// linearly from end A to end B.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BarTemperature {
+    /// TA, TB.
+    pub average: [f64; 2],
+    /// [T′1a, T′1b], [T′2a, T′2b].
+    pub gradient: [[f64; 2]; 2],
 }
 
 /// What a bar's kernel is built from: its section and its pin flags (components
@@ -188,6 +204,36 @@ impl Bar {
             release: p,
             k: p.transpose() * k * p,
         })
+    }
+
+    /// The end loads (element axes, on the DOFs the stiffness acts on) that a
+    /// temperature field puts on the bar: `f = Pᵀ ∫ Bᵀ s dx`, the work of the thermal
+    /// stress resultants s = (EαA(T − Tref), 0, −EαI1 T′1, −EαI2 T′2) on the
+    /// generalised strains (u′, θx′, v″, w″), ε = u′ − y v″ − z w″ at a section point
+    /// (hence the signs: a hotter +y side curves the bar away from +y). s is linear
+    /// along the bar and B is, so two-point Gauss is exact; with pin flags P carries a
+    /// released DOF's share to the others, as it does the stiffness. The solution of
+    /// the bar under these loads is exact at its ends (its curvatures are linear, as
+    /// the thermal ones are).
+    pub fn thermal_load(&self, t: &BarTemperature) -> [f64; 12] {
+        let (sec, l) = (&self.section, self.length);
+        let resultants = |xi: f64| {
+            let at = |v: [f64; 2]| v[0] + (v[1] - v[0]) * xi;
+            let ea = sec.e * sec.alpha;
+            SVector::<f64, 4>::new(
+                ea * sec.area * (at(t.average) - sec.tref),
+                0.0,
+                -ea * sec.i1 * at(t.gradient[0]),
+                -ea * sec.i2 * at(t.gradient[1]),
+            )
+        };
+        let g = 0.5 / 3f64.sqrt();
+        let f: V12 = [0.5 - g, 0.5 + g]
+            .iter()
+            .map(|&xi| strain_rows(l, xi).transpose() * resultants(xi) * (0.5 * l))
+            .sum();
+        let f = self.release.transpose() * f;
+        std::array::from_fn(|i| f[i])
     }
 
     fn full(&self, ue: &[f64]) -> V12 {
@@ -333,6 +379,8 @@ pub(crate) fn sample_section() -> BarSection {
         nsm: 1e-5,
         points: [[0.5, 0.3], [-0.5, 0.3], [-0.5, -0.3], [0.5, -0.3]],
         torsional_inertia: 0.0,
+        alpha: 1.3e-5,
+        tref: 20.0,
     }
 }
 
@@ -375,6 +423,51 @@ mod tests {
         let u = solve(SVector::<f64, 6>::from_column_slice(&[p, 0.0, 0.0, p, 0.0, 0.0]));
         assert!((u[0] / (p * l / (s.e * s.area)) - 1.0).abs() < 1e-12);
         assert!((u[3] / (p * l / (s.g * s.j)) - 1.0).abs() < 1e-12);
+    }
+
+    /// Goal: a temperature field's end loads give a bar the free thermal shape
+    /// exactly. Model: one cantilever bar (end A clamped, I12 = 0) under temperatures
+    /// and gradients varying linearly from end A to end B. Reference: the cantilever
+    /// is statically determinate, so no stress builds up and it takes its free thermal
+    /// strains, u′ = α(T − Tref), v″ = −αT′1, w″ = −αT′2: at the tip
+    /// u = αL(T̄ − Tref), v = −αL²(T′1a/3 + T′1b/6), θz = v′ = −αL(T′1a + T′1b)/2,
+    /// w = −αL²(T′2a/3 + T′2b/6), θy = −w′ = αL(T′2a + T′2b)/2 (T̄ the mean of TA
+    /// and TB). Tolerance: round-off (the element's curvatures are linear, as these).
+    #[test]
+    fn cantilever_takes_its_free_thermal_shape_exactly() {
+        let b = bar([0, 0]).unwrap();
+        let (s, l) = (b.section, b.length);
+        let t = BarTemperature {
+            average: [35.0, 80.0],
+            gradient: [[2.0, -7.0], [4.0, 1.5]],
+        };
+        let f = b.thermal_load(&t);
+        let kff = b.k.fixed_view::<6, 6>(6, 6).into_owned();
+        let u = kff.lu().solve(&SVector::<f64, 6>::from_column_slice(&f[6..])).unwrap();
+        let a = s.alpha;
+        let [[g1a, g1b], [g2a, g2b]] = t.gradient;
+        let want = [
+            a * l * (0.5 * (t.average[0] + t.average[1]) - s.tref),
+            -a * l * l * (g1a / 3.0 + g1b / 6.0),
+            -a * l * l * (g2a / 3.0 + g2b / 6.0),
+            0.0,
+            a * l * (g2a + g2b) / 2.0,
+            -a * l * (g1a + g1b) / 2.0,
+        ];
+        for (k, w) in want.iter().enumerate() {
+            assert!(
+                (u[k] - w).abs() < 1e-12 * want[1].abs(),
+                "DOF {k}: {} against {w}",
+                u[k]
+            );
+        }
+        // A free bar's thermal loads are in equilibrium: no net force or moment.
+        let net: [f64; 3] = std::array::from_fn(|c| f[c] + f[6 + c]);
+        let moment = f[5] + f[11] + l * f[7];
+        assert!(
+            net.iter().all(|v| v.abs() < 1e-9) && moment.abs() < 1e-9,
+            "{net:?} {moment}"
+        );
     }
 
     /// Goal: a rigid motion stores nothing and stresses nothing, with and without pin

@@ -13,12 +13,12 @@ use std::collections::BTreeMap;
 /// Bulk data cards that do not change a structure's stiffness, mass or constraints:
 /// loads, temperatures, eigenvalue and solution controls, tables, design and output
 /// cards. A deck's card of these kinds is listed as ignored, not as unsupported.
-pub const NON_STRUCTURAL: [&str; 71] = [
+pub const NON_STRUCTURAL: [&str; 70] = [
     // Static and dynamic loads.
     "FORCE", "FORCE1", "FORCE2", "MOMENT", "MOMENT1", "MOMENT2", "PLOAD1", "PLOADX1", "GRAV", "LOAD", "ACCEL", "ACCEL1",
     "RFORCE", "DAREA", "DLOAD", "TLOAD1", "TLOAD2", "RLOAD1", "RLOAD2", "LSEQ", "DELAY", "DPHASE",
     "SLOAD", // Temperatures.
-    "TEMP", "TEMPD", "TEMPP1", "TEMPRB", "TEMPAX", // Eigenvalue and solution controls.
+    "TEMP", "TEMPD", "TEMPP1", "TEMPAX", // Eigenvalue and solution controls.
     "EIGRL", "EIGR", "EIGC", "EIGB", "FREQ", "FREQ1", "FREQ2", "FREQ3", "FREQ4", "FREQ5", "TSTEPNL", "NLPARM", "NLPCI",
     "TABDMP1", // Tables.
     "TABLED1", "TABLED2", "TABLED3", "TABLED4", "TABLEM1", "TABLEM2", "TABLEM3", "TABLEM4", "TABLES1", "TABLEST",
@@ -32,8 +32,8 @@ pub const NON_STRUCTURAL: [&str; 71] = [
 /// temperature field, and are ignored where it has none.
 const TEMPERATURE_TABLES: [&str; 5] = ["MATT1", "MATT2", "MATT3", "MATT4", "MATT5"];
 
-/// The cards that give a temperature field.
-const TEMPERATURES: [&str; 5] = ["TEMP", "TEMPD", "TEMPP1", "TEMPRB", "TEMPAX"];
+/// The cards impactlab does not type that give a temperature field (TEMPRB it types).
+const TEMPERATURES: [&str; 4] = ["TEMP", "TEMPD", "TEMPP1", "TEMPAX"];
 
 /// Cards of one name the deck holds and impactlab does not take.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -154,7 +154,8 @@ pub fn check(deck: &Deck) -> CheckReport {
     let b = &deck.bulk;
     let mut unsupported: BTreeMap<String, CardCount> = BTreeMap::new();
     let mut ignored: BTreeMap<String, CardCount> = BTreeMap::new();
-    let has_temperatures = deck.unknown.iter().any(|u| TEMPERATURES.contains(&u.name.as_str()));
+    let has_temperatures =
+        !b.temprbs.is_empty() || deck.unknown.iter().any(|u| TEMPERATURES.contains(&u.name.as_str()));
     for u in &deck.unknown {
         let name = u.name.as_str();
         let to = if NON_STRUCTURAL.contains(&name) || (TEMPERATURE_TABLES.contains(&name) && !has_temperatures) {
@@ -197,6 +198,7 @@ pub fn check(deck: &Deck) -> CheckReport {
         .chain(b.ploads.iter().map(|l| &l.at))
         .chain(b.gravs.iter().map(|l| &l.at))
         .chain(b.spcds.iter().map(|l| &l.at))
+        .chain(b.temprbs.iter().map(|l| &l.at))
         .chain(b.load_combinations.iter().map(|l| &l.at));
     for at in loads {
         ignored

@@ -18,6 +18,8 @@
 //!   acceleration a = A·(N1, N2, N3) in rectangular system CID (NASTRAN's gravity: a
 //!   mass is pushed along a).
 //! - LOAD: S·Σ Sᵢ·(set Lᵢ); a set it names may not itself be a LOAD.
+//! - TEMPERATURE(LOAD) = n: the bars' end loads for their TEMPRB temperatures of set
+//!   n, in every SUBCASE (the bar kernel's thermal load, turned to the grids).
 
 use super::{ModelError, Structure};
 use crate::deck::cards::CardRef;
@@ -36,17 +38,27 @@ pub fn static_load(deck: &Deck, s: &Structure) -> Result<GridLoads, ModelError> 
     static_load_of(deck, s, deck.case.load.as_ref())
 }
 
-/// [`static_load`] of the LOAD selection `sel` (a SUBCASE's).
+/// [`static_load`] of the LOAD selection `sel` (a SUBCASE's), with the thermal load
+/// of the deck's TEMPERATURE(LOAD) selection when it has one.
 pub fn static_load_of(deck: &Deck, s: &Structure, sel: Option<&Selection>) -> Result<GridLoads, ModelError> {
     let mut errors = Vec::new();
     let mut out = GridLoads::new();
+    if let Some(t) = &deck.case.temperature {
+        thermal_load(deck, s, t, &mut out, &mut errors);
+    }
     let Some(sel) = sel else {
-        errors.push(Diagnostic::error(
-            deck.case.at.clone(),
-            "a static deck needs a load: LOAD = n in case control, selecting FORCE, MOMENT, PLOAD4, GRAV or LOAD \
-             cards of set n",
-        ));
-        return Err(ModelError { diagnostics: errors });
+        if deck.case.temperature.is_none() {
+            errors.push(Diagnostic::error(
+                deck.case.at.clone(),
+                "a static deck needs a load: LOAD = n in case control, selecting FORCE, MOMENT, PLOAD4, GRAV or \
+                 LOAD cards of set n, or TEMPERATURE(LOAD) = n, selecting TEMPRB cards",
+            ));
+        }
+        return if errors.is_empty() {
+            Ok(out)
+        } else {
+            Err(ModelError { diagnostics: errors })
+        };
     };
     let b = &deck.bulk;
     let combos: Vec<_> = b.load_combinations.iter().filter(|l| l.sid == sel.id).collect();
@@ -91,6 +103,78 @@ pub fn static_load_of(deck: &Deck, s: &Structure, sel: Option<&Selection>) -> Re
         Ok(out)
     } else {
         Err(ModelError { diagnostics: errors })
+    }
+}
+
+/// The thermal load of temperature set `sel`: each CBAR's and CBEAM's end loads for
+/// its TEMPRB ([`crate::elements::bar::Bar::thermal_load`]), turned to its grids'
+/// DOFs (Λᵀ f, offsets included). As NASTRAN requires (TEMPRB remark 4), every element
+/// needs a temperature in the set; impactlab takes them from TEMPRB, on bars, only (a
+/// deck's TEMP, TEMPD and TEMPP1 cards are refused as unknown), so another element
+/// kind in a thermally loaded structure is an error. The bars' thermal strains are
+/// free strains: a static solution's ½uᵀKu is then not the energy they store.
+fn thermal_load(deck: &Deck, s: &Structure, sel: &Selection, out: &mut GridLoads, errors: &mut Vec<Diagnostic>) {
+    use crate::elements::bar::Bar;
+    let b = &deck.bulk;
+    let mut of: BTreeMap<i64, &crate::deck::cards::Temprb> = BTreeMap::new();
+    for t in b.temprbs.iter().filter(|t| t.sid == sel.id) {
+        for &e in &t.eids {
+            if let Some(first) = of.insert(e, t) {
+                errors.push(t.at.error(format!(
+                    "TEMPRB {} gives element {e} a second temperature (the first at {})",
+                    t.sid, first.at.pos
+                )));
+            }
+        }
+    }
+    let selection = |message: String| {
+        Diagnostic::error(Some(sel.pos.clone()), format!("(LOAD) = {}: {message}", sel.id)).card("TEMPERATURE")
+    };
+    if of.is_empty() {
+        errors.push(selection(format!(
+            "set {} has no TEMPRB card (impactlab takes thermal loads on bars, from TEMPRB)",
+            sel.id
+        )));
+        return;
+    }
+    if let Some(c) = b.elements.iter().find(|c| !matches!(c.kind.card, "CBAR" | "CBEAM")) {
+        errors.push(selection(format!(
+            "{} {} needs a temperature, and impactlab takes thermal loads on CBAR and CBEAM (TEMPRB) only",
+            c.kind.card, c.eid
+        )));
+        return;
+    }
+    let mut bars = std::collections::BTreeSet::new();
+    for e in &s.elements {
+        let Some(bar) = e.kind::<Bar>() else { continue };
+        bars.insert(e.eid);
+        let Some(t) = of.get(&e.eid) else {
+            errors.push(selection(format!(
+                "{} {} has no TEMPRB in set {}: every element needs a temperature (TEMPRB remark 4)",
+                bar.card, e.eid, sel.id
+            )));
+            continue;
+        };
+        let f = bar.thermal_load(&t.temperature);
+        let turn = e.placement.as_ref().map(|p| &p.turn);
+        for (k, g) in e.grids.iter().enumerate() {
+            let local = nalgebra::Vector6::from_column_slice(&f[6 * k..6 * k + 6]);
+            let at_grid = match turn {
+                Some(t) => t[k].transpose() * local,
+                None => local,
+            };
+            let slot = out.entry(*g).or_insert([0.0; 6]);
+            for (v, a) in slot.iter_mut().zip(at_grid.iter()) {
+                *v += a;
+            }
+        }
+    }
+    for (eid, t) in of.iter().filter(|(e, _)| !bars.contains(e)) {
+        errors.push(t.at.error(format!(
+            "TEMPRB {} names element {eid}, which is not a CBAR or CBEAM of the deck (impactlab takes thermal loads \
+             on bars only)",
+            t.sid
+        )));
     }
 }
 

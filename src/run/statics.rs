@@ -105,42 +105,45 @@ pub fn solve(deck: &Deck) -> Result<(StaticSolution, Vec<Diagnostic>), StaticErr
 }
 
 /// Solves every SUBCASE of a static deck (the deck's one load case when it has one
-/// SUBCASE or none): the structure built and its stiffness factorised once, one solve
-/// for each SUBCASE's LOAD. Every SUBCASE must select the SPC the first selects (a
-/// constraint set is a factorisation).
+/// SUBCASE or none): for each constraint set the SUBCASEs select, the structure built
+/// and its stiffness factorised once, one solve for each of their LOADs; the solutions
+/// in SUBCASE order.
 pub fn solve_subcases(deck: &Deck) -> Result<(Vec<StaticSolution>, Vec<Diagnostic>), StaticError> {
     let subcases = &deck.case.subcases;
     if subcases.len() <= 1 {
         let (s, w) = solve(deck)?;
         return Ok((vec![s], w));
     }
-    let first = &subcases[0];
     let spc_id = |s: &crate::deck::case::Subcase| s.spc.as_ref().map(|x| x.id);
-    let differ: Vec<Diagnostic> = subcases[1..]
-        .iter()
-        .filter(|s| spc_id(s) != spc_id(first))
-        .map(|s| {
-            let name = |id: Option<i64>| id.map_or("none".to_string(), |i| format!("SPC = {i}"));
-            Diagnostic::error(
-                Some(s.pos.clone()),
-                format!(
-                    "SUBCASE {} selects {}, SUBCASE {} (at {}) {}: impactlab solves the SUBCASEs of one constraint \
-                     set (one factorisation); give the others their own deck",
-                    s.id,
-                    name(spc_id(s)),
-                    first.id,
-                    first.pos,
-                    name(spc_id(first))
-                ),
-            )
-            .card("SUBCASE")
-        })
-        .collect();
-    if !differ.is_empty() {
-        return Err(ModelError { diagnostics: differ }.into());
+    let mut sets: Vec<Option<i64>> = Vec::new();
+    for s in subcases {
+        if !sets.contains(&spc_id(s)) {
+            sets.push(spc_id(s));
+        }
     }
-    let cases: Vec<_> = subcases.iter().map(|s| (Some(s.id), s.load.as_ref())).collect();
-    solve_loads(deck, &cases)
+    if let [_] = sets.as_slice() {
+        let cases: Vec<_> = subcases.iter().map(|s| (Some(s.id), s.load.as_ref())).collect();
+        return solve_loads(deck, &cases);
+    }
+    // One structure (numbering, factorisation) a constraint set.
+    let (mut all, mut warnings) = (Vec::new(), Vec::new());
+    for set in sets {
+        let group: Vec<_> = subcases.iter().filter(|s| spc_id(s) == set).cloned().collect();
+        let mut d = deck.clone();
+        d.case.spc = group[0].spc.clone();
+        d.case.subcases = group;
+        let cases: Vec<_> = d.case.subcases.iter().map(|s| (Some(s.id), s.load.as_ref())).collect();
+        let (solutions, w) = solve_loads(&d, &cases)?;
+        all.extend(solutions);
+        for w in w {
+            if !warnings.iter().any(|k: &Diagnostic| k.to_string() == w.to_string()) {
+                warnings.push(w);
+            }
+        }
+    }
+    let order = |s: &StaticSolution| subcases.iter().position(|c| Some(c.id) == s.subcase);
+    all.sort_by_key(order);
+    Ok((all, warnings))
 }
 
 /// The solutions of the structure for each (SUBCASE, LOAD selection) of `cases`.

@@ -65,6 +65,22 @@ pub struct Grav {
     pub at: CardRef,
 }
 
+/// TEMPRB: a temperature field on bars, for a thermal load (BULK.TXT, TEMPRB).
+#[derive(Debug, Clone)]
+pub struct Temprb {
+    /// Temperature set id (field 2).
+    pub sid: i64,
+    /// The elements it applies to: EID1 (field 3) and those of the second and later
+    /// continuations (with THRU).
+    pub eids: Vec<i64>,
+    /// TA, TB and the effective gradients T′1a, T′1b, T′2a, T′2b (fields 4-9). The
+    /// first continuation's point temperatures serve NASTRAN's stress recovery only,
+    /// which a static run of impactlab does not write: they are read and not used.
+    pub temperature: crate::elements::bar::BarTemperature,
+    /// The card.
+    pub at: CardRef,
+}
+
 /// LOAD: the load set S·Σ Sᵢ·(set Lᵢ).
 #[derive(Debug, Clone)]
 pub struct LoadCombination {
@@ -302,6 +318,32 @@ pub(super) fn card_grav(r: &mut Reader, b: &mut Bulk) {
     r.extra_fields(7);
     if r.ok {
         b.gravs.push(g);
+    }
+}
+
+/// TEMPRB: SID EID1 TA TB T′1a T′1b T′2a T′2b, the point temperatures TCa … TFb,
+/// then EID2 … (THRU allowed) on the cards after.
+pub(super) fn card_temprb(r: &mut Reader, b: &mut Bulk) {
+    let sid = r.id(0, "SID");
+    let mut eids = vec![r.id(1, "EID1")];
+    let v: Vec<f64> = (2..8)
+        .map(|k| r.real_or(k, ["TA", "TB", "T'1a", "T'1b", "T'2a", "T'2b"][k - 2], 0.0))
+        .collect();
+    for k in 8..16 {
+        r.real_or(k, ["TCa", "TDa", "TEa", "TFa", "TCb", "TDb", "TEb", "TFb"][k - 8], 0.0);
+    }
+    eids.extend(r.id_list(16, "EIDn"));
+    let t = Temprb {
+        sid,
+        eids,
+        temperature: crate::elements::bar::BarTemperature {
+            average: [v[0], v[1]],
+            gradient: [[v[2], v[3]], [v[4], v[5]]],
+        },
+        at: r.at(),
+    };
+    if r.ok {
+        b.temprbs.push(t);
     }
 }
 

@@ -15,6 +15,11 @@ pub struct Mat1 {
     pub nu: f64,
     /// Mass density RHO (field 6).
     pub rho: f64,
+    /// Thermal expansion coefficient A (field 7; 0.0 when blank).
+    pub alpha: f64,
+    /// Reference temperature TREF (field 8; 0.0 when blank): a temperature load
+    /// strains the material by A·(T − TREF).
+    pub tref: f64,
     /// The card.
     pub at: CardRef,
 }
@@ -67,6 +72,8 @@ pub(super) fn card_mat1(r: &mut Reader, b: &mut Bulk) {
     let g = r.real_opt(2, "G");
     let nu = r.real_opt(3, "NU");
     let rho = r.real_or(4, "RHO", 0.0);
+    let alpha = r.real_or(5, "A", 0.0);
+    let tref = r.real_or(6, "TREF", 0.0);
     let (e, g, nu) = match (e, g, nu) {
         (Some(e), Some(g), Some(nu)) => (e, g, nu),
         (Some(e), None, Some(nu)) => (e, e / (2.0 * (1.0 + nu)), nu),
@@ -95,6 +102,8 @@ pub(super) fn card_mat1(r: &mut Reader, b: &mut Bulk) {
         g,
         nu,
         rho,
+        alpha,
+        tref,
         at: r.at(),
     };
     if r.ok {

@@ -162,6 +162,8 @@ pub struct Bulk {
     pub pload4s: Vec<Pload4>,
     /// GRAV cards.
     pub gravs: Vec<Grav>,
+    /// TEMPRB cards.
+    pub temprbs: Vec<Temprb>,
     /// LOAD cards.
     pub load_combinations: Vec<LoadCombination>,
     /// PARAM WTMASS when the deck sets it, with its card: every mass of the deck
@@ -452,14 +454,14 @@ impl<'a> Reader<'a> {
 
 /// Cards the reader knows. `PARAM` is accepted and ignored with a warning.
 /// Element cards are those of [`crate::elements::KINDS`] besides these.
-pub const KNOWN_CARDS: [&str; 74] = [
+pub const KNOWN_CARDS: [&str; 75] = [
     "GRID", "GRDSET", "CORD1R", "CORD1C", "CORD1S", "CORD2R", "CORD2C", "CORD2S", "EPOINT", "SPOINT", "PROD", "PBAR",
     "PBARL", "PBEAM", "PBEAML", "PSHELL", "PCOMP", "MAT1", "MAT2", "MAT8", "CONM2", "RBE2", "RBE3", "SPC1", "SPC",
     "SPCADD", "TF", "TSTEP", "NOLIN3", "TIC", "FORCE", "MOMENT", "PLOAD4", "GRAV", "LOAD", "PARAM", "INCLUDE",
     "ENDDATA", "BAROR", "PTUBE", "CELAS1", "CELAS2", "CELAS3", "CELAS4", "CMASS1", "CMASS2", "CMASS3", "CMASS4",
     "PELAS", "PMASS", "CQUAD1", "CQUAD2", "CQDMEM", "CQDMEM1", "CQDMEM2", "CTRIA1", "CTRIA2", "CTRMEM", "PQUAD1",
     "PTRIA1", "PQUAD2", "PTRIA2", "PQDMEM", "PQDMEM1", "PQDMEM2", "PTRMEM", "PCOMP1", "PCOMP2", "CRIGD1", "PSHEAR",
-    "GENEL", "SPCD", "PLOAD2", "PLOAD",
+    "GENEL", "SPCD", "PLOAD2", "PLOAD", "TEMPRB",
 ];
 
 /// Every card the reader types: the element cards of [`crate::elements::KINDS`] and
@@ -552,6 +554,7 @@ pub fn type_cards(
                 "FORCE" | "MOMENT" => card_point_load(&mut r, &mut b),
                 "PLOAD4" => card_pload4(&mut r, &mut b),
                 "GRAV" => card_grav(&mut r, &mut b),
+                "TEMPRB" => card_temprb(&mut r, &mut b),
                 "LOAD" => card_load(&mut r, &mut b),
                 "PARAM" => card_param(&mut r, &mut b, card),
                 name => match crate::elements::kind(name) {

@@ -455,6 +455,12 @@ fn no_static_loads(cx: &mut Ctx, deck: &Deck) {
     if let Some(sel) = &deck.case.load {
         cx.err(Diagnostic::error(Some(sel.pos.clone()), format!("LOAD = {} {why}", sel.id)).card("LOAD"));
     }
+    if let Some(sel) = &deck.case.temperature {
+        cx.err(
+            Diagnostic::error(Some(sel.pos.clone()), format!("TEMPERATURE(LOAD) = {} {why}", sel.id))
+                .card("TEMPERATURE"),
+        );
+    }
 }
 
 /// The SPC1, TF, NOLIN3, TIC and TSTEP cards the case control selects.

@@ -154,6 +154,8 @@ impl<'d> Properties<'d> {
             nsm: p.nsm,
             points: k.points,
             torsional_inertia: if beam { m.rho * (k.i1 + k.i2) } else { 0.0 },
+            alpha: m.alpha,
+            tref: m.tref,
         })
     }
 
