@@ -707,6 +707,17 @@ impl Element {
         (ue, 6 * self.dofs.len())
     }
 
+    /// A load `f` on the kernel's six DOFs at the element's `k`-th grid as that grid's
+    /// T1..R3 (in its displacement frame): Λₖᵀ f, the force and its moment about the
+    /// grid where the kernel's corner stands off it; `f` itself when the element is
+    /// not placed.
+    pub fn load_at_grid(&self, k: usize, f: nalgebra::Vector6<f64>) -> nalgebra::Vector6<f64> {
+        match &self.placement {
+            Some(p) => p.turn[k].transpose() * f,
+            None => f,
+        }
+    }
+
     /// Adds the element's stiffness and mass to global triplet lists (solved DOFs
     /// only; exact zeros skipped).
     pub fn scatter(&self, k: &mut Vec<(usize, usize, f64)>, m: &mut Vec<(usize, usize, f64)>) {

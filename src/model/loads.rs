@@ -156,13 +156,8 @@ fn thermal_load(deck: &Deck, s: &Structure, sel: &Selection, out: &mut GridLoads
             continue;
         };
         let f = bar.thermal_load(&t.temperature);
-        let turn = e.placement.as_ref().map(|p| &p.turn);
         for (k, g) in e.grids.iter().enumerate() {
-            let local = nalgebra::Vector6::from_column_slice(&f[6 * k..6 * k + 6]);
-            let at_grid = match turn {
-                Some(t) => t[k].transpose() * local,
-                None => local,
-            };
+            let at_grid = e.load_at_grid(k, nalgebra::Vector6::from_column_slice(&f[6 * k..6 * k + 6]));
             let slot = out.entry(*g).or_insert([0.0; 6]);
             for (v, a) in slot.iter_mut().zip(at_grid.iter()) {
                 *v += a;
@@ -358,9 +353,9 @@ impl Loads<'_> {
                 // the force and its moment, Λᵀ of the corner's force in the kernel's
                 // axes, which Λ's rotation block (Rᵀ T) gives from the grid's frame.
                 Some(p) => {
-                    let t = p.turn[k];
-                    let local = t.fixed_view::<3, 3>(0, 0) * v;
-                    let at_grid = t.transpose() * nalgebra::Vector6::new(local[0], local[1], local[2], 0.0, 0.0, 0.0);
+                    let local = p.turn[k].fixed_view::<3, 3>(0, 0) * v;
+                    let at_grid =
+                        e.load_at_grid(k, nalgebra::Vector6::new(local[0], local[1], local[2], 0.0, 0.0, 0.0));
                     for c in 0..6 {
                         slot[c] += at_grid[c];
                     }

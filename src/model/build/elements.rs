@@ -17,8 +17,6 @@ pub(super) struct Elements<'a, 's> {
     pub(super) survey: Option<&'s mut Surveyor<'s>>,
     /// The grids' positions and frames.
     pub(super) geo: &'a Geometry,
-    /// Elements built so far.
-    pub(super) built: usize,
 }
 
 impl Elements<'_, '_> {
@@ -36,7 +34,6 @@ impl Elements<'_, '_> {
             }
             self.rigid.attach(e, dofs)
         };
-        self.built += 1;
         match &mut self.survey {
             Some(survey) => survey(&e, self.geo),
             None => self.list.push(e),
@@ -61,7 +58,6 @@ pub(super) fn build_elements<'a, 's>(
         rigid,
         survey,
         geo,
-        built: 0,
     };
     connected(cx, deck, num, geo, &mut out);
     point_masses(cx, deck, num, geo, &mut out);
@@ -233,8 +229,9 @@ pub(super) fn connected(cx: &mut Ctx, deck: &Deck, num: &Numbering, geo: &Geomet
                 *out.on_element.entry(g).or_default() += 1;
             }
             let dofs = c.g.iter().map(|&g| num.grid_dofs(g)).collect();
-            if let Some(layers) = plies {
-                out.plies.insert(out.built, layers);
+            // A survey keeps no element, so no plies either.
+            if let (Some(layers), None) = (plies, &out.survey) {
+                out.plies.insert(out.list.len(), layers);
             }
             let e = Element::boxed(c.eid, c.g.clone(), dofs, kernel);
             out.push(
