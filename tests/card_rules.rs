@@ -130,6 +130,38 @@ fn cbar_field_9_by_its_content_and_baror_defaults() {
     assert_eq!(d.bulk.readings.values().sum::<usize>(), 3, "{:?}", d.bulk.readings);
 }
 
+/// BAROR's fields reach the CBARs written before it, and the cards are still typed
+/// in the order they are written (a CBAR waiting for it holds the cards after it);
+/// BAROR: "Only one BAROR card may appear in your Bulk Data Deck".
+#[test]
+fn cbars_before_baror_wait_for_it_in_order() {
+    let grids = "GRID,1,,0.,0.,0.\nGRID,2,,1.,0.,0.\n";
+    let d = structure(&format!(
+        "SOL 1\nCEND\nBEGIN BULK\n{grids}\
+         CBAR,1,,1,2\nCROD,2,5,1,2\nCBAR,3,9,1,2,0.,1.,0.,1\nBAROR,,9,,,0.,0.,1.,1\nCBAR,4,,1,2\nENDDATA\n"
+    ));
+    let e: Vec<(i64, i64)> = d.bulk.elements.iter().map(|e| (e.eid, e.pid)).collect();
+    assert_eq!(e, [(1, 9), (2, 5), (3, 9), (4, 9)]);
+    assert_eq!(
+        d.bulk.elements[0].bar.as_ref().unwrap().orientation,
+        BarOrientation::Vector([0.0, 0.0, 1.0])
+    );
+    let e = parse_deck_str(
+        "t.bdf",
+        &format!("SOL 1\nCEND\nBEGIN BULK\n{grids}CBAR,1,,1,2\nBAROR,,9,,,0.,0.,1.,1\nBAROR,,8\nENDDATA\n"),
+        ReadOptions {
+            structure: true,
+            ..Default::default()
+        },
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("t.bdf:8:1") && e.contains("only one BAROR card") && e.contains("is at t.bdf:7:1"),
+        "{e}"
+    );
+}
+
 /// CROD: "One or two ROD elements may be defined on a single card".
 #[test]
 fn two_rods_on_one_card() {

@@ -10,13 +10,14 @@ pub use super::image::Field;
 use super::image::{continuation_key, is_continuation, marker_keys, too_many_cards, Image, Imager};
 use super::source::SrcLine;
 use super::Limits;
+use compact_str::CompactString;
 use std::collections::HashMap;
 
 /// A logical bulk data card: name plus data fields from all its lines.
 #[derive(Debug, Clone)]
 pub struct RawCard {
     /// Card name, upper case (`GRID`, `CQUAD4`).
-    pub name: String,
+    pub name: CompactString,
     /// Where the card's first line starts.
     pub pos: Pos,
     /// Data fields of all lines in order (NASTRAN fields 2-9 of each line).
@@ -41,7 +42,7 @@ impl RawCard {
     /// The card in free-field format: its name and eight data fields a line, each
     /// further line a continuation (first field blank), every field's text as read.
     pub fn free_field(&self) -> String {
-        let mut out = self.name.clone();
+        let mut out = self.name.to_string();
         for (i, chunk) in self.fields.chunks(8).enumerate() {
             if i > 0 {
                 out.push('\n');
@@ -56,89 +57,144 @@ impl RawCard {
     }
 }
 
-/// Assembles bulk data lines into logical cards.
+/// Assembles bulk data lines into logical cards, handing each to `done` as soon as it
+/// is complete, in the order the cards start. A card is complete when a later card
+/// has started (an implicit continuation continues only the last card) and none of
+/// its field-10 identifiers is still open (an explicit continuation may come later).
 /// Stops with an error at the first card past [`Limits::max_cards`].
 /// Each line is dropped once read.
-pub fn assemble(lines: Vec<SrcLine>, limits: Limits, diags: &mut Diagnostics) -> Vec<RawCard> {
-    let mut cards: Vec<RawCard> = Vec::new();
-    // Open continuation identifiers: key -> card index.
-    let mut open: HashMap<String, usize> = HashMap::new();
+pub fn assemble(
+    lines: Vec<SrcLine>,
+    limits: Limits,
+    diags: &mut Diagnostics,
+    mut done: impl FnMut(RawCard, &mut Diagnostics),
+) {
+    let mut cards = Open::default();
     let mut imager = Imager::new();
     'lines: for line in lines {
-        let room = limits.max_cards.saturating_sub(cards.len());
+        let room = limits.max_cards.saturating_sub(cards.started);
         let Ok(images) = imager.line(&line, limits.max_replication, room, diags) else {
             diags.push(too_many_cards(&line.pos(1), &line.text, limits.max_cards));
             break;
         };
         for img in images {
             if is_continuation(&img.first.text) {
-                continue_card(img, &mut cards, &mut open, diags);
+                cards.continue_card(img, diags);
                 continue;
             }
-            if cards.len() == limits.max_cards {
+            if cards.started == limits.max_cards {
                 diags.push(too_many_cards(&img.first.pos, &img.src, limits.max_cards));
                 break 'lines;
             }
-            let i = cards.len();
-            open_markers(&img, i, &mut open);
-            cards.push(RawCard {
-                name: img.first.text.trim_end_matches('*').trim().to_ascii_uppercase(),
+            cards.start(img);
+            cards.complete(false, |c| done(c, diags));
+        }
+    }
+    cards.complete(true, |c| done(c, diags));
+}
+
+/// The cards not yet handed on: `waiting[k]` is card `first + k`, with how many of the
+/// open identifiers continue it.
+#[derive(Default)]
+struct Open {
+    waiting: std::collections::VecDeque<(RawCard, u8)>,
+    first: usize,
+    started: usize,
+    /// Open continuation identifiers: key -> card index.
+    keys: HashMap<String, usize>,
+}
+
+impl Open {
+    fn start(&mut self, img: Image) {
+        let keys = markers(&img);
+        self.waiting.push_back((
+            RawCard {
+                name: {
+                    let mut name = CompactString::from(img.first.text.trim_end_matches('*').trim());
+                    name.make_ascii_uppercase();
+                    name
+                },
                 pos: img.first.pos,
                 fields: img.data,
                 source: img.src,
                 replicated_at: img.replicated_at,
-            });
-        }
+            },
+            0,
+        ));
+        self.started += 1;
+        self.register(keys, self.started - 1);
     }
-    for c in &mut cards {
-        while c.fields.last().is_some_and(|f| f.text.is_empty()) {
-            c.fields.pop();
-        }
-    }
-    cards
-}
 
-/// Registers a card image's field 10, when it has one, as continued by card `i`.
-fn open_markers(img: &Image, i: usize, open: &mut HashMap<String, usize>) {
-    if img.marker.trim().is_empty() {
-        return;
-    }
-    for key in marker_keys(img) {
-        if !key.is_empty() {
-            open.insert(key, i);
+    /// Hands on, in order, the leading cards that are complete (all of them at the end).
+    fn complete(&mut self, end: bool, mut done: impl FnMut(RawCard)) {
+        while let Some((_, open)) = self.waiting.front() {
+            let last = self.first + 1 == self.started;
+            if !end && (last || *open > 0) {
+                break;
+            }
+            let (mut c, _) = self.waiting.pop_front().expect("a front card");
+            self.first += 1;
+            while c.fields.last().is_some_and(|f| f.text.is_empty()) {
+                c.fields.pop();
+            }
+            done(c);
         }
     }
-}
 
-/// Appends a continuation image to the card whose field 10 it names (or, when its
-/// field 1 names none, to the card before it).
-fn continue_card(img: Image, cards: &mut [RawCard], open: &mut HashMap<String, usize>, diags: &mut Diagnostics) {
-    let key = continuation_key(&img.first.text);
-    let target = if key.is_empty() {
-        cards.len().checked_sub(1)
-    } else {
-        open.get(&key).copied()
-    };
-    let Some(i) = target else {
-        let d = if key.is_empty() {
-            Diagnostic::error(Some(img.first.pos.clone()), "continuation line with no parent card")
+    /// Registers identifiers as continued by card `i`.
+    fn register(&mut self, keys: impl IntoIterator<Item = String>, i: usize) {
+        for key in keys {
+            if let Some(was) = self.keys.insert(key, i) {
+                self.waiting[was - self.first].1 -= 1;
+            }
+            self.waiting[i - self.first].1 += 1;
+        }
+    }
+
+    /// Appends a continuation image to the card whose field 10 it names (or, when its
+    /// field 1 names none, to the card before it).
+    fn continue_card(&mut self, img: Image, diags: &mut Diagnostics) {
+        let key = continuation_key(&img.first.text);
+        let target = if key.is_empty() {
+            // The last card is never handed on before another starts.
+            self.started.checked_sub(1)
         } else {
-            Diagnostic::error(
-                Some(img.first.pos.clone()),
-                "continuation marker matches no parent card's field 10",
-            )
-            .token(&img.first.text)
+            self.keys.get(&key).copied()
         };
-        diags.push(d.quote(&img.src));
-        return;
+        let Some(i) = target else {
+            let d = if key.is_empty() {
+                Diagnostic::error(Some(img.first.pos.clone()), "continuation line with no parent card")
+            } else {
+                Diagnostic::error(
+                    Some(img.first.pos.clone()),
+                    "continuation marker matches no parent card's field 10",
+                )
+                .token(&img.first.text)
+            };
+            diags.push(d.quote(&img.src));
+            return;
+        };
+        if self.waiting[i - self.first].1 > 0 {
+            self.keys.retain(|_, v| *v != i);
+            self.waiting[i - self.first].1 = 0;
+        }
+        self.register(markers(&img), i);
+        let card = &mut self.waiting[i - self.first].0;
+        pad(card, img.large);
+        card.fields.extend(img.data);
+        card.source.push('\n');
+        card.source.push_str(&img.src);
+    }
+}
+
+/// The identifiers a card image's field 10 opens, when it has one.
+fn markers(img: &Image) -> impl Iterator<Item = String> {
+    let keys = if img.marker.trim().is_empty() {
+        Default::default()
+    } else {
+        marker_keys(img)
     };
-    open.retain(|_, v| *v != i);
-    open_markers(&img, i, open);
-    let card = &mut cards[i];
-    pad(card, img.large);
-    card.fields.extend(img.data);
-    card.source.push('\n');
-    card.source.push_str(&img.src);
+    keys.into_iter().filter(|k| !k.is_empty())
 }
 
 /// Before a continuation is appended, the card's fields are padded to a whole line

@@ -291,8 +291,11 @@ fn finish(
             .quote(statement),
         );
     }
-    let raw = bulk::assemble(sections.bulk, opts.limits, &mut diags);
-    let (bulk, unknown, cards) = cards::type_cards(raw, opts.keep_cards, &mut ids_left, &mut diags);
+    let mut typer = cards::Typer::new(opts.keep_cards);
+    bulk::assemble(sections.bulk, opts.limits, &mut diags, |card, diags| {
+        typer.card(card, &mut ids_left, diags)
+    });
+    let (bulk, unknown, cards) = typer.finish(&mut ids_left, &mut diags);
     if !opts.structure {
         report_unknown(&unknown, opts, &mut diags);
     }

@@ -739,6 +739,21 @@ impl Element {
         self.turned(self.kernel.mass())
     }
 
+    /// Each grid's mass m when [`Element::mass`] is one lumped mass, m·I on each grid's
+    /// translations in grid and component order and nothing else (a zero m for a grid
+    /// it leaves out), without forming it; `None` otherwise.
+    pub fn lumped_translational_mass(&self) -> Option<Vec<f64>> {
+        let n = self.grids.len();
+        let local = self.kernel.mass();
+        let [l] = local.as_slice() else { return None };
+        let m = lumped_translations(l, n)?;
+        match &self.placement {
+            // Turned, such a mass is kept exactly m·I, over all DOFs in order.
+            Some(p) => (0..n).all(|g| p.rotates_only(g)).then_some(m),
+            None => l.at.windows(2).all(|w| w[0] < w[1]).then_some(m),
+        }
+    }
+
     /// The kernel's matrices as they act on the grids' DOFs: unchanged when the element
     /// is not placed, `Λᵀ K Λ` over all of its grids' DOFs when it is. A grid's block
     /// that is m·I on its translations alone (a lumped mass) is kept exactly m·I when

@@ -23,7 +23,8 @@
 use crate::deck::cards::{Bulk, CoordKind, Cord, CordDef, Grid};
 use crate::deck::Diagnostic;
 use nalgebra::{Matrix3, Vector3};
-use std::collections::{BTreeMap, HashMap};
+use rustc_hash::FxHashMap;
+use std::collections::BTreeMap;
 
 /// Relative tolerance below which A, B and C are taken as on one line (the cross
 /// product of A→B and A→C against the product of their lengths), and a grid as on a
@@ -133,10 +134,10 @@ impl CoordSys {
 #[derive(Debug, Clone, Default)]
 pub struct Geometry {
     /// Basic position of each grid.
-    pub positions: HashMap<i64, [f64; 3]>,
+    pub positions: FxHashMap<i64, [f64; 3]>,
     /// The displacement frame of each grid whose CD is not the basic system: its
     /// axes in basic components, as columns.
-    pub frames: HashMap<i64, Matrix3<f64>>,
+    pub frames: FxHashMap<i64, Matrix3<f64>>,
     /// The resolved systems by id (0, the basic system, included).
     pub systems: BTreeMap<i64, CoordSys>,
 }

@@ -202,9 +202,9 @@ pub fn check(deck: &Deck) -> CheckReport {
         .chain(b.load_combinations.iter().map(|l| &l.at));
     for at in loads {
         ignored
-            .entry(at.name.clone())
+            .entry(at.name.to_string())
             .or_insert_with(|| CardCount {
-                card: at.name.clone(),
+                card: at.name.to_string(),
                 count: 0,
                 first_at: at.pos.to_string(),
                 first_line: at.source.lines().next().unwrap_or("").to_string(),
@@ -222,7 +222,7 @@ pub fn check(deck: &Deck) -> CheckReport {
         .iter()
         .map(|c| SystemUse {
             cid: c.cid,
-            card: c.at.name.clone(),
+            card: c.at.name.to_string(),
             kind: match c.kind {
                 CoordKind::Rectangular => "rectangular",
                 CoordKind::Cylindrical => "cylindrical",

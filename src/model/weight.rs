@@ -61,12 +61,13 @@ impl RigidBodyMass {
         frame: &impl Fn(i64) -> Matrix3<f64>,
     ) {
         // A scalar point (no position) has no place in the rigid-body mass.
-        let located: Vec<bool> = e.grids.iter().map(|&g| position(g).is_some()).collect();
+        let at: Vec<Option<[f64; 3]>> = e.grids.iter().map(|&g| position(g)).collect();
         let d: Vec<SMatrix<f64, 6, 6>> = e
             .grids
             .iter()
-            .map(|&g| {
-                let (x, t) = (Vector3::from(position(g).unwrap_or_default()), frame(g));
+            .zip(&at)
+            .map(|(&g, x)| {
+                let (x, t) = (Vector3::from(x.unwrap_or_default()), frame(g));
                 let mut rigid = Matrix6::identity();
                 rigid.fixed_view_mut::<3, 3>(0, 3).copy_from(&(-x.cross_matrix()));
                 let mut turn = Matrix6::zeros();
@@ -75,11 +76,22 @@ impl RigidBodyMass {
                 turn * rigid
             })
             .collect();
+        // A lumped mass: the diagonal terms of the loop below, in its order.
+        if let Some(m) = e.lumped_translational_mass() {
+            for (g, &m) in m.iter().enumerate() {
+                if m != 0.0 && at[g].is_some() {
+                    for c in 0..3 {
+                        self.m0 += d[g].row(c).transpose() * d[g].row(c) * m;
+                    }
+                }
+            }
+            return;
+        }
         for l in e.mass() {
             for (a, &(ga, ca)) in l.at.iter().enumerate() {
                 for (b, &(gb, cb)) in l.at.iter().enumerate() {
                     let v = l.values[(a, b)];
-                    if v != 0.0 && located[ga] && located[gb] {
+                    if v != 0.0 && at[ga].is_some() && at[gb].is_some() {
                         self.m0 += d[ga].row(ca).transpose() * d[gb].row(cb) * v;
                     }
                 }

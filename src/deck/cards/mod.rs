@@ -27,7 +27,7 @@ use super::number::{parse_int, parse_real, RealToken};
 #[derive(Debug, Clone)]
 pub struct CardRef {
     /// Card name.
-    pub name: String,
+    pub name: compact_str::CompactString,
     /// Where the card starts.
     pub pos: Pos,
     /// The card's source lines, for quoting.
@@ -74,7 +74,7 @@ pub struct FieldRef {
     /// The field's name.
     pub name: &'static str,
     /// The field as written, trimmed; empty when blank.
-    pub token: String,
+    pub token: compact_str::CompactString,
 }
 
 /// A set of DOF components 1-6 (bit i-1 for component i); empty for scalar points.
@@ -223,7 +223,7 @@ impl<'a> Reader<'a> {
             pos,
             number,
             name,
-            token: self.text(k).to_string(),
+            token: self.text(k).into(),
         }
     }
 
@@ -476,91 +476,141 @@ pub fn supported() -> Vec<&'static str> {
     all
 }
 
-/// Types all raw cards. Unknown card names are collected and returned. `ids_left` is
-/// what remains of [`super::Limits::max_listed_ids`].
-/// The raw cards are dropped as they are typed, unless `keep` is set: they are then
-/// returned.
-pub fn type_cards(
-    raw: Vec<RawCard>,
-    keep: bool,
-    ids_left: &mut usize,
-    diags: &mut Diagnostics,
-) -> (Bulk, Vec<super::UnknownCard>, Vec<RawCard>) {
-    let mut b = Bulk::default();
-    let mut unknown = Vec::new();
-    let mut kept = Vec::new();
-    let mut barors = raw.iter().filter(|c| c.name == "BAROR");
-    let baror = barors.next().cloned();
-    let baror = baror.as_ref();
-    for extra in barors {
-        let first = baror.map(|c| c.pos.to_string()).unwrap_or_default();
-        diags.push(
-            Diagnostic::error(
-                Some(extra.pos.clone()),
-                format!("only one BAROR card may appear in the bulk data (the first is at {first})"),
-            )
-            .card("BAROR")
-            .quote(&extra.source),
-        );
+/// Types raw cards as they come, in the order they come. Unknown card names are
+/// collected. The raw cards are dropped as they are typed, unless `keep` is set: they
+/// are then returned.
+///
+/// BAROR's fields stand for any CBAR's blank ones, wherever the BAROR is: a CBAR
+/// with such blanks that comes before any BAROR holds back every card after it until
+/// a BAROR or the end, so that the cards are still typed in their order.
+pub struct Typer {
+    bulk: Bulk,
+    unknown: Vec<super::UnknownCard>,
+    kept: Option<Vec<RawCard>>,
+    baror: Option<RawCard>,
+    held: Vec<RawCard>,
+}
+
+impl Typer {
+    /// A typer that keeps the raw cards when `keep` is set.
+    pub fn new(keep: bool) -> Self {
+        Typer {
+            bulk: Bulk::default(),
+            unknown: Vec::new(),
+            kept: keep.then(Vec::new),
+            baror: None,
+            held: Vec::new(),
+        }
     }
-    for whole in raw {
-        for piece in pieces(&whole, baror) {
+
+    /// Types one card. `ids_left` is what remains of [`super::Limits::max_listed_ids`].
+    pub fn card(&mut self, card: RawCard, ids_left: &mut usize, diags: &mut Diagnostics) {
+        if card.name == "BAROR" {
+            match &self.baror {
+                Some(first) => diags.push(
+                    Diagnostic::error(
+                        Some(card.pos.clone()),
+                        format!(
+                            "only one BAROR card may appear in the bulk data (the first is at {})",
+                            first.pos
+                        ),
+                    )
+                    .card("BAROR")
+                    .quote(&card.source),
+                ),
+                None => {
+                    self.baror = Some(card.clone());
+                    for c in std::mem::take(&mut self.held) {
+                        self.type_card(c, ids_left, diags);
+                    }
+                }
+            }
+        }
+        let needs_baror = card.name == "CBAR" && [1, 4, 5, 6, 7].iter().any(|&k| card.text(k).is_empty());
+        if !self.held.is_empty() || self.baror.is_none() && needs_baror {
+            self.held.push(card);
+        } else {
+            self.type_card(card, ids_left, diags);
+        }
+    }
+
+    /// The bulk data typed, the unknown cards and the raw cards kept.
+    pub fn finish(
+        mut self,
+        ids_left: &mut usize,
+        diags: &mut Diagnostics,
+    ) -> (Bulk, Vec<super::UnknownCard>, Vec<RawCard>) {
+        for c in std::mem::take(&mut self.held) {
+            self.type_card(c, ids_left, diags);
+        }
+        let mut b = self.bulk;
+        if let Some((w, _)) = &b.wtmass {
+            let w = *w;
+            b.scale_masses(w);
+        }
+        implicit_scalar_points(&mut b);
+        (b, self.unknown, self.kept.unwrap_or_default())
+    }
+
+    fn type_card(&mut self, whole: RawCard, ids_left: &mut usize, diags: &mut Diagnostics) {
+        let (b, unknown) = (&mut self.bulk, &mut self.unknown);
+        for piece in pieces(&whole, self.baror.as_ref()) {
             let card: &RawCard = &piece;
             let mut r = Reader::new(card, diags, ids_left);
             match card.name.as_str() {
                 "BAROR" => r.extra_fields(8),
-                "GRID" => card_grid(&mut r, &mut b),
-                "GRDSET" => card_grdset(&mut r, &mut b),
-                "CORD1R" | "CORD1C" | "CORD1S" => card_cord1(&mut r, &mut b),
-                "CORD2R" | "CORD2C" | "CORD2S" => card_cord2(&mut r, &mut b),
-                "EPOINT" | "SPOINT" => card_points(&mut r, &mut b, card),
-                "PROD" => card_prod(&mut r, &mut b),
-                "PTUBE" => card_ptube(&mut r, &mut b),
+                "GRID" => card_grid(&mut r, b),
+                "GRDSET" => card_grdset(&mut r, b),
+                "CORD1R" | "CORD1C" | "CORD1S" => card_cord1(&mut r, b),
+                "CORD2R" | "CORD2C" | "CORD2S" => card_cord2(&mut r, b),
+                "EPOINT" | "SPOINT" => card_points(&mut r, b, card),
+                "PROD" => card_prod(&mut r, b),
+                "PTUBE" => card_ptube(&mut r, b),
                 "CELAS1" | "CELAS2" | "CELAS3" | "CELAS4" | "CMASS1" | "CMASS2" | "CMASS3" | "CMASS4" => {
-                    card_scalar(&mut r, &mut b)
+                    card_scalar(&mut r, b)
                 }
-                "PELAS" | "PMASS" => card_scalar_property(&mut r, &mut b),
-                "PCOMP1" | "PCOMP2" => card_pcomp_uniform(&mut r, &mut b),
+                "PELAS" | "PMASS" => card_scalar_property(&mut r, b),
+                "PCOMP1" | "PCOMP2" => card_pcomp_uniform(&mut r, b),
                 "CQUAD1" | "CQUAD2" | "CQDMEM" | "CQDMEM1" | "CQDMEM2" | "CTRIA1" | "CTRIA2" | "CTRMEM" => {
-                    card_cosmic_plate(&mut r, &mut b)
+                    card_cosmic_plate(&mut r, b)
                 }
                 "PQUAD1" | "PTRIA1" | "PQUAD2" | "PTRIA2" | "PQDMEM" | "PQDMEM1" | "PQDMEM2" | "PTRMEM" => {
-                    card_cosmic_plate_property(&mut r, &mut b)
+                    card_cosmic_plate_property(&mut r, b)
                 }
-                "CONROD" => card_conrod(&mut r, &mut b),
-                "PBAR" | "PBEAM" => card_pbar(&mut r, &mut b),
-                "PBARL" | "PBEAML" => card_pbarl(&mut r, &mut b),
-                "PSHELL" => card_pshell(&mut r, &mut b),
-                "MAT1" => card_mat1(&mut r, &mut b),
-                "MAT2" => card_mat2(&mut r, &mut b),
-                "MAT8" => card_mat8(&mut r, &mut b),
-                "PCOMP" => card_pcomp(&mut r, &mut b),
-                "CONM2" => card_conm2(&mut r, &mut b),
-                "SPC1" => card_spc1(&mut r, &mut b),
-                "SPC" => card_spc(&mut r, &mut b),
-                "SPCADD" => card_spcadd(&mut r, &mut b),
-                "RBE2" => card_rbe2(&mut r, &mut b),
-                "CRIGD1" => card_crigd1(&mut r, &mut b),
-                "PSHEAR" => card_pshear(&mut r, &mut b),
-                "GENEL" => card_genel(&mut r, &mut b),
-                "SPCD" => card_spcd(&mut r, &mut b),
-                "PLOAD2" => card_pload2(&mut r, &mut b),
-                "PLOAD" => card_pload(&mut r, &mut b),
-                "RBE3" => card_rbe3(&mut r, &mut b),
-                "TF" => card_tf(&mut r, &mut b, card),
-                "TSTEP" => card_tstep(&mut r, &mut b, card),
-                "NOLIN3" => card_nolin3(&mut r, &mut b),
-                "TIC" => card_tic(&mut r, &mut b),
-                "FORCE" | "MOMENT" => card_point_load(&mut r, &mut b),
-                "PLOAD4" => card_pload4(&mut r, &mut b),
-                "GRAV" => card_grav(&mut r, &mut b),
-                "TEMPRB" => card_temprb(&mut r, &mut b),
-                "LOAD" => card_load(&mut r, &mut b),
-                "PARAM" => card_param(&mut r, &mut b, card),
+                "CONROD" => card_conrod(&mut r, b),
+                "PBAR" | "PBEAM" => card_pbar(&mut r, b),
+                "PBARL" | "PBEAML" => card_pbarl(&mut r, b),
+                "PSHELL" => card_pshell(&mut r, b),
+                "MAT1" => card_mat1(&mut r, b),
+                "MAT2" => card_mat2(&mut r, b),
+                "MAT8" => card_mat8(&mut r, b),
+                "PCOMP" => card_pcomp(&mut r, b),
+                "CONM2" => card_conm2(&mut r, b),
+                "SPC1" => card_spc1(&mut r, b),
+                "SPC" => card_spc(&mut r, b),
+                "SPCADD" => card_spcadd(&mut r, b),
+                "RBE2" => card_rbe2(&mut r, b),
+                "CRIGD1" => card_crigd1(&mut r, b),
+                "PSHEAR" => card_pshear(&mut r, b),
+                "GENEL" => card_genel(&mut r, b),
+                "SPCD" => card_spcd(&mut r, b),
+                "PLOAD2" => card_pload2(&mut r, b),
+                "PLOAD" => card_pload(&mut r, b),
+                "RBE3" => card_rbe3(&mut r, b),
+                "TF" => card_tf(&mut r, b, card),
+                "TSTEP" => card_tstep(&mut r, b, card),
+                "NOLIN3" => card_nolin3(&mut r, b),
+                "TIC" => card_tic(&mut r, b),
+                "FORCE" | "MOMENT" => card_point_load(&mut r, b),
+                "PLOAD4" => card_pload4(&mut r, b),
+                "GRAV" => card_grav(&mut r, b),
+                "TEMPRB" => card_temprb(&mut r, b),
+                "LOAD" => card_load(&mut r, b),
+                "PARAM" => card_param(&mut r, b, card),
                 name => match crate::elements::kind(name) {
-                    Some(kind) => card_element(&mut r, &mut b, kind),
+                    Some(kind) => card_element(&mut r, b, kind),
                     None => unknown.push(super::UnknownCard {
-                        name: card.name.clone(),
+                        name: card.name.to_string(),
                         pos: card.pos.clone(),
                         line: card.source.lines().next().unwrap_or("").to_string(),
                     }),
@@ -570,16 +620,10 @@ pub fn type_cards(
                 *b.readings.entry(what).or_default() += 1;
             }
         }
-        if keep {
+        if let Some(kept) = &mut self.kept {
             kept.push(whole);
         }
     }
-    if let Some((w, _)) = &b.wtmass {
-        let w = *w;
-        b.scale_masses(w);
-    }
-    implicit_scalar_points(&mut b);
-    (b, unknown, kept)
 }
 
 /// Scalar points defined by their use: "a scalar point ... referenced on a scalar

@@ -8,7 +8,7 @@ pub(super) struct ContactRefs<'a> {
     pub(super) dependent: &'a [DependentPoint],
     pub(super) dep_index: &'a HashMap<i64, usize>,
     pub(super) elements: &'a [Element],
-    pub(super) on_element: &'a HashMap<i64, usize>,
+    pub(super) on_element: &'a FxHashSet<i64>,
     pub(super) labels: &'a [DofLabel],
 }
 
@@ -138,12 +138,12 @@ pub(super) fn find_impactor<'l>(
     cx: &mut Ctx,
     first: &crate::deck::cards::Nolin3,
     loads: &'l [NonlinearLoad],
-    on_element: &HashMap<i64, usize>,
+    on_element: &FxHashSet<i64>,
     prior_errors: bool,
 ) -> Option<&'l NonlinearLoad> {
     let free: Vec<&NonlinearLoad> = loads
         .iter()
-        .filter(|l| l.label.comp != 0 && !on_element.contains_key(&l.label.point))
+        .filter(|l| l.label.comp != 0 && !on_element.contains(&l.label.point))
         .collect();
     match free.as_slice() {
         [one] => Some(*one),

@@ -100,7 +100,7 @@ pub(super) fn prescribed_values(
     cx: &mut Ctx,
     deck: &Deck,
     sel: &Selected,
-    constrained: &HashMap<i64, u8>,
+    constrained: &FxHashMap<i64, u8>,
 ) -> BTreeMap<DofLabel, f64> {
     let mut out = BTreeMap::new();
     for s in &sel.spcs {
@@ -168,11 +168,11 @@ pub(super) fn enforced_values(sel: &Selected) -> Vec<Diagnostic> {
 
 /// The grids and their constrained components (PS, GRDSET and the selected SPC1s),
 /// each in the grid's displacement frame.
-pub(super) fn constrained_grids(cx: &mut Ctx, deck: &Deck, sel: &Selected) -> HashMap<i64, u8> {
+pub(super) fn constrained_grids(cx: &mut Ctx, deck: &Deck, sel: &Selected) -> FxHashMap<i64, u8> {
     let b = &deck.bulk;
     let spcs = &sel.spcs;
     let scalar = scalar_points(deck);
-    let mut constrained: HashMap<i64, u8> = HashMap::new();
+    let mut constrained: FxHashMap<i64, u8> = FxHashMap::default();
     for g in &b.grids {
         let ps = g.ps.unwrap_or(b.grdset.ps);
         constrained.insert(g.id, ps.0);
@@ -199,22 +199,26 @@ pub(super) fn constrained_grids(cx: &mut Ctx, deck: &Deck, sel: &Selected) -> Ha
 /// constrains and no rigid element makes dependent, in id order, then the scalar points no TF defines.
 pub(super) fn number_dofs<'d>(
     deck: &'d Deck,
-    constrained: &HashMap<i64, u8>,
+    constrained: &FxHashMap<i64, u8>,
     tf_of: &BTreeMap<i64, &crate::deck::cards::Tf>,
     rigid: &'d crate::model::rigid::Rigid,
 ) -> Numbering<'d> {
     let grids: BTreeMap<i64, &crate::deck::cards::Grid> = deck.bulk.grids.iter().map(|g| (g.id, g)).collect();
     let scalar = scalar_points(deck);
-    let mut dofs = Vec::new();
-    let mut grid_first = HashMap::with_capacity(grids.len());
-    for &id in grids.keys() {
-        let solved = !(constrained[&id] | rigid.dependent(id)) & 0b11_1111;
+    let solved: Vec<(i64, u8)> = grids
+        .keys()
+        .map(|&id| (id, !(constrained[&id] | rigid.dependent(id)) & 0b11_1111))
+        .collect();
+    let free_scalars = scalar.keys().filter(|id| !tf_of.contains_key(id)).count();
+    let mut dofs = Vec::with_capacity(solved.iter().map(|s| s.1.count_ones() as usize).sum::<usize>() + free_scalars);
+    let mut grid_first = FxHashMap::with_capacity_and_hasher(grids.len(), Default::default());
+    for (id, solved) in solved {
         grid_first.insert(id, (dofs.len(), solved));
         for comp in (1..=6u8).filter(|c| solved & (1 << (c - 1)) != 0) {
             dofs.push(DofLabel { point: id, comp });
         }
     }
-    let mut scalar_index = HashMap::new();
+    let mut scalar_index = FxHashMap::default();
     for &id in scalar.keys() {
         if !tf_of.contains_key(&id) {
             scalar_index.insert(id, dofs.len());

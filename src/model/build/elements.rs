@@ -4,10 +4,11 @@
 
 use super::*;
 
-/// The elements, and how many elements touch each grid.
+/// The elements, and the grids they touch.
 pub(super) struct Elements<'a, 's> {
     pub(super) list: Vec<Element>,
-    pub(super) on_element: HashMap<i64, usize>,
+    /// The grids an element is connected to (not kept by a survey).
+    pub(super) on_element: FxHashSet<i64>,
     /// The plies of each laminate (PCOMP) element, by its index in `list`.
     pub(super) plies: HashMap<usize, PlyStack>,
     /// The rigid elements, whose ties each element is attached through.
@@ -27,9 +28,9 @@ impl Elements<'_, '_> {
         let e = if self.rigid.ties.is_empty() {
             e
         } else {
-            if !matches!(e.kernel.family(), Family::Point { .. }) {
+            if !matches!(e.kernel.family(), Family::Point { .. }) && self.survey.is_none() {
                 for (gn, _) in e.grids.iter().filter_map(|g| self.rigid.ties.get(g)?.whole()) {
-                    *self.on_element.entry(gn).or_default() += 1;
+                    self.on_element.insert(gn);
                 }
             }
             self.rigid.attach(e, dofs)
@@ -53,7 +54,7 @@ pub(super) fn build_elements<'a, 's>(
 ) -> Elements<'a, 's> {
     let mut out = Elements {
         list: Vec::new(),
-        on_element: HashMap::new(),
+        on_element: FxHashSet::default(),
         plies: HashMap::new(),
         rigid,
         survey,
@@ -162,11 +163,11 @@ pub(super) fn connected(cx: &mut Ctx, deck: &Deck, num: &Numbering, geo: &Geomet
             let mut ok = true;
             let mut xyz = Vec::with_capacity(c.g.len());
             for g in &c.g {
-                match (num.grids.get(g), geo.positions.get(g)) {
-                    (Some(_), Some(x)) => xyz.push(*x),
+                match geo.positions.get(g) {
+                    Some(x) => xyz.push(*x),
                     // A grid whose position did not resolve: its error is reported.
-                    (Some(_), None) => ok = false,
-                    (None, _) => {
+                    None if num.grids.contains_key(g) => ok = false,
+                    None => {
                         cx.err(c.at.error(format!(
                             "{} {} references grid {g}, which does not exist",
                             kind.card, c.eid
@@ -225,8 +226,8 @@ pub(super) fn connected(cx: &mut Ctx, deck: &Deck, num: &Numbering, geo: &Geomet
                     continue;
                 }
             };
-            for &g in &c.g {
-                *out.on_element.entry(g).or_default() += 1;
+            if out.survey.is_none() {
+                out.on_element.extend(&c.g);
             }
             let dofs = c.g.iter().map(|&g| num.grid_dofs(g)).collect();
             // A survey keeps no element, so no plies either.

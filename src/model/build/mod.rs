@@ -13,6 +13,7 @@ use crate::deck::{Deck, Diagnostic};
 use crate::elements::{drill::Drill, mass::PointMass, rod::RodSection, BadShape, Build, Family, Placement};
 use crate::geometry::{FrameError, Geometry};
 use nalgebra::{Matrix2, Matrix3, Vector3};
+use rustc_hash::{FxHashMap, FxHashSet};
 use std::collections::{BTreeMap, HashMap};
 
 mod contact;
@@ -136,9 +137,9 @@ struct Numbering<'d> {
     dofs: Vec<DofLabel>,
     /// Each grid's solved DOFs: the index of its first and the components solved
     /// (bit c−1 for component c), numbered in component order from the first.
-    grid_first: HashMap<i64, (usize, u8)>,
+    grid_first: FxHashMap<i64, (usize, u8)>,
     /// Each scalar point's solved DOF.
-    scalar_index: HashMap<i64, usize>,
+    scalar_index: FxHashMap<i64, usize>,
     /// The rigid elements' dependent grids.
     rigid: &'d crate::model::rigid::Rigid,
 }
