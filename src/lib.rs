@@ -44,6 +44,7 @@ pub mod damage;
 pub mod laminate;
 pub mod model;
 pub mod assembly;
+pub mod eigen;
 pub mod physics;
 pub mod integrate;
 pub mod mesh;

@@ -88,7 +88,7 @@ fn thru_lists_in_spc1_epoint_and_case_sets() {
 }
 
 #[test]
-fn executive_control_accepts_every_direct_transient_sol_and_statics() {
+fn executive_control_accepts_every_direct_transient_sol_statics_and_modes() {
     for (sol, read) in [
         ("9", 9),
         ("27", 27),
@@ -99,6 +99,9 @@ fn executive_control_accepts_every_direct_transient_sol_and_statics() {
         ("1", 101),
         ("SESTATIC", 101),
         ("STATICS", 101),
+        ("3", 103),
+        ("103", 103),
+        ("SEMODES", 103),
     ] {
         let d = parse_deck_str(
             "t.bdf",
@@ -107,8 +110,8 @@ fn executive_control_accepts_every_direct_transient_sol_and_statics() {
         );
         assert_eq!(d.map(|d| d.executive.sol).ok(), Some(Some(read)), "SOL {sol}");
     }
-    let e = errors("SOL 103\nCEND\nBEGIN BULK\nENDDATA\n");
-    assert!(e[0].contains("SOL 103 is not supported"), "{e:?}");
+    let e = errors("SOL 111\nCEND\nBEGIN BULK\nENDDATA\n");
+    assert!(e[0].contains("SOL 111 is not supported"), "{e:?}");
 }
 
 #[test]

@@ -3,7 +3,10 @@
 //! no INCLUDE), so one input costs at most what a small deck costs. The first byte's
 //! low bits choose whether unknown cards are errors or warnings, and whether the deck
 //! is read for its structure alone and checked (`impactlab check`), so every path is
-//! explored. A linear static deck (SOL 101) is solved, as `impactlab run` solves it.
+//! explored. A linear static deck (SOL 101) is solved, as `impactlab run` solves it,
+//! and a normal modes deck (SOL 103) of at most 50 points (the Lanczos method's cost
+//! grows as the cube of the roots asked for; a deck of 1 000 cards may ask for
+//! thousands).
 #![no_main]
 
 use impactlab::deck::{parse_deck_str, Limits, ReadOptions};
@@ -24,6 +27,10 @@ fuzz_target!(|data: &[u8]| {
             let _ = impactlab::model::check::check(&deck);
         } else if deck.executive.sol == Some(impactlab::deck::STATICS) {
             let _ = impactlab::run::statics::solve(&deck);
+        } else if deck.executive.sol == Some(impactlab::deck::MODES) {
+            if deck.bulk.grids.len() + deck.bulk.spoints.len() <= 50 {
+                let _ = impactlab::run::modes::solve(&deck);
+            }
         } else {
             let _ = impactlab::model::build_model(&deck);
         }

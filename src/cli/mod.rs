@@ -197,6 +197,9 @@ pub fn run(a: RunArgs) -> Result<u8, Error> {
         if d.executive.sol == Some(deck::STATICS) {
             return run_static(&a, &d);
         }
+        if d.executive.sol == Some(deck::MODES) {
+            return run_modes(&a, &d);
+        }
         let (model, mut warnings) = impactlab::model::build_model(&d).map_err(impactlab::model::LoadError::from)?;
         let mut all = d.warnings;
         all.append(&mut warnings);
@@ -286,21 +289,7 @@ pub fn run(a: RunArgs) -> Result<u8, Error> {
 /// `impactlab run` on a linear static deck (SOL 101): K u = f, its displacements and
 /// summary written to the output directory.
 fn run_static(a: &RunArgs, d: &deck::Deck) -> Result<u8, Error> {
-    let transient = [
-        (a.scheme.is_some(), "--scheme"),
-        (a.dt.is_some(), "--dt"),
-        (a.steps.is_some(), "--steps"),
-        (a.giic.is_some(), "--giic"),
-        (a.fields.is_some(), "--fields"),
-        (a.all_dofs, "--all-dofs"),
-        (!a.engine.is_direct(), "--engine"),
-    ];
-    if let Some((_, flag)) = transient.iter().find(|t| t.0) {
-        return Err(Error::Usage(format!(
-            "{}: {flag} applies to a transient run; this deck is a linear static one (SOL 101)",
-            a.deck.display()
-        )));
-    }
+    refuse_transient_flags(a, "a linear static one (SOL 101)")?;
     for w in &d.warnings {
         say_err(&w.to_string());
     }
@@ -315,6 +304,43 @@ fn run_static(a: &RunArgs, d: &deck::Deck) -> Result<u8, Error> {
     }
     sayln(&format!("  outputs:  {}", dir.display()));
     Ok(0)
+}
+
+/// `impactlab run` on a normal modes deck (SOL 3, 103).
+fn run_modes(a: &RunArgs, d: &deck::Deck) -> Result<u8, Error> {
+    refuse_transient_flags(a, "a normal modes one (SOL 103)")?;
+    for w in &d.warnings {
+        say_err(&w.to_string());
+    }
+    let (solution, warnings) = impactlab::run::modes::solve(d)?;
+    for w in &warnings {
+        say_err(&w.to_string());
+    }
+    let dir = a.out.clone().unwrap_or_else(|| PathBuf::from("out").join(&d.name));
+    output::write_dir_atomically(&dir, &output::modal_files(&solution)).map_err(io_error(&dir))?;
+    say(&output::modal_summary(&solution));
+    sayln(&format!("  outputs:  {}", dir.display()));
+    Ok(0)
+}
+
+/// A run's flags that apply only to a transient deck, refused on a deck of `kind`.
+fn refuse_transient_flags(a: &RunArgs, kind: &str) -> Result<(), Error> {
+    let transient = [
+        (a.scheme.is_some(), "--scheme"),
+        (a.dt.is_some(), "--dt"),
+        (a.steps.is_some(), "--steps"),
+        (a.giic.is_some(), "--giic"),
+        (a.fields.is_some(), "--fields"),
+        (a.all_dofs, "--all-dofs"),
+        (!a.engine.is_direct(), "--engine"),
+    ];
+    match transient.iter().find(|t| t.0) {
+        Some((_, flag)) => Err(Error::Usage(format!(
+            "{}: {flag} applies to a transient run; this deck is {kind}",
+            a.deck.display()
+        ))),
+        None => Ok(()),
+    }
 }
 
 /// `impactlab sweep --find velocity --until …`: the threshold impact speed and energy,

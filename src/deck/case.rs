@@ -10,8 +10,9 @@ use std::collections::BTreeMap;
 pub struct Executive {
     /// ID statement's text.
     pub id: Option<String>,
-    /// Solution sequence (SOL): a direct transient one, or 101 for a linear static
-    /// one (SOL 1, 101, SESTATIC, STATICS).
+    /// Solution sequence (SOL): a direct transient one, 101 for a linear static one
+    /// (SOL 1, 101, SESTATIC, STATICS) or 103 for normal modes (SOL 3, 103, SEMODES,
+    /// MODES).
     pub sol: Option<u32>,
     /// The SOL statement's solution as written (`101`, `SESTATIC`).
     pub solution: Option<String>,
@@ -31,6 +32,10 @@ pub const DIRECT_TRANSIENT_SOLS: [u32; 4] = [9, 27, 109, 129];
 /// The solution number of linear statics, as [`Executive::sol`] holds it for SOL 1,
 /// 101, SESTATIC and STATICS.
 pub const STATICS: u32 = 101;
+
+/// The solution number impactlab keeps for normal modes: NASTRAN-95's SOL 3, MSC's
+/// 103, SEMODES and MODES.
+pub const MODES: u32 = 103;
 
 /// A case-control selection with where it was written.
 #[derive(Debug, Clone)]
@@ -97,6 +102,8 @@ pub struct CaseControl {
     pub tfl: Option<Selection>,
     /// LOAD selection (the static loads of a SOL 101 deck).
     pub load: Option<Selection>,
+    /// METHOD selection (the EIGR or EIGRL of a normal modes deck).
+    pub method: Option<Selection>,
     /// Output requests by keyword: NLLOAD, DISP, VELO, ACCEL, STRESS, STRAIN, FORCE,
     /// ELFORCE (NASTRAN's longer names and synonyms read as these).
     pub outputs: BTreeMap<String, OutputRequest>,
@@ -152,12 +159,13 @@ pub fn parse_executive(lines: &[SrcLine], structure: bool, diags: &mut Diagnosti
                 match parse_int(word) {
                     Some(n) if DIRECT_TRANSIENT_SOLS.contains(&(n as u32)) => e.sol = Some(n as u32),
                     Some(1 | 101) => e.sol = Some(STATICS),
+                    Some(3 | 103) => e.sol = Some(MODES),
                     Some(n) => diags.push(
                         Diagnostic::error(
                             Some(l.pos(1)),
                             format!(
-                                "SOL {n} is not supported: only direct transient response (SOL 9, 27, 109, 129) and \
-                                 linear statics (SOL 101)"
+                                "SOL {n} is not supported: only direct transient response (SOL 9, 27, 109, 129), \
+                                 linear statics (SOL 101) and normal modes (SOL 103)"
                             ),
                         )
                         .card("SOL")
@@ -169,11 +177,13 @@ pub fn parse_executive(lines: &[SrcLine], structure: bool, diags: &mut Diagnosti
                             e.sol = Some(109);
                         } else if up == "SESTATIC" || up == "STATICS" {
                             e.sol = Some(STATICS);
+                        } else if up == "SEMODES" || up == "MODES" {
+                            e.sol = Some(MODES);
                         } else {
                             diags.push(
                                 Diagnostic::error(
                                     Some(l.pos(1)),
-                                    "is not a supported solution sequence (SOL 9, 27, 109, 129; SOL 101)",
+                                    "is not a supported solution sequence (SOL 9, 27, 109, 129; SOL 101; SOL 103)",
                                 )
                                 .card("SOL")
                                 .token(word)
@@ -287,7 +297,7 @@ fn parse_id_list(text: &str, pos: &Pos, src: &str, ids_left: &mut usize, diags: 
     out
 }
 
-const SELECTORS: [&str; 6] = ["SPC", "IC", "NONLINEAR", "TSTEP", "TFL", "LOAD"];
+const SELECTORS: [&str; 7] = ["SPC", "IC", "NONLINEAR", "TSTEP", "TFL", "LOAD", "METHOD"];
 
 /// Output requests impactlab writes: NASTRAN's name, and the key it is kept under.
 /// A request may be written by any abbreviation of its name of four letters or more
@@ -603,7 +613,7 @@ fn set_definition(
     }
 }
 
-/// `SPC = n`, `IC = n`, `NONLINEAR = n`, `TSTEP = n`, `TFL = n`.
+/// `SPC = n`, `IC = n`, `NONLINEAR = n`, `TSTEP = n`, `TFL = n`, `LOAD = n`, `METHOD = n`.
 fn selector(cc: &mut CaseControl, k: &str, rhs: &str, pos: Pos, text: &str, diags: &mut Diagnostics) {
     match parse_int(rhs) {
         Some(id) => {
@@ -614,6 +624,7 @@ fn selector(cc: &mut CaseControl, k: &str, rhs: &str, pos: Pos, text: &str, diag
                 "NONLINEAR" => cc.nonlinear = sel,
                 "TSTEP" => cc.tstep = sel,
                 "LOAD" => cc.load = sel,
+                "METHOD" => cc.method = sel,
                 _ => cc.tfl = sel,
             }
         }

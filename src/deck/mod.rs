@@ -13,7 +13,7 @@ pub mod number;
 pub mod source;
 
 pub use cards::{Bulk, CardRef, Components};
-pub use case::{CaseControl, Executive, OutputSet, STATICS};
+pub use case::{CaseControl, Executive, OutputSet, MODES, STATICS};
 pub use diag::{Diagnostic, Diagnostics, Pos, Severity};
 
 use std::collections::HashMap;

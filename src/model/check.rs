@@ -13,13 +13,13 @@ use std::collections::BTreeMap;
 /// Bulk data cards that do not change a structure's stiffness, mass or constraints:
 /// loads, temperatures, eigenvalue and solution controls, tables, design and output
 /// cards. A deck's card of these kinds is listed as ignored, not as unsupported.
-pub const NON_STRUCTURAL: [&str; 70] = [
+pub const NON_STRUCTURAL: [&str; 68] = [
     // Static and dynamic loads.
     "FORCE", "FORCE1", "FORCE2", "MOMENT", "MOMENT1", "MOMENT2", "PLOAD1", "PLOADX1", "GRAV", "LOAD", "ACCEL", "ACCEL1",
     "RFORCE", "DAREA", "DLOAD", "TLOAD1", "TLOAD2", "RLOAD1", "RLOAD2", "LSEQ", "DELAY", "DPHASE",
     "SLOAD", // Temperatures.
     "TEMP", "TEMPD", "TEMPP1", "TEMPAX", // Eigenvalue and solution controls.
-    "EIGRL", "EIGR", "EIGC", "EIGB", "FREQ", "FREQ1", "FREQ2", "FREQ3", "FREQ4", "FREQ5", "TSTEPNL", "NLPARM", "NLPCI",
+    "EIGC", "EIGB", "FREQ", "FREQ1", "FREQ2", "FREQ3", "FREQ4", "FREQ5", "TSTEPNL", "NLPARM", "NLPCI",
     "TABDMP1", // Tables.
     "TABLED1", "TABLED2", "TABLED3", "TABLED4", "TABLEM1", "TABLEM2", "TABLEM3", "TABLEM4", "TABLES1", "TABLEST",
     "TABRND1", // Design and output.
@@ -188,8 +188,8 @@ pub fn check(deck: &Deck) -> CheckReport {
             })
             .count += 1;
     }
-    // The static loads are read (a SOL 101 deck's `impactlab run` applies them) but do
-    // not change the structure.
+    // The static loads and eigenvalue extraction cards are read (a SOL 101 or 103
+    // deck's `impactlab run` uses them) but do not change the structure.
     let loads = b
         .point_loads
         .iter()
@@ -199,7 +199,8 @@ pub fn check(deck: &Deck) -> CheckReport {
         .chain(b.gravs.iter().map(|l| &l.at))
         .chain(b.spcds.iter().map(|l| &l.at))
         .chain(b.temprbs.iter().map(|l| &l.at))
-        .chain(b.load_combinations.iter().map(|l| &l.at));
+        .chain(b.load_combinations.iter().map(|l| &l.at))
+        .chain(b.eigrs.iter().map(|l| &l.at));
     for at in loads {
         ignored
             .entry(at.name.to_string())

@@ -352,6 +352,77 @@ pub fn static_files(solutions: &[crate::run::statics::StaticSolution]) -> Vec<(&
     ]
 }
 
+/// A normal modes solution's files: `modes.csv` (each root: eigenvalue, radians and
+/// cycles per unit time, generalised mass and stiffness, residual), `shapes.csv`
+/// (each mode's T1..R3 at every grid, in its displacement frame) and `summary.json`.
+pub fn modal_files(s: &crate::run::modes::ModalSolution) -> Vec<(&'static str, Vec<u8>)> {
+    let mut m = csv::Writer::from_writer(Vec::new());
+    for mode in &s.modes {
+        m.serialize(mode).expect("writing to memory");
+    }
+    if s.modes.is_empty() {
+        m.write_record([
+            "mode",
+            "eigenvalue",
+            "radians",
+            "cycles",
+            "generalized_mass",
+            "generalized_stiffness",
+            "residual",
+        ])
+        .expect("writing to memory");
+    }
+    let mut w = csv::Writer::from_writer(Vec::new());
+    w.write_record(["mode", "grid", "cd", "T1", "T2", "T3", "R1", "R2", "R3"])
+        .expect("writing to memory");
+    for (mode, shape) in s.modes.iter().zip(&s.shapes) {
+        for d in shape {
+            let mut row = vec![mode.mode.to_string(), d.grid.to_string(), d.cd.to_string()];
+            row.extend(d.u.iter().map(|v| format!("{v:e}")));
+            w.write_record(&row).expect("writing to memory");
+        }
+    }
+    #[derive(serde::Serialize)]
+    struct Summary<'a> {
+        solution: &'static str,
+        #[serde(flatten)]
+        solved: &'a crate::run::modes::ModalSolution,
+    }
+    let mut summary = serde_json::to_vec_pretty(&Summary {
+        solution: "normal modes (SOL 103)",
+        solved: s,
+    })
+    .expect("plain data");
+    summary.push(b'\n');
+    vec![
+        ("modes.csv", m.into_inner().expect("writing to memory")),
+        ("shapes.csv", w.into_inner().expect("writing to memory")),
+        ("summary.json", summary),
+    ]
+}
+
+/// A normal modes solution in a few lines: the roots, in the deck's time unit.
+pub fn modal_summary(s: &crate::run::modes::ModalSolution) -> String {
+    let per = if s.units.time == crate::deck::Units::UNSPECIFIED {
+        "unit time".to_string()
+    } else {
+        s.units.time.clone()
+    };
+    let mut out = format!(
+        "{}: normal modes by {}, {}; {} DOF solved ({} held), {} Lanczos steps\n  mode   eigenvalue     cycles per {per}\n",
+        s.deck,
+        s.method,
+        s.roots_asked,
+        s.dofs,
+        s.autospc,
+        s.lanczos_steps
+    );
+    for m in &s.modes {
+        out.push_str(&format!("  {:>4}   {:.6e}   {:.6e}\n", m.mode, m.eigenvalue, m.cycles));
+    }
+    out
+}
+
 /// A static solution in a few lines, each value with the deck's unit.
 pub fn static_summary(s: &crate::run::statics::StaticSolution) -> String {
     let (a, u) = (&s.applied, &s.units);

@@ -19,6 +19,7 @@ pub use summary::{
 pub mod convolution;
 pub mod direct;
 pub mod history;
+pub mod modes;
 pub mod statics;
 pub mod summary;
 

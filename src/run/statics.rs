@@ -18,7 +18,7 @@ use crate::model::loads::{resultant, static_load_of};
 use crate::model::{build_structure, ModelError, Structure};
 use serde::Serialize;
 
-/// A static solution that could not be had.
+/// A static (or normal modes) solution that could not be had.
 #[derive(Debug, thiserror::Error)]
 pub enum StaticError {
     /// The structure or its load could not be built.
@@ -277,7 +277,7 @@ fn solve_loads(
 }
 
 /// Every grid's displacement from the solved DOFs' `u`.
-fn displacements(deck: &Deck, s: &Structure, u: &[f64]) -> Vec<GridDisplacement> {
+pub(super) fn displacements(deck: &Deck, s: &Structure, u: &[f64]) -> Vec<GridDisplacement> {
     let mut out: Vec<GridDisplacement> = deck
         .bulk
         .grids

@@ -1,5 +1,6 @@
 //! NASTRAN's printed output (the `.f06` of MSC, the `.out` of NASTRAN-95) read for
-//! its displacements, and an impactlab static run compared with it.
+//! its displacements and its real eigenvalues, and an impactlab static run compared
+//! with it.
 //!
 //! The page format: every page starts with a line whose first column is `1`, then
 //! the title, the subtitle and a line (first column `0`) that ends with `SUBCASE n`;
@@ -138,6 +139,66 @@ pub fn read_printed_file(path: &Path) -> Result<Printed, PrintedError> {
         });
     }
     Ok(printed)
+}
+
+const EIGENVALUES: &str = "R E A L   E I G E N V A L U E S";
+
+/// One row of a printed REAL EIGENVALUES table.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PrintedRoot {
+    /// MODE NO.
+    pub mode: usize,
+    /// EXTRACTION ORDER.
+    pub order: usize,
+    /// EIGENVALUE (λ = ω²).
+    pub eigenvalue: f64,
+    /// RADIAN FREQUENCY.
+    pub radians: f64,
+    /// CYCLIC FREQUENCY.
+    pub cycles: f64,
+    /// GENERALIZED MASS.
+    pub generalized_mass: f64,
+    /// GENERALIZED STIFFNESS.
+    pub generalized_stiffness: f64,
+}
+
+/// Reads the REAL EIGENVALUES tables of a printed output's text, their rows in the
+/// order printed: a table headed `R E A L   E I G E N V A L U E S`, then `MODE
+/// EXTRACTION EIGENVALUE …` over two lines, then a row a root (`MODE NO.`, `EXTRACTION
+/// ORDER` and five reals) until a page break (a line whose first column is `1`).
+/// Boxed messages between the heading and the rows are passed over.
+pub fn read_eigenvalues(text: &str) -> Vec<PrintedRoot> {
+    let mut out = Vec::new();
+    let mut in_table = false;
+    for line in text.lines() {
+        if line.contains(EIGENVALUES) {
+            in_table = line.trim_start().starts_with(EIGENVALUES);
+            continue;
+        }
+        if !in_table {
+            continue;
+        }
+        if line.starts_with('1') {
+            in_table = false;
+            continue;
+        }
+        let words: Vec<&str> = line.split_whitespace().collect();
+        if let [mode, order, rest @ ..] = words.as_slice() {
+            let values: Option<Vec<f64>> = rest.iter().map(|w| w.parse::<f64>().ok()).collect();
+            if let (Ok(mode), Ok(order), Some([l, w, f, m, k])) = (mode.parse(), order.parse(), values.as_deref()) {
+                out.push(PrintedRoot {
+                    mode,
+                    order,
+                    eigenvalue: *l,
+                    radians: *w,
+                    cycles: *f,
+                    generalized_mass: *m,
+                    generalized_stiffness: *k,
+                });
+            }
+        }
+    }
+    out
 }
 
 /// An impactlab static run's displacements (`displacements.csv` of its directory),
@@ -344,6 +405,33 @@ pub fn render(comparisons: &[SubcaseComparison], top: usize) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Goal: the eigenvalue table is read past its boxed information message, its rows
+    /// in the order printed, and a table of another title (complex) is not read.
+    #[test]
+    fn real_eigenvalue_table_of_nastran_95() {
+        let text = "1     VIBRATIONS OF A 10 BY 20 PLATE     PAGE    25
+0
+                                              R E A L   E I G E N V A L U E S
+
+   MODE    EXTRACTION       EIGENVALUE            RADIAN              CYCLIC           GENERALIZED         GENERALIZED
+    NO.       ORDER                              FREQUENCY           FREQUENCY            MASS              STIFFNESS
+
+                                     ****************************************************************
+                                     *         4 EIGENVALUE(S) AT LOW FREQ. END NOT FOUND           *
+                                     ****************************************************************
+
+        1         2        3.237408E+01        5.689823E+00        9.055634E-01        1.030220E+04        3.335242E+05
+        2         1        2.022407E+02        1.422113E+01        2.263364E+00        1.030220E+04        2.083523E+06
+1     VIBRATIONS OF A 10 BY 20 PLATE     PAGE    26
+                                     C O M P L E X   E I G E N V A L U E S
+        1         1        1.0E+00        1.0E+00        1.0E+00        1.0E+00        1.0E+00
+";
+        let r = read_eigenvalues(text);
+        assert_eq!(r.len(), 2);
+        assert_eq!((r[0].mode, r[0].order, r[0].cycles), (1, 2, 9.055634e-1));
+        assert_eq!((r[1].eigenvalue, r[1].generalized_stiffness), (2.022407e2, 2.083523e6));
+    }
 
     const PAGE: &str = "\
 1     STATIC ANALYSIS OF A BEAM                                   /    95 SUN SOLARIS NASTRAN    / MAY 17, 95 / PAGE     8

@@ -1,4 +1,5 @@
-//! The transient cards of the paper's impact: TF, TSTEP, NOLIN3, TIC.
+//! The transient cards of the paper's impact (TF, TSTEP, NOLIN3, TIC) and the
+//! eigenvalue extraction cards of normal modes (EIGR, EIGRL).
 
 use super::*;
 
@@ -195,5 +196,145 @@ pub(super) fn card_tic(r: &mut Reader, b: &mut Bulk) {
     r.extra_fields(5);
     if r.ok {
         b.tics.push(t);
+    }
+}
+
+/// How eigenvectors are scaled (EIGR's NORM; EIGRL's).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Norm {
+    /// Unit generalised mass φᵀMφ.
+    Mass,
+    /// Unit largest component (of the solved DOFs).
+    Max,
+    /// Unit component C of point G.
+    Point(i64, usize),
+}
+
+/// EIGR (NASTRAN-95 and MSC) or EIGRL (MSC): which real eigenvalues a normal modes
+/// solution extracts, and how their eigenvectors are scaled.
+#[derive(Debug, Clone)]
+pub struct Eigr {
+    /// Set id (field 2).
+    pub sid: i64,
+    /// EIGR's METHOD (field 3: INV, DET, GIV, MGIV, FEER, …), upper case; `LAN` for
+    /// an EIGRL.
+    pub method: String,
+    /// F1 and F2 (EIGR fields 4-5) or V1 and V2 (EIGRL fields 3-4): the frequency
+    /// range, in cycles per unit time.
+    pub range: [Option<f64>; 2],
+    /// EIGR's NE (field 6): the estimated number of roots in range.
+    pub ne: Option<i64>,
+    /// ND (EIGR field 7, EIGRL field 5): the number of roots desired.
+    pub nd: Option<i64>,
+    /// NORM (EIGR continuation field 2 with G and C; EIGRL field 9). MASS when blank.
+    pub norm: Norm,
+    /// The card.
+    pub at: CardRef,
+}
+
+/// EIGR's methods: NASTRAN-95's (BULK.TXT, EIGR) and MSC's.
+const EIGR_METHODS: [&str; 15] = [
+    "INV", "DET", "GIV", "MGIV", "FEER", "FEER-Q", "FEER-X", "UINV", "UDET", "SINV", "HOU", "MHOU", "AHOU", "LAN",
+    "AGIV",
+];
+
+/// EIGR: `EIGR SID METHOD F1 F2 NE ND NZ E` and `+ NORM G C`.
+pub(super) fn card_eigr(r: &mut Reader, b: &mut Bulk) {
+    let sid = r.id(0, "SID");
+    let method = r.text(1).to_ascii_uppercase();
+    if !EIGR_METHODS.contains(&method.as_str()) {
+        r.fail(
+            1,
+            "METHOD",
+            format!("is not an eigenvalue extraction method ({})", EIGR_METHODS.join(", ")),
+        );
+    }
+    let range = [r.real_opt(2, "F1"), r.real_opt(3, "F2")];
+    for (k, f) in range.iter().enumerate() {
+        if let Some(f) = f {
+            r.non_negative(2 + k, ["F1", "F2"][k], *f);
+        }
+    }
+    let ne = r.int_opt(4, "NE");
+    let nd = r.int_opt(5, "ND");
+    r.int_opt(6, "NZ");
+    r.real_opt(7, "E");
+    let norm = norm(r, 8, Some((9, 10)));
+    r.extra_fields(11);
+    if let (Some(n), true) = (nd, r.ok) {
+        if n < 0 {
+            r.fail(5, "ND", "must not be negative");
+        }
+    }
+    if r.ok {
+        b.eigrs.push(Eigr {
+            sid,
+            method,
+            range,
+            ne,
+            nd: nd.filter(|&n| n > 0),
+            norm,
+            at: r.at(),
+        });
+    }
+}
+
+/// EIGRL (MSC): `EIGRL SID V1 V2 ND MSGLVL MAXSET SHFSCL NORM`; its continuation of
+/// options (ALPH, NUMS, Fi) is not read.
+pub(super) fn card_eigrl(r: &mut Reader, b: &mut Bulk) {
+    let sid = r.id(0, "SID");
+    let range = [r.real_opt(1, "V1"), r.real_opt(2, "V2")];
+    let nd = r.int_opt(3, "ND");
+    r.int_opt(4, "MSGLVL");
+    r.int_opt(5, "MAXSET");
+    r.real_opt(6, "SHFSCL");
+    let norm = norm(r, 7, None);
+    for k in 8..r.card.fields.len() {
+        if !r.text(k).is_empty() {
+            r.fail(
+                k,
+                "option",
+                "EIGRL's options (ALPH, NUMS, Fi) are not read by impactlab",
+            );
+            break;
+        }
+    }
+    if let (Some(n), true) = (nd, r.ok) {
+        if n < 0 {
+            r.fail(3, "ND", "must not be negative");
+        }
+    }
+    if r.ok {
+        b.eigrs.push(Eigr {
+            sid,
+            method: "LAN".into(),
+            range,
+            ne: None,
+            nd: nd.filter(|&n| n > 0),
+            norm,
+            at: r.at(),
+        });
+    }
+}
+
+/// NORM at field `k` (MASS when blank), with POINT's G and C at fields `point`.
+fn norm(r: &mut Reader, k: usize, point: Option<(usize, usize)>) -> Norm {
+    match r.text(k).to_ascii_uppercase().as_str() {
+        "" | "MASS" => Norm::Mass,
+        "MAX" => Norm::Max,
+        "POINT" => match point {
+            Some((g, c)) => {
+                let g = r.id(g, "G");
+                Norm::Point(g, r.component(c, "C"))
+            }
+            None => {
+                r.fail(k, "NORM", "is MASS or MAX on an EIGRL");
+                Norm::Mass
+            }
+        },
+        _ => {
+            r.fail(k, "NORM", "is not MASS, MAX or POINT");
+            Norm::Mass
+        }
     }
 }

@@ -156,6 +156,8 @@ pub struct Bulk {
     pub nolin3s: Vec<Nolin3>,
     /// TIC cards.
     pub tics: Vec<Tic>,
+    /// EIGR and EIGRL cards.
+    pub eigrs: Vec<Eigr>,
     /// FORCE and MOMENT cards.
     pub point_loads: Vec<PointLoad>,
     /// PLOAD4 cards.
@@ -454,14 +456,14 @@ impl<'a> Reader<'a> {
 
 /// Cards the reader knows. `PARAM` is accepted and ignored with a warning.
 /// Element cards are those of [`crate::elements::KINDS`] besides these.
-pub const KNOWN_CARDS: [&str; 75] = [
+pub const KNOWN_CARDS: [&str; 77] = [
     "GRID", "GRDSET", "CORD1R", "CORD1C", "CORD1S", "CORD2R", "CORD2C", "CORD2S", "EPOINT", "SPOINT", "PROD", "PBAR",
     "PBARL", "PBEAM", "PBEAML", "PSHELL", "PCOMP", "MAT1", "MAT2", "MAT8", "CONM2", "RBE2", "RBE3", "SPC1", "SPC",
     "SPCADD", "TF", "TSTEP", "NOLIN3", "TIC", "FORCE", "MOMENT", "PLOAD4", "GRAV", "LOAD", "PARAM", "INCLUDE",
     "ENDDATA", "BAROR", "PTUBE", "CELAS1", "CELAS2", "CELAS3", "CELAS4", "CMASS1", "CMASS2", "CMASS3", "CMASS4",
     "PELAS", "PMASS", "CQUAD1", "CQUAD2", "CQDMEM", "CQDMEM1", "CQDMEM2", "CTRIA1", "CTRIA2", "CTRMEM", "PQUAD1",
     "PTRIA1", "PQUAD2", "PTRIA2", "PQDMEM", "PQDMEM1", "PQDMEM2", "PTRMEM", "PCOMP1", "PCOMP2", "CRIGD1", "PSHEAR",
-    "GENEL", "SPCD", "PLOAD2", "PLOAD", "TEMPRB",
+    "GENEL", "SPCD", "PLOAD2", "PLOAD", "TEMPRB", "EIGR", "EIGRL",
 ];
 
 /// Every card the reader types: the element cards of [`crate::elements::KINDS`] and
@@ -605,6 +607,8 @@ impl Typer {
                 "PLOAD4" => card_pload4(&mut r, b),
                 "GRAV" => card_grav(&mut r, b),
                 "TEMPRB" => card_temprb(&mut r, b),
+                "EIGR" => card_eigr(&mut r, b),
+                "EIGRL" => card_eigrl(&mut r, b),
                 "LOAD" => card_load(&mut r, b),
                 "PARAM" => card_param(&mut r, b, card),
                 name => match crate::elements::kind(name) {

@@ -1,0 +1,359 @@
+//! Real eigenvalues of a structure, K φ = λ M φ, by shift-and-invert Lanczos.
+//!
+//! Scheme: the Lanczos recurrence on the operator A = (K − σM)⁻¹ M in the
+//! M-inner product, with full re-orthogonalisation (classical Gram-Schmidt, twice:
+//! "twice is enough") against every Lanczos vector, as Ericsson and Ruhe's spectral
+//! transformation Lanczos method (Math. Comp. 35, 1980), the method of MSC's Lanczos
+//! and of ARPACK's shift-invert mode (there implicitly restarted; here unrestarted).
+//! The eigenvalues θ of A are 1/(λ − σ): the roots nearest σ converge first. K − σM is
+//! factorised once by the sparse Cholesky factorisation the implicit schemes use, so
+//! σ lies below every root: σ = 0 when K is positive definite, and a small negative
+//! shift when it is not (a free structure's rigid-body modes, λ = 0, are then found
+//! with the rest). The start vector is A applied to a fixed pseudo-random vector, so
+//! that it has no component along M's null space (massless DOFs have infinite roots).
+//! A Lanczos vector that comes out (numerically) zero means the Krylov space is
+//! invariant: the recurrence goes on from a new start vector orthogonal to all before
+//! it (the tridiagonal matrix is then block diagonal), which finds the other copies of
+//! a repeated root and the roots of disconnected parts.
+//!
+//! A Ritz pair (θ, Q s) of the tridiagonal T_j is accepted when its residual in the
+//! operator, |β_{j+1} s_j|, is at most `tolerance`·θ; its eigenvalue is then exact to
+//! about the square of that (Parlett, The Symmetric Eigenvalue Problem, 13-2). The
+//! roots asked for are taken when every Ritz value below them has been accepted, and
+//! again at the next test (ten steps later, or j/5 at step j) with the same values,
+//! since a root the start vector hardly excites may converge late. Cost: one solve
+//! with the factor and three M products a step, 4 n j operations to re-orthogonalise
+//! step j, a tridiagonal eigenproblem (j³) a test, and the j vectors of n stored: it
+//! is meant for tens to a few hundred roots, not for all of a large model's.
+
+use crate::assembly::System;
+use crate::integrate::linear::Factor;
+use crate::integrate::SolveError;
+use crate::model::DofLabel;
+use nalgebra::DMatrix;
+
+/// Which roots are wanted, as eigenvalues λ = ω².
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Roots {
+    /// Roots below this are not wanted (found, and dropped).
+    pub above: f64,
+    /// Roots above this are not wanted.
+    pub below: Option<f64>,
+    /// At most this many roots (the lowest of those in range).
+    pub count: Option<usize>,
+}
+
+/// How the extraction runs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LanczosParams {
+    /// A Ritz pair is accepted when its residual is at most this times its θ.
+    pub tolerance: f64,
+    /// Lanczos steps between convergence tests, at least: a test solves the
+    /// tridiagonal eigenproblem (j³ operations at step j), so from step 5·`test_every`
+    /// on the tests are j/5 steps apart.
+    pub test_every: usize,
+}
+
+impl Default for LanczosParams {
+    fn default() -> Self {
+        LanczosParams {
+            tolerance: 1e-10,
+            test_every: 10,
+        }
+    }
+}
+
+/// Roots found.
+#[derive(Debug, Clone)]
+pub struct Eigenpairs {
+    /// The eigenvalues λ = ω², ascending.
+    pub values: Vec<f64>,
+    /// Their eigenvectors over the solved DOFs, each of unit generalised mass φᵀMφ.
+    pub vectors: Vec<Vec<f64>>,
+    /// ‖Kφ − λMφ‖ / ‖Kφ‖ of each (‖λMφ‖ for λ = 0).
+    pub residuals: Vec<f64>,
+    /// The shift σ.
+    pub shift: f64,
+    /// Lanczos steps taken.
+    pub steps: usize,
+    /// Times the recurrence started again from a new vector.
+    pub restarts: usize,
+}
+
+/// A fixed pseudo-random sequence in [−1, 1) (SplitMix64), so that runs repeat.
+struct Start(u64);
+
+impl Start {
+    fn next(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^= z >> 31;
+        (z >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+    }
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+/// The roots of `sys` (K and M over the solved DOFs `labels`) that `roots` asks for.
+pub fn lanczos(
+    sys: &System,
+    labels: &[DofLabel],
+    roots: &Roots,
+    params: &LanczosParams,
+) -> Result<Eigenpairs, SolveError> {
+    let n = sys.n;
+    if n == 0 {
+        return Ok(Eigenpairs {
+            values: Vec::new(),
+            vectors: Vec::new(),
+            residuals: Vec::new(),
+            shift: 0.0,
+            steps: 0,
+            restarts: 0,
+        });
+    }
+    let (mut factor, shift) = factorise(sys, labels)?;
+    let m_mul = |x: &[f64]| {
+        let mut y = vec![0.0; n];
+        sys.m_mul(x, &mut y);
+        y
+    };
+    let op = |factor: &mut Factor, x: &[f64]| {
+        let mut y = m_mul(x);
+        factor.solve_in_place(&mut y);
+        y
+    };
+    let mut rng = Start(0x1D_2C_3B_4A);
+    // Lanczos vectors q_i (M-orthonormal), the tridiagonal's α_i and β_i (β_i couples
+    // q_{i-1} and q_i; 0 where the recurrence restarted).
+    let mut q: Vec<Vec<f64>> = Vec::new();
+    let (mut alpha, mut beta) = (Vec::<f64>::new(), Vec::<f64>::new());
+    let mut restarts = 0;
+    let mut w = Vec::new();
+    let mut last: Option<Vec<f64>> = None;
+    let mut norm_scale = 0.0_f64;
+    let mut next_test = params.test_every.max(1);
+    loop {
+        // The next Lanczos vector: w normalised, or a new start when w has vanished.
+        let mut b = if w.is_empty() {
+            0.0
+        } else {
+            dot(&w, &m_mul(&w)).max(0.0).sqrt()
+        };
+        if q.is_empty() || b <= 1e-10 * norm_scale {
+            if !q.is_empty() {
+                restarts += 1;
+            }
+            let mut fresh = None;
+            for _ in 0..3 {
+                let x: Vec<f64> = (0..n).map(|_| rng.next()).collect();
+                let mut v = op(&mut factor, &x);
+                let size = dot(&v, &m_mul(&v)).max(0.0).sqrt();
+                orthogonalise(&mut v, &q, &m_mul);
+                let left = dot(&v, &m_mul(&v)).max(0.0).sqrt();
+                if left > 1e-8 * size {
+                    fresh = Some((v, left));
+                    break;
+                }
+            }
+            // The whole space with mass is spanned.
+            let Some((v, left)) = fresh else { break };
+            w = v;
+            b = left;
+            if !q.is_empty() {
+                beta.push(0.0);
+            }
+        } else {
+            beta.push(b);
+        }
+        let qj: Vec<f64> = w.iter().map(|x| x / b).collect();
+        let mq = m_mul(&qj);
+        w = {
+            let mut y = mq.clone();
+            factor.solve_in_place(&mut y);
+            y
+        };
+        let a = dot(&w, &mq);
+        for (wi, qi) in w.iter_mut().zip(&qj) {
+            *wi -= a * qi;
+        }
+        if let (Some(prev), Some(&bj)) = (q.last(), beta.last().filter(|_| alpha.len() == beta.len())) {
+            for (wi, pi) in w.iter_mut().zip(prev) {
+                *wi -= bj * pi;
+            }
+        }
+        alpha.push(a);
+        norm_scale = norm_scale.max(a.abs());
+        q.push(qj);
+        orthogonalise(&mut w, &q, &m_mul);
+        let j = q.len();
+        if j == n || j >= next_test {
+            next_test = j + params.test_every.max(j / 5).max(1);
+            let next = dot(&w, &m_mul(&w)).max(0.0).sqrt();
+            let (values, _) = ritz(&alpha, &beta, next, shift, roots, params, false);
+            if let Some(v) = values {
+                if j == n || last.as_ref().is_some_and(|l| same(l, &v, params.tolerance)) {
+                    break;
+                }
+                last = Some(v);
+            } else {
+                last = None;
+            }
+        }
+    }
+    let next = dot(&w, &m_mul(&w)).max(0.0).sqrt();
+    let (_, pairs) = ritz(
+        &alpha,
+        &beta,
+        if q.len() == n { 0.0 } else { next },
+        shift,
+        roots,
+        params,
+        true,
+    );
+    let mut out = Eigenpairs {
+        values: Vec::new(),
+        vectors: Vec::new(),
+        residuals: Vec::new(),
+        shift,
+        steps: q.len(),
+        restarts,
+    };
+    for (lambda, s) in pairs {
+        let mut x = vec![0.0; n];
+        for (qi, si) in q.iter().zip(s.iter()) {
+            for (xk, qk) in x.iter_mut().zip(qi) {
+                *xk += si * qk;
+            }
+        }
+        let mx = m_mul(&x);
+        let g = dot(&x, &mx).sqrt();
+        x.iter_mut().for_each(|v| *v /= g);
+        let mut kx = vec![0.0; n];
+        sys.k_mul(&x, &mut kx);
+        let r: f64 = kx
+            .iter()
+            .zip(&mx)
+            .map(|(k, m)| (k - lambda * m / g).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        let scale = dot(&kx, &kx).sqrt().max(lambda.abs() * dot(&mx, &mx).sqrt() / g);
+        out.residuals.push(if scale > 0.0 { r / scale } else { r });
+        out.values.push(lambda);
+        out.vectors.push(x);
+    }
+    Ok(out)
+}
+
+/// K − σM factorised: σ = 0 when K is positive definite, else a shift below the
+/// rigid-body roots, small against the structure's highest roots (K_ii/M_ii).
+fn factorise(sys: &System, labels: &[DofLabel]) -> Result<(Factor, f64), SolveError> {
+    match Factor::new(&sys.k_csc, labels) {
+        Ok(f) => Ok((f, 0.0)),
+        Err(SolveError::Mechanism { .. }) => {
+            let (k, m) = (sys.k_diag(), sys.m_diag());
+            let top = k
+                .iter()
+                .zip(&m)
+                .filter(|(_, &m)| m > 0.0)
+                .map(|(k, m)| k / m)
+                .fold(0.0_f64, f64::max);
+            let shift = -1e-8 * top.max(f64::MIN_POSITIVE);
+            Ok((Factor::effective(sys, -shift, 1.0, labels)?, shift))
+        }
+        Err(e) => Err(e),
+    }
+}
+
+/// Makes `w` M-orthogonal to every vector of `q` (classical Gram-Schmidt, twice).
+fn orthogonalise(w: &mut [f64], q: &[Vec<f64>], m_mul: &impl Fn(&[f64]) -> Vec<f64>) {
+    for _ in 0..2 {
+        let mw = m_mul(w);
+        let c: Vec<f64> = q.iter().map(|qi| dot(qi, &mw)).collect();
+        for (qi, ci) in q.iter().zip(c) {
+            for (wk, qk) in w.iter_mut().zip(qi) {
+                *wk -= ci * qk;
+            }
+        }
+    }
+}
+
+/// The same wanted roots, to `tol` relative.
+fn same(a: &[f64], b: &[f64], tol: f64) -> bool {
+    a.len() == b.len()
+        && a.iter()
+            .zip(b)
+            .all(|(x, y)| (x - y).abs() <= tol.sqrt() * x.abs().max(y.abs()).max(f64::MIN_POSITIVE))
+}
+
+type Pairs = Vec<(f64, nalgebra::DVector<f64>)>;
+
+/// The Ritz values of T (α on its diagonal, β beside it; `next` the residual norm
+/// after the last step) as roots λ = σ + 1/θ, ascending: the wanted ones when all
+/// of them, and every root below them, are accepted (`None` while not), with the
+/// eigenvectors of T when `vectors` is set.
+fn ritz(
+    alpha: &[f64],
+    beta: &[f64],
+    next: f64,
+    shift: f64,
+    roots: &Roots,
+    params: &LanczosParams,
+    vectors: bool,
+) -> (Option<Vec<f64>>, Pairs) {
+    let j = alpha.len();
+    let t = DMatrix::from_fn(j, j, |r, c| {
+        if r == c {
+            alpha[r]
+        } else if r == c + 1 {
+            beta[c]
+        } else if c == r + 1 {
+            beta[r]
+        } else {
+            0.0
+        }
+    });
+    let e = t.symmetric_eigen();
+    let top = e.eigenvalues.iter().fold(0.0_f64, |a, &b| a.max(b.abs()));
+    // θ ≤ 0 (to round-off) belongs to no finite root.
+    let mut found: Vec<(f64, bool, usize)> = (0..j)
+        .filter(|&i| e.eigenvalues[i] > 1e-12 * top)
+        .map(|i| {
+            let theta = e.eigenvalues[i];
+            let accepted = (next * e.eigenvectors[(j - 1, i)]).abs() <= params.tolerance * theta;
+            (shift + 1.0 / theta, accepted, i)
+        })
+        .collect();
+    found.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut wanted = Vec::new();
+    let mut complete = false;
+    for &(lambda, accepted, i) in &found {
+        if !accepted {
+            break;
+        }
+        if roots.below.is_some_and(|b| lambda > b) || roots.count.is_some_and(|c| wanted.len() == c) {
+            complete = true;
+            break;
+        }
+        if lambda >= roots.above {
+            wanted.push((lambda, i));
+        }
+    }
+    // Every root is found when the space is spanned (next = 0 at the last step).
+    if next == 0.0 && found.iter().all(|f| f.1) {
+        complete = true;
+    }
+    let pairs = if vectors {
+        wanted
+            .iter()
+            .map(|&(l, i)| (l, e.eigenvectors.column(i).into_owned()))
+            .collect()
+    } else {
+        Vec::new()
+    };
+    (complete.then(|| wanted.iter().map(|w| w.0).collect()), pairs)
+}

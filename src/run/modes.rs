@@ -1,0 +1,231 @@
+//! Normal modes (NASTRAN-95's SOL 3, MSC's SOL 103): the real eigenvalues and
+//! eigenvectors of K φ = λ M φ on the structure's assembly, extracted by
+//! shift-and-invert Lanczos ([`crate::eigen::lanczos`]) as the case control's METHOD
+//! selects them (an EIGR or EIGRL). M is the elements' own mass matrices (impactlab's
+//! shells and rods lump theirs, as NASTRAN does by default). A free DOF that no
+//! element stiffens and none gives mass is held (NASTRAN's AUTOSPC); one with mass
+//! and no stiffness is kept, and has a zero root.
+//!
+//! Which roots, by METHOD (BULK.TXT, EIGR): every method gives the lowest roots at or
+//! above F1, at most ND of them: INV, DET, UINV and UDET ND (default 3·NE) lowest
+//! (NASTRAN-95's inverse power method, asked for 3 roots in 0.89-2.4 Hz in d03011a,
+//! prints the third at 4.53 Hz); GIV, MGIV, HOU, MHOU, AHOU and AGIV the ND lowest
+//! "positive roots" when ND > 0, else every root from F1 to F2; FEER the ND lowest
+//! (NASTRAN's FEER finds those nearest F1, and as many more as it takes to make one
+//! accurate: the roots impactlab gives are among them when F1 is below the lowest);
+//! EIGRL (LAN) those from V1 to V2, at most ND.
+
+use super::statics::{displacements, GridDisplacement, StaticError};
+use super::UnitSystem;
+use crate::assembly::assemble_elements;
+use crate::deck::cards::{Eigr, Norm};
+use crate::deck::{Deck, Diagnostic};
+use crate::eigen::{lanczos, LanczosParams, Roots};
+use crate::model::{build_structure, DofLabel, ModelError};
+use serde::Serialize;
+
+/// One root.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Mode {
+    /// Its number, from 1 in ascending order.
+    pub mode: usize,
+    /// λ = ω².
+    pub eigenvalue: f64,
+    /// ω = √λ (radians per unit time).
+    pub radians: f64,
+    /// ω/2π (cycles per unit time).
+    pub cycles: f64,
+    /// φᵀMφ of the eigenvector as normalised.
+    pub generalized_mass: f64,
+    /// φᵀKφ = λ φᵀMφ.
+    pub generalized_stiffness: f64,
+    /// ‖Kφ − λMφ‖ / ‖Kφ‖.
+    pub residual: f64,
+}
+
+/// What a normal modes solution gives.
+#[derive(Debug, Clone, Serialize)]
+pub struct ModalSolution {
+    /// The deck's name.
+    pub deck: String,
+    /// SHA-256 of the deck's bytes.
+    pub deck_sha256: String,
+    /// The deck's units.
+    pub units: UnitSystem,
+    /// The EIGR or EIGRL the case control's METHOD selects: its card, set and method.
+    pub method: String,
+    /// The roots asked for, in words.
+    pub roots_asked: String,
+    /// How the eigenvectors are normalised.
+    pub normalised: String,
+    /// Solved DOFs.
+    pub dofs: usize,
+    /// Free DOFs with neither stiffness nor mass, held (NASTRAN's AUTOSPC).
+    pub autospc: usize,
+    /// The Lanczos shift σ (0, or below the rigid-body roots).
+    pub shift: f64,
+    /// Lanczos steps taken.
+    pub lanczos_steps: usize,
+    /// The roots found, ascending.
+    pub modes: Vec<Mode>,
+    /// Each mode's grid displacements.
+    #[serde(skip)]
+    pub shapes: Vec<Vec<GridDisplacement>>,
+}
+
+/// A deck refused for one reason.
+fn refuse(d: Diagnostic) -> StaticError {
+    StaticError::Model(ModelError { diagnostics: vec![d] })
+}
+
+/// The roots an EIGR or EIGRL asks for.
+fn roots_of(e: &Eigr) -> Result<(Roots, String), StaticError> {
+    let w = |f: f64| (2.0 * std::f64::consts::PI * f).powi(2);
+    let [f1, f2] = e.range;
+    let above = f1.map_or(0.0, w);
+    let from = f1.map(|f| format!(" from {f}")).unwrap_or_default();
+    let up_to = |f: f64| format!(" up to {f}");
+    let (count, below) = match e.method.as_str() {
+        "INV" | "DET" | "UINV" | "UDET" | "SINV" => {
+            (e.nd.or(e.ne.filter(|&n| n > 0).map(|n| n.saturating_mul(3))), None)
+        }
+        "GIV" | "MGIV" | "HOU" | "MHOU" | "AHOU" | "AGIV" => match e.nd {
+            Some(n) => (Some(n), None),
+            None => (None, f2.map(w)),
+        },
+        m if m.starts_with("FEER") => (Some(e.nd.unwrap_or(1)), None),
+        _ => (e.nd, f2.map(w)),
+    };
+    if count.is_none() && below.is_none() {
+        return Err(refuse(e.at.error(format!(
+            "{} {} asks for no number of roots (ND) and no upper frequency: say how many roots or up to which \
+             frequency",
+            e.at.name, e.sid
+        ))));
+    }
+    let words = match (count, below) {
+        (Some(n), None) => format!("the {n} lowest roots{from} (cycles per unit time)"),
+        (Some(n), Some(_)) => format!(
+            "at most {n} roots{from}{} (cycles per unit time)",
+            up_to(f2.unwrap_or_default())
+        ),
+        _ => format!(
+            "every root{from}{} (cycles per unit time)",
+            up_to(f2.unwrap_or_default())
+        ),
+    };
+    Ok((
+        Roots {
+            above,
+            below,
+            count: count.map(|n| n as usize),
+        },
+        words,
+    ))
+}
+
+/// Solves a normal modes deck (read with [`crate::deck::MODES`] as its solution): the
+/// roots its METHOD's EIGR or EIGRL asks for, with the model builder's warnings.
+pub fn solve(deck: &Deck) -> Result<(ModalSolution, Vec<Diagnostic>), StaticError> {
+    let refuse = |d: Diagnostic| StaticError::Model(ModelError { diagnostics: vec![d] });
+    let Some(sel) = &deck.case.method else {
+        return Err(refuse(Diagnostic::error(
+            deck.case.at.clone(),
+            "a normal modes deck (SOL 103) needs METHOD = n in its case control, selecting an EIGR or EIGRL",
+        )));
+    };
+    let Some(card) = deck.bulk.eigrs.iter().find(|e| e.sid == sel.id) else {
+        return Err(refuse(
+            Diagnostic::error(
+                Some(sel.pos.clone()),
+                format!("METHOD = {} selects no EIGR or EIGRL of that set", sel.id),
+            )
+            .card("METHOD"),
+        ));
+    };
+    let (roots, roots_asked) = roots_of(card)?;
+    let (s, mut warnings) = build_structure(deck)?;
+    for (key, r) in deck.case.outputs.iter().filter(|(k, _)| k.as_str() != "DISP") {
+        warnings.push(Diagnostic::warning(
+            Some(r.pos.clone()),
+            format!(
+                "{key} output of a normal modes solution is not written (shapes.csv holds every mode's shape); ignored"
+            ),
+        ));
+    }
+    let n = s.dofs.len();
+    let full = assemble_elements(&s.elements, n);
+    let (k_diag, m_diag) = (full.k_diag(), full.m_diag());
+    let mut map = vec![None; n];
+    let mut kept = Vec::new();
+    for i in (0..n).filter(|&i| k_diag[i] != 0.0 || m_diag[i] != 0.0) {
+        map[i] = Some(kept.len());
+        kept.push(i);
+    }
+    let sys = full.restricted(&map, kept.len());
+    let labels: Vec<DofLabel> = kept.iter().map(|&i| s.dofs[i]).collect();
+    let pairs = lanczos(&sys, &labels, &roots, &LanczosParams::default())?;
+    let point =
+        |g: i64, c: usize| -> Option<usize> { labels.iter().position(|l| l.point == g && usize::from(l.comp) == c) };
+    let normalised = match card.norm {
+        Norm::Mass => "unit generalised mass".to_string(),
+        Norm::Max => "unit largest component".to_string(),
+        Norm::Point(g, c) => format!("unit component {c} of point {g} (the largest where it is zero)"),
+    };
+    let mut modes = Vec::new();
+    let mut shapes = Vec::new();
+    for (k, ((lambda, phi), residual)) in pairs
+        .values
+        .iter()
+        .zip(&pairs.vectors)
+        .zip(&pairs.residuals)
+        .enumerate()
+    {
+        let largest = phi
+            .iter()
+            .copied()
+            .fold(0.0_f64, |a, b| if b.abs() > a.abs() { b } else { a });
+        let scale = match card.norm {
+            Norm::Mass => 1.0,
+            Norm::Max => largest,
+            Norm::Point(g, c) => match point(g, c).map(|i| phi[i]) {
+                Some(v) if v != 0.0 => v,
+                _ => largest,
+            },
+        };
+        let phi: Vec<f64> = phi.iter().map(|v| v / scale).collect();
+        let generalized_mass = 1.0 / (scale * scale);
+        let radians = lambda.max(0.0).sqrt();
+        modes.push(Mode {
+            mode: k + 1,
+            eigenvalue: *lambda,
+            radians,
+            cycles: radians / (2.0 * std::f64::consts::PI),
+            generalized_mass,
+            generalized_stiffness: lambda * generalized_mass,
+            residual: *residual,
+        });
+        let mut u = vec![0.0; n];
+        for (v, &i) in phi.iter().zip(&kept) {
+            u[i] = *v;
+        }
+        shapes.push(displacements(deck, &s, &u));
+    }
+    Ok((
+        ModalSolution {
+            deck: deck.name.clone(),
+            deck_sha256: deck.sha256.clone(),
+            units: UnitSystem::of(&deck.units),
+            method: format!("{} {} ({})", card.at.name, card.sid, card.method),
+            roots_asked,
+            normalised,
+            dofs: kept.len(),
+            autospc: n - kept.len(),
+            shift: pairs.shift,
+            lanczos_steps: pairs.steps,
+            modes,
+            shapes,
+        },
+        warnings,
+    ))
+}
