@@ -35,7 +35,8 @@ use nalgebra::DMatrix;
 /// Which roots are wanted, as eigenvalues λ = ω².
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Roots {
-    /// Roots below this are not wanted (found, and dropped).
+    /// Roots below this are not wanted (found, and dropped); −∞ for all (a rigid-body
+    /// root is zero to round-off, of either sign).
     pub above: f64,
     /// Roots above this are not wanted.
     pub below: Option<f64>,
@@ -70,7 +71,9 @@ pub struct Eigenpairs {
     pub values: Vec<f64>,
     /// Their eigenvectors over the solved DOFs, each of unit generalised mass φᵀMφ.
     pub vectors: Vec<Vec<f64>>,
-    /// ‖Kφ − λMφ‖ / ‖Kφ‖ of each (‖λMφ‖ for λ = 0).
+    /// The backward error of each: ‖Kφ − λMφ‖ / ((‖K‖ + |λ|‖M‖)‖φ‖), the norms
+    /// estimated by the largest diagonal terms (a rigid-body root's is not divided by
+    /// its own tiny ‖Kφ‖).
     pub residuals: Vec<f64>,
     /// The shift σ.
     pub shift: f64,
@@ -206,6 +209,9 @@ pub fn lanczos(
         }
     }
     let next = dot(&w, &m_mul(&w)).max(0.0).sqrt();
+    // ‖K‖ and ‖M‖ estimated by their largest diagonal terms (lower bounds).
+    let largest = |d: Vec<f64>| d.iter().fold(0.0_f64, |a, b| a.max(b.abs()));
+    let (k_norm, m_norm) = (largest(sys.k_diag()), largest(sys.m_diag()));
     let (_, pairs) = ritz(
         &alpha,
         &beta,
@@ -241,7 +247,7 @@ pub fn lanczos(
             .map(|(k, m)| (k - lambda * m / g).powi(2))
             .sum::<f64>()
             .sqrt();
-        let scale = dot(&kx, &kx).sqrt().max(lambda.abs() * dot(&mx, &mx).sqrt() / g);
+        let scale = (k_norm + lambda.abs() * m_norm) * dot(&x, &x).sqrt();
         out.residuals.push(if scale > 0.0 { r / scale } else { r });
         out.values.push(lambda);
         out.vectors.push(x);

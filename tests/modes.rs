@@ -172,3 +172,29 @@ fn run_writes_the_roots_and_refuses_transient_flags() {
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("--steps applies to a transient run"));
 }
+
+/// Goal: from F1 = 0 every root is wanted, rigid-body roots included, though round-off
+/// leaves them of either sign. Model: a free rod (two CRODs along x) beside a free
+/// chain of masses 2, 2, 1 and springs k = 5e3 (`fuzz/seeds/modes-chain.bdf`, EIGR GIV
+/// F1 = 0, ND = 3, NORM POINT on the rod): two rigid-body roots, zero to 1e-12 of the
+/// rod's top root, then the chain's first, k(5 − √5)/4 (det(K − λM) = 0 of the 3×3
+/// chain), to 1e-12.
+#[test]
+fn rigid_body_roots_of_either_sign_are_kept_from_f1_zero() {
+    let d = read_deck(&root().join("fuzz/seeds/modes-chain.bdf"), Default::default()).unwrap_or_else(|e| panic!("{e}"));
+    let (s, _) = solve(&d).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(s.modes.len(), 3, "{:?}", s.modes);
+    let top = 8e10;
+    assert!(
+        s.modes[..2].iter().all(|m| m.eigenvalue.abs() <= 1e-12 * top),
+        "{:?}",
+        s.modes
+    );
+    let exact = 5e3 * (5.0 - 5f64.sqrt()) / 4.0;
+    assert!(
+        (s.modes[2].eigenvalue - exact).abs() <= 1e-12 * exact,
+        "{}",
+        s.modes[2].eigenvalue
+    );
+    assert!(s.modes.iter().all(|m| m.residual < 1e-14), "{:?}", s.modes);
+}

@@ -39,7 +39,8 @@ pub struct Mode {
     pub generalized_mass: f64,
     /// φᵀKφ = λ φᵀMφ.
     pub generalized_stiffness: f64,
-    /// ‖Kφ − λMφ‖ / ‖Kφ‖.
+    /// Its backward error, ‖Kφ − λMφ‖ / ((‖K‖ + |λ|‖M‖)‖φ‖) (see
+    /// [`crate::eigen::Eigenpairs::residuals`]).
     pub residual: f64,
 }
 
@@ -82,7 +83,9 @@ fn refuse(d: Diagnostic) -> StaticError {
 fn roots_of(e: &Eigr) -> Result<(Roots, String), StaticError> {
     let w = |f: f64| (2.0 * std::f64::consts::PI * f).powi(2);
     let [f1, f2] = e.range;
-    let above = f1.map_or(0.0, w);
+    // From F1 > 0; from F1 = 0 or blank every root, rigid-body roots (λ = 0 to
+    // round-off, of either sign) included.
+    let above = f1.filter(|&f| f > 0.0).map_or(f64::NEG_INFINITY, w);
     let from = f1.map(|f| format!(" from {f}")).unwrap_or_default();
     let up_to = |f: f64| format!(" up to {f}");
     let (count, below) = match e.method.as_str() {
@@ -170,7 +173,9 @@ pub fn solve(deck: &Deck) -> Result<(ModalSolution, Vec<Diagnostic>), StaticErro
     let normalised = match card.norm {
         Norm::Mass => "unit generalised mass".to_string(),
         Norm::Max => "unit largest component".to_string(),
-        Norm::Point(g, c) => format!("unit component {c} of point {g} (the largest where it is zero)"),
+        Norm::Point(g, c) => format!(
+            "unit component {c} of point {g} (the largest component where it is zero: below 1e-8 of the largest)"
+        ),
     };
     let mut modes = Vec::new();
     let mut shapes = Vec::new();
@@ -188,8 +193,9 @@ pub fn solve(deck: &Deck) -> Result<(ModalSolution, Vec<Diagnostic>), StaticErro
         let scale = match card.norm {
             Norm::Mass => 1.0,
             Norm::Max => largest,
+            // "Defaults to MAX if defined component is zero": zero to round-off.
             Norm::Point(g, c) => match point(g, c).map(|i| phi[i]) {
-                Some(v) if v != 0.0 => v,
+                Some(v) if v.abs() > 1e-8 * largest.abs() => v,
                 _ => largest,
             },
         };
