@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{impactlab, root};
+use common::{impactlab, plate_structure, root};
 use impactlab::run::run_model;
 
 fn scene_text(name: &str) -> String {
@@ -262,38 +262,6 @@ fn plate_scene_asks_for_transverse_shear() {
         err.contains("target.transverse_shear") && err.contains("positive definite"),
         "{err}"
     );
-}
-
-/// The paper's plate deck on an n×n mesh with its impactor, contact and transient
-/// cards taken out: the structure alone, as an analyst's SOL 103 deck would hold it.
-fn plate_structure(n: usize) -> String {
-    impactlab::mesh::plate_deck(n)
-        .unwrap()
-        .lines()
-        .filter(|l| {
-            ![
-                "GRID,999",
-                "CONM2",
-                "+CON2",
-                "SPC1,1,12456,999",
-                "NOLIN3",
-                "TF",
-                "+TF",
-                "TIC",
-                "EPOINT",
-                "  IC",
-                "  NONLINEAR",
-                "  TSTEP",
-                "  TFL",
-                "  SET 15",
-                "  NLLOAD",
-                "  DISP",
-            ]
-            .iter()
-            .any(|p| l.starts_with(p))
-        })
-        .map(|l| if l == "SOL 27" { "SOL 103\n" } else { l }.to_string() + if l == "SOL 27" { "" } else { "\n" })
-        .collect()
 }
 
 /// A scene striking `deck` (a file beside it) at `strike` (TOML lines of [impactor]).

@@ -353,24 +353,45 @@ pub fn static_files(solutions: &[crate::run::statics::StaticSolution]) -> Vec<(&
 }
 
 /// A normal modes solution's files: `modes.csv` (each root: eigenvalue, radians and
-/// cycles per unit time, generalised mass and stiffness, residual), `shapes.csv`
+/// cycles per unit time, generalised mass and stiffness, residual, effective masses
+/// and their running sums as fractions), `shapes.csv`
 /// (each mode's T1..R3 at every grid, in its displacement frame) and `summary.json`.
 pub fn modal_files(s: &crate::run::modes::ModalSolution) -> Vec<(&'static str, Vec<u8>)> {
     let mut m = csv::Writer::from_writer(Vec::new());
-    for mode in &s.modes {
-        m.serialize(mode).expect("writing to memory");
-    }
-    if s.modes.is_empty() {
-        m.write_record([
-            "mode",
-            "eigenvalue",
-            "radians",
-            "cycles",
-            "generalized_mass",
-            "generalized_stiffness",
-            "residual",
-        ])
-        .expect("writing to memory");
+    let dirs = ["T1", "T2", "T3", "R1", "R2", "R3"];
+    let header: Vec<String> = [
+        "mode",
+        "eigenvalue",
+        "radians",
+        "cycles",
+        "generalized_mass",
+        "generalized_stiffness",
+        "residual",
+    ]
+    .iter()
+    .map(|h| h.to_string())
+    .chain(dirs.iter().map(|d| format!("effective_mass_{d}")))
+    .chain(dirs.iter().map(|d| format!("effective_mass_sum_{d}")))
+    .collect();
+    m.write_record(&header).expect("writing to memory");
+    for r in &s.modes {
+        let row: Vec<String> = std::iter::once(r.mode.to_string())
+            .chain(
+                [
+                    r.eigenvalue,
+                    r.radians,
+                    r.cycles,
+                    r.generalized_mass,
+                    r.generalized_stiffness,
+                    r.residual,
+                ]
+                .iter()
+                .chain(&r.effective_mass)
+                .chain(&r.effective_mass_sum)
+                .map(|v| format!("{v:e}")),
+            )
+            .collect();
+        m.write_record(&row).expect("writing to memory");
     }
     let mut w = csv::Writer::from_writer(Vec::new());
     w.write_record(["mode", "grid", "cd", "T1", "T2", "T3", "R1", "R2", "R3"])

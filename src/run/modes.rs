@@ -14,6 +14,12 @@
 //! (NASTRAN's FEER finds those nearest F1, and as many more as it takes to make one
 //! accurate: the roots impactlab gives are among them when F1 is below the lowest);
 //! EIGRL (LAN) those from V1 to V2, at most ND.
+//!
+//! Each root's modal effective mass in the six rigid-body directions of the basic
+//! system is the base-excitation participation of the solved DOFs: (φᵀMD)² for a
+//! mass-normalised φ, D the rigid-body motion (about the basic origin for the
+//! rotations); over all roots they sum to DᵀMD, which the running sums are fractions
+//! of.
 
 use super::statics::{displacements, GridDisplacement, StaticError};
 use super::UnitSystem;
@@ -42,6 +48,13 @@ pub struct Mode {
     /// Its backward error, ‖Kφ − λMφ‖ / ((‖K‖ + |λ|‖M‖)‖φ‖) (see
     /// [`crate::eigen::Eigenpairs::residuals`]).
     pub residual: f64,
+    /// Its modal effective mass in each rigid-body direction of the basic system
+    /// (T1, T2, T3; R1, R2, R3 about the basic origin): (φᵀMD)²/(φᵀMφ), D the
+    /// rigid-body motion over the solved DOFs. Mass units for T, mass·length² for R.
+    pub effective_mass: [f64; 6],
+    /// The running sum of the effective masses, modes 1 to this one, as a fraction
+    /// of DᵀMD (the mass the solved DOFs move with in that direction).
+    pub effective_mass_sum: [f64; 6],
 }
 
 /// What a normal modes solution gives.
@@ -72,6 +85,29 @@ pub struct ModalSolution {
     /// Each mode's grid displacements.
     #[serde(skip)]
     pub shapes: Vec<Vec<GridDisplacement>>,
+}
+
+/// Component `l` of the rigid-body motion `d` of the basic system (0-2: a unit
+/// translation along X, Y, Z; 3-5: a unit rotation about X, Y, Z through the basic
+/// origin), in the grid's displacement frame; 0 on a scalar point.
+fn rigid_body(geo: &crate::geometry::Geometry, l: &DofLabel, d: usize) -> f64 {
+    use nalgebra::Vector3;
+    let Some(x) = geo.positions.get(&l.point).filter(|_| l.comp > 0) else {
+        return 0.0;
+    };
+    let axis = Vector3::ith(d % 3, 1.0);
+    let (u, theta) = if d < 3 {
+        (axis, Vector3::zeros())
+    } else {
+        (axis.cross(&Vector3::from(*x)), axis)
+    };
+    let t = geo.frame(l.point).transpose();
+    let c = usize::from(l.comp) - 1;
+    if c < 3 {
+        (t * u)[c]
+    } else {
+        (t * theta)[c - 3]
+    }
 }
 
 /// A deck refused for one reason.
@@ -177,6 +213,21 @@ pub fn solve(deck: &Deck) -> Result<(ModalSolution, Vec<Diagnostic>), StaticErro
             "unit component {c} of point {g} (the largest component where it is zero: below 1e-8 of the largest)"
         ),
     };
+    // The rigid-body motions over the solved DOFs, and M times each.
+    let rigid: Vec<Vec<f64>> = (0..6)
+        .map(|d| labels.iter().map(|l| rigid_body(&s.geometry, l, d)).collect())
+        .collect();
+    let m_rigid: Vec<Vec<f64>> = rigid
+        .iter()
+        .map(|r| {
+            let mut y = vec![0.0; r.len()];
+            sys.m_mul(r, &mut y);
+            y
+        })
+        .collect();
+    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+    let moved: Vec<f64> = rigid.iter().zip(&m_rigid).map(|(r, mr)| dot(r, mr)).collect();
+    let mut running = [0.0; 6];
     let mut modes = Vec::new();
     let mut shapes = Vec::new();
     for (k, ((lambda, phi), residual)) in pairs
@@ -199,6 +250,16 @@ pub fn solve(deck: &Deck) -> Result<(ModalSolution, Vec<Diagnostic>), StaticErro
                 _ => largest,
             },
         };
+        // φ has unit generalised mass here.
+        let effective_mass: [f64; 6] = std::array::from_fn(|d| dot(phi, &m_rigid[d]).powi(2));
+        let effective_mass_sum: [f64; 6] = std::array::from_fn(|d| {
+            running[d] += effective_mass[d];
+            if moved[d] > 0.0 {
+                running[d] / moved[d]
+            } else {
+                0.0
+            }
+        });
         let phi: Vec<f64> = phi.iter().map(|v| v / scale).collect();
         let generalized_mass = 1.0 / (scale * scale);
         let radians = lambda.max(0.0).sqrt();
@@ -210,6 +271,8 @@ pub fn solve(deck: &Deck) -> Result<(ModalSolution, Vec<Diagnostic>), StaticErro
             generalized_mass,
             generalized_stiffness: lambda * generalized_mass,
             residual: *residual,
+            effective_mass,
+            effective_mass_sum,
         });
         let mut u = vec![0.0; n];
         for (v, &i) in phi.iter().zip(&kept) {
