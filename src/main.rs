@@ -400,15 +400,17 @@ pub struct AuditArgs {
 
 #[derive(clap::Args)]
 pub struct CompareArgs {
-    /// The output directory of `impactlab run` on a static deck.
+    /// The output directory of `impactlab run` on a static or normal modes deck.
     pub run: PathBuf,
-    /// NASTRAN's printed output of the same deck (its DISPLACEMENT VECTOR tables).
+    /// NASTRAN's printed output of the same deck (its DISPLACEMENT VECTOR tables, or
+    /// its REAL EIGENVALUES table for a normal modes run).
     pub nastran: PathBuf,
     /// How many of the largest differences to list per SUBCASE.
     #[arg(long, default_value_t = 10)]
     pub top: usize,
     /// The largest difference allowed, relative to the largest printed translation
-    /// (rotation for R1-R3); exit 1 beyond it. None by default.
+    /// (rotation for R1-R3), or to each printed eigenvalue; exit 1 beyond it. None by
+    /// default.
     #[arg(long)]
     pub tolerance: Option<f64>,
 }

@@ -152,7 +152,9 @@ fn hinged_plate_converges_at_second_order() {
 }
 
 /// Goal: `impactlab run` on a normal modes deck writes modes.csv (a row a root),
-/// shapes.csv and summary.json, and refuses a transient run's flags.
+/// shapes.csv and summary.json, and refuses a transient run's flags; `impactlab
+/// compare` holds its roots against NASTRAN's printed REAL EIGENVALUES, exit 1 past
+/// the tolerance.
 #[test]
 fn run_writes_the_roots_and_refuses_transient_flags() {
     let inp = root().join("reference-data/nastran95-demos/inp/d03011a.inp");
@@ -170,6 +172,26 @@ fn run_writes_the_roots_and_refuses_transient_flags() {
     assert_eq!(summary["normalised"], "unit largest component");
     let shapes = std::fs::read_to_string(out.join("shapes.csv")).unwrap();
     assert!(shapes.lines().skip(1).all(|l| l.split(',').count() == 9));
+    // compare: the roots against NASTRAN-95's printed ones, rank by rank (see
+    // reference-data/nastran95-demos-modes.md: the third differs by 6e-3 in λ).
+    let printed = root().join("reference-data/nastran95-demos/demoout/d03011a.out");
+    let cmp = |tol: &str| {
+        impactlab(&[
+            "compare",
+            out.to_str().unwrap(),
+            printed.to_str().unwrap(),
+            "--tolerance",
+            tol,
+        ])
+    };
+    let o = cmp("1e-2");
+    let text = String::from_utf8_lossy(&o.stdout).to_string();
+    assert_eq!(o.status.code(), Some(0), "{text}");
+    assert!(
+        text.contains("roots: 3 in the run, 3 printed; 3 compared by rank"),
+        "{text}"
+    );
+    assert_eq!(cmp("1e-3").status.code(), Some(1));
     let o = impactlab(&["run", inp.to_str().unwrap(), "--steps", "10"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("--steps applies to a transient run"));

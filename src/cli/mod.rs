@@ -781,6 +781,9 @@ pub fn report(a: ReportArgs) -> Result<u8, Error> {
 /// `impactlab compare`: a static run against NASTRAN's printed displacements.
 pub fn compare(a: CompareArgs) -> Result<u8, Error> {
     use impactlab::verify::printed::{compare, read_printed_file, read_run, render};
+    if a.run.join("modes.csv").exists() {
+        return compare_roots(&a);
+    }
     let theirs = read_printed_file(&a.nastran)?;
     let ours = read_run(&a.run)?;
     let comparisons = compare(&ours, &theirs);
@@ -795,6 +798,24 @@ pub fn compare(a: CompareArgs) -> Result<u8, Error> {
     }
     say(&render(&comparisons, a.top));
     let worst = comparisons.iter().map(|c| c.worst()).fold(0.0, f64::max);
+    Ok(match a.tolerance {
+        Some(t) if worst > t => {
+            sayln(&format!("largest difference {worst:.2e} exceeds --tolerance {t:e}"));
+            1
+        }
+        _ => 0,
+    })
+}
+
+/// `impactlab compare` of a normal modes run: its roots against the printed REAL
+/// EIGENVALUES table, rank by rank.
+fn compare_roots(a: &CompareArgs) -> Result<u8, Error> {
+    use impactlab::verify::printed::{compare_roots, read_eigenvalues_file, read_run_roots, render_roots};
+    let theirs = read_eigenvalues_file(&a.nastran)?;
+    let ours = read_run_roots(&a.run)?;
+    let c = compare_roots(&ours, &theirs);
+    say(&render_roots(&c, ours.len(), theirs.len()));
+    let worst = c.iter().map(|r| r.relative).fold(0.0, f64::max);
     Ok(match a.tolerance {
         Some(t) if worst > t => {
             sayln(&format!("largest difference {worst:.2e} exceeds --tolerance {t:e}"));

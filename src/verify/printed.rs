@@ -201,6 +201,112 @@ pub fn read_eigenvalues(text: &str) -> Vec<PrintedRoot> {
     out
 }
 
+/// Reads a printed output file's REAL EIGENVALUES tables.
+pub fn read_eigenvalues_file(path: &Path) -> Result<Vec<PrintedRoot>, PrintedError> {
+    let bytes = std::fs::read(path).map_err(|source| PrintedError::Io {
+        path: path.display().to_string(),
+        source,
+    })?;
+    let roots = read_eigenvalues(&String::from_utf8_lossy(&bytes));
+    if roots.is_empty() {
+        return Err(PrintedError::Format {
+            path: path.display().to_string(),
+            line: 0,
+            message: format!("holds no real eigenvalue table ({EIGENVALUES})"),
+        });
+    }
+    Ok(roots)
+}
+
+/// One root of an impactlab normal modes run (`modes.csv`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RunRoot {
+    /// Its number.
+    pub mode: usize,
+    /// λ = ω².
+    pub eigenvalue: f64,
+    /// Cycles per unit time.
+    pub cycles: f64,
+}
+
+/// The roots of an impactlab normal modes run (`modes.csv` of its directory).
+pub fn read_run_roots(dir: &Path) -> Result<Vec<RunRoot>, PrintedError> {
+    let path = dir.join("modes.csv");
+    let name = path.display().to_string();
+    let mut r = csv::Reader::from_path(&path).map_err(|e| PrintedError::Io {
+        path: name.clone(),
+        source: std::io::Error::other(e.to_string()),
+    })?;
+    let mut out = Vec::new();
+    for (i, rec) in r.records().enumerate() {
+        let bad = |message: String| PrintedError::Format {
+            path: name.clone(),
+            line: i + 2,
+            message,
+        };
+        let rec = rec.map_err(|e| bad(e.to_string()))?;
+        let field = |k: usize| rec.get(k).and_then(|t| t.parse::<f64>().ok());
+        match (rec.get(0).and_then(|t| t.parse().ok()), field(1), field(3)) {
+            (Some(mode), Some(eigenvalue), Some(cycles)) => out.push(RunRoot {
+                mode,
+                eigenvalue,
+                cycles,
+            }),
+            _ => return Err(bad("not a row of mode, eigenvalue, radians, cycles, …".into())),
+        }
+    }
+    Ok(out)
+}
+
+/// A root of the run beside the printed one of the same rank.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RootComparison {
+    /// The rank (1: the lowest).
+    pub rank: usize,
+    /// The run's.
+    pub ours: RunRoot,
+    /// The printed one.
+    pub theirs: PrintedRoot,
+    /// |λ − λ_printed| / |λ_printed| (relative to 1e-6 of the largest printed
+    /// eigenvalue where that is larger: a rigid-body root is zero to round-off).
+    pub relative: f64,
+}
+
+/// The run's roots and the printed ones paired by rank (both in ascending order; as
+/// many pairs as the shorter list has).
+pub fn compare_roots(ours: &[RunRoot], theirs: &[PrintedRoot]) -> Vec<RootComparison> {
+    let mut ours = ours.to_vec();
+    ours.sort_by(|a, b| a.eigenvalue.total_cmp(&b.eigenvalue));
+    let mut theirs = theirs.to_vec();
+    theirs.sort_by(|a, b| a.eigenvalue.total_cmp(&b.eigenvalue));
+    let top = theirs.iter().fold(0.0_f64, |a, r| a.max(r.eigenvalue.abs()));
+    ours.iter()
+        .zip(&theirs)
+        .enumerate()
+        .map(|(k, (o, t))| RootComparison {
+            rank: k + 1,
+            ours: *o,
+            theirs: *t,
+            relative: (o.eigenvalue - t.eigenvalue).abs() / t.eigenvalue.abs().max(1e-6 * top).max(f64::MIN_POSITIVE),
+        })
+        .collect()
+}
+
+/// The root comparison as a table.
+pub fn render_roots(c: &[RootComparison], ours: usize, theirs: usize) -> String {
+    let mut out = format!(
+        "roots: {ours} in the run, {theirs} printed; {} compared by rank\n  rank    cycles (run)  cycles (printed)  eigenvalue difference\n",
+        c.len()
+    );
+    for r in c {
+        out.push_str(&format!(
+            "  {:>4}  {:>14.6e}  {:>15.6e}  {:>21.2e}\n",
+            r.rank, r.ours.cycles, r.theirs.cycles, r.relative
+        ));
+    }
+    out
+}
+
 /// An impactlab static run's displacements (`displacements.csv` of its directory),
 /// in the same form: per SUBCASE (1 for a deck of one), each grid's T1..R3.
 pub fn read_run(dir: &Path) -> Result<Printed, PrintedError> {
