@@ -289,36 +289,47 @@ pub fn run(a: RunArgs) -> Result<u8, Error> {
 /// `impactlab run` on a linear static deck (SOL 101): K u = f, its displacements and
 /// summary written to the output directory.
 fn run_static(a: &RunArgs, d: &deck::Deck) -> Result<u8, Error> {
-    refuse_transient_flags(a, "a linear static one (SOL 101)")?;
-    for w in &d.warnings {
-        say_err(&w.to_string());
-    }
-    let (solutions, warnings) = impactlab::run::statics::solve_subcases(d)?;
-    for w in &warnings {
-        say_err(&w.to_string());
-    }
-    let dir = a.out.clone().unwrap_or_else(|| PathBuf::from("out").join(&d.name));
-    output::write_dir_atomically(&dir, &output::static_files(&solutions)).map_err(io_error(&dir))?;
-    for s in &solutions {
-        say(&output::static_summary(s));
-    }
-    sayln(&format!("  outputs:  {}", dir.display()));
-    Ok(0)
+    run_solution(a, d, "a linear static one (SOL 101)", |d| {
+        let (solutions, warnings) = impactlab::run::statics::solve_subcases(d)?;
+        let text: String = solutions.iter().map(output::static_summary).collect();
+        Ok((output::static_files(&solutions), text, warnings))
+    })
 }
 
 /// `impactlab run` on a normal modes deck (SOL 3, 103).
 fn run_modes(a: &RunArgs, d: &deck::Deck) -> Result<u8, Error> {
-    refuse_transient_flags(a, "a normal modes one (SOL 103)")?;
+    run_solution(a, d, "a normal modes one (SOL 103)", |d| {
+        let (solution, warnings) = impactlab::run::modes::solve(d)?;
+        Ok((
+            output::modal_files(&solution),
+            output::modal_summary(&solution),
+            warnings,
+        ))
+    })
+}
+
+/// The files a solution writes, what it says, and its warnings.
+type Solved = (Vec<(&'static str, Vec<u8>)>, String, Vec<deck::Diagnostic>);
+
+/// A deck of `kind` solved rather than integrated: the transient flags refused, the
+/// warnings said, the files written to the output directory in one step.
+fn run_solution(
+    a: &RunArgs,
+    d: &deck::Deck,
+    kind: &str,
+    solve: impl FnOnce(&deck::Deck) -> Result<Solved, Error>,
+) -> Result<u8, Error> {
+    refuse_transient_flags(a, kind)?;
     for w in &d.warnings {
         say_err(&w.to_string());
     }
-    let (solution, warnings) = impactlab::run::modes::solve(d)?;
+    let (files, text, warnings) = solve(d)?;
     for w in &warnings {
         say_err(&w.to_string());
     }
     let dir = a.out.clone().unwrap_or_else(|| PathBuf::from("out").join(&d.name));
-    output::write_dir_atomically(&dir, &output::modal_files(&solution)).map_err(io_error(&dir))?;
-    say(&output::modal_summary(&solution));
+    output::write_dir_atomically(&dir, &files).map_err(io_error(&dir))?;
+    say(&text);
     sayln(&format!("  outputs:  {}", dir.display()));
     Ok(0)
 }

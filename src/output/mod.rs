@@ -287,6 +287,15 @@ pub fn human_summary(model: &Model, run: &RunResult) -> String {
     out
 }
 
+/// A grid's row: `first` (a SUBCASE or mode) if any, the grid, its CD and T1..R3.
+fn grid_row(first: Option<String>, d: &crate::run::statics::GridDisplacement) -> Vec<String> {
+    first
+        .into_iter()
+        .chain([d.grid.to_string(), d.cd.to_string()])
+        .chain(d.u.iter().map(|v| format!("{v:e}")))
+        .collect()
+}
+
 /// A static solution's files: `displacements.csv` (every grid's T1..R3 in its
 /// displacement frame, the frame's system in `cd`) and `summary.json`. A deck of
 /// several SUBCASEs writes every one's: `displacements.csv` with its `subcase` first,
@@ -303,15 +312,8 @@ pub fn static_files(solutions: &[crate::run::statics::StaticSolution]) -> Vec<(&
     .expect("writing to memory");
     for s in solutions {
         for d in &s.grids {
-            let mut row: Vec<String> = s
-                .subcase
-                .filter(|_| several)
-                .map(|n| n.to_string())
-                .into_iter()
-                .collect();
-            row.extend([d.grid.to_string(), d.cd.to_string()]);
-            row.extend(d.u.iter().map(|v| format!("{v:e}")));
-            w.write_record(&row).expect("writing to memory");
+            let subcase = s.subcase.filter(|_| several).map(|n| n.to_string());
+            w.write_record(grid_row(subcase, d)).expect("writing to memory");
         }
     }
     #[derive(serde::Serialize)]
@@ -398,9 +400,8 @@ pub fn modal_files(s: &crate::run::modes::ModalSolution) -> Vec<(&'static str, V
         .expect("writing to memory");
     for (mode, shape) in s.modes.iter().zip(&s.shapes) {
         for d in shape {
-            let mut row = vec![mode.mode.to_string(), d.grid.to_string(), d.cd.to_string()];
-            row.extend(d.u.iter().map(|v| format!("{v:e}")));
-            w.write_record(&row).expect("writing to memory");
+            w.write_record(grid_row(Some(mode.mode.to_string()), d))
+                .expect("writing to memory");
         }
     }
     #[derive(serde::Serialize)]
