@@ -81,6 +81,12 @@ pub struct Eigenpairs {
     pub steps: usize,
     /// Times the recurrence started again from a new vector.
     pub restarts: usize,
+    /// Time spent factorising K − σM.
+    pub factor_time: std::time::Duration,
+    /// Time spent in solves with the factor.
+    pub solve_time: std::time::Duration,
+    /// Time spent in all, factorisation included.
+    pub time: std::time::Duration,
 }
 
 /// A fixed pseudo-random sequence in [−1, 1) (SplitMix64), so that runs repeat.
@@ -108,6 +114,7 @@ pub fn lanczos(
     roots: &Roots,
     params: &LanczosParams,
 ) -> Result<Eigenpairs, SolveError> {
+    let t0 = std::time::Instant::now();
     let n = sys.n;
     if n == 0 {
         return Ok(Eigenpairs {
@@ -117,6 +124,9 @@ pub fn lanczos(
             shift: 0.0,
             steps: 0,
             restarts: 0,
+            factor_time: Default::default(),
+            solve_time: Default::default(),
+            time: Default::default(),
         });
     }
     let (mut factor, shift) = factorise(sys, labels)?;
@@ -228,6 +238,9 @@ pub fn lanczos(
         shift,
         steps: q.len(),
         restarts,
+        factor_time: factor.factor_time,
+        solve_time: factor.solve_time,
+        time: Default::default(),
     };
     for (lambda, s) in pairs {
         let mut x = vec![0.0; n];
@@ -252,6 +265,7 @@ pub fn lanczos(
         out.values.push(lambda);
         out.vectors.push(x);
     }
+    out.time = t0.elapsed();
     Ok(out)
 }
 

@@ -336,6 +336,10 @@ pub struct CheckArgs {
     /// Print the report as JSON.
     #[arg(long)]
     pub json: bool,
+    /// Also find the structure's N lowest natural frequencies (Lanczos, as a normal
+    /// modes run finds them; the structure is built whole, stiffness and all).
+    #[arg(long, value_name = "N")]
+    pub modes: Option<usize>,
 }
 
 #[derive(clap::Args)]
@@ -378,6 +382,10 @@ pub struct BenchArgs {
     /// memory against the deck's size (median of --repeats after a warm-up).
     #[arg(long, conflicts_with = "size")]
     pub check: bool,
+    /// Instead: the Lanczos extraction of the 20 lowest roots of the 49, 99 and 199
+    /// plates (its structure alone), by stage, with its time per root.
+    #[arg(long, conflicts_with_all = ["size", "check"])]
+    pub modes: bool,
 }
 
 #[derive(clap::Args)]

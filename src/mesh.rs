@@ -384,6 +384,41 @@ pub fn plate_deck(n: usize) -> Result<String, MeshError> {
     plate_deck_with(n, Edges::Clamped, Cells::Quad4)
 }
 
+/// The paper's plate on an N×N mesh, its structure alone: [`plate_deck`] with the
+/// impactor, contact and transient cards taken out and SOL 103, as an analyst's
+/// normal modes deck would hold it (no METHOD: add one, or `check --modes`).
+pub fn plate_structure_deck(n: usize) -> Result<String, MeshError> {
+    const IMPACT: [&str; 16] = [
+        "GRID,999",
+        "CONM2",
+        "+CON2",
+        "SPC1,1,12456,999",
+        "NOLIN3",
+        "TF",
+        "+TF",
+        "TIC",
+        "EPOINT",
+        "  IC",
+        "  NONLINEAR",
+        "  TSTEP",
+        "  TFL",
+        "  SET 15",
+        "  NLLOAD",
+        "  DISP",
+    ];
+    Ok(plate_deck(n)?
+        .lines()
+        .filter(|l| !IMPACT.iter().any(|p| l.starts_with(p)))
+        .map(|l| {
+            if l == "SOL 27" {
+                "SOL 103\n".to_string()
+            } else {
+                format!("{l}\n")
+            }
+        })
+        .collect())
+}
+
 /// The paper's plate deck on an N×N mesh with its edges held as `edges` says, meshed
 /// in `cells`.
 pub fn plate_deck_with(n: usize, edges: Edges, cells: Cells) -> Result<String, MeshError> {

@@ -489,7 +489,13 @@ pub fn check(a: CheckArgs) -> Result<u8, Error> {
         ..Default::default()
     };
     let d = deck::read_deck(&a.deck, read)?;
-    let r = impactlab::model::check::check(&d);
+    let mut r = impactlab::model::check::check(&d);
+    if let (Some(n), true) = (a.modes, r.takes) {
+        match impactlab::run::modes::lowest(&d, n) {
+            Ok((s, _)) => r.lowest_frequencies = Some(s.modes.iter().map(|m| m.cycles).collect()),
+            Err(e) => r.warnings.push(format!("the lowest frequencies were not found: {e}")),
+        }
+    }
     if a.json {
         say(&serde_json::to_string_pretty(&r).expect("the report serialises"));
     } else {
@@ -556,6 +562,14 @@ fn check_text(r: &impactlab::model::check::CheckReport) -> String {
             s,
             "  WTMASS {w:e}   the mass above is in the deck's input units; solutions use {:.6e} (x), {:.6e} (y), {:.6e} (z)",
             m[0], m[1], m[2]
+        );
+    }
+    if let Some(f) = &r.lowest_frequencies {
+        let f: Vec<String> = f.iter().map(|f| format!("{f:.6e}")).collect();
+        let _ = writeln!(
+            s,
+            "  frequencies     {} (cycles per unit time, lowest first)",
+            f.join(", ")
         );
     }
     for (what, n) in &r.readings {
@@ -866,6 +880,10 @@ pub fn bench(a: BenchArgs) -> Result<u8, Error> {
     }
     if a.check {
         say(&impactlab::study::bench::bench_check(a.repeats.max(1))?);
+        return Ok(0);
+    }
+    if a.modes {
+        say(&impactlab::study::bench::bench_modes(&[49, 99, 199], 20)?);
         return Ok(0);
     }
     say(&impactlab::study::bench::bench_plate(a.repeats.max(1), a.steps)?);

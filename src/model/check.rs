@@ -143,6 +143,10 @@ pub struct CheckReport {
     pub unsupported: Vec<CardCount>,
     /// Cards that do not change the structure, ignored (PARAM among them).
     pub ignored: Vec<CardCount>,
+    /// The lowest natural frequencies (cycles per unit time), when asked for and found
+    /// (`check --modes N`; why they could not be is among the warnings).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lowest_frequencies: Option<Vec<f64>>,
     /// Why the structure does not build (the model builder's errors), when it does not.
     pub errors: Vec<String>,
     /// Warnings of the reader and the model builder.
@@ -268,6 +272,7 @@ pub fn check(deck: &Deck) -> CheckReport {
         systems,
         unsupported: unsupported.into_values().collect(),
         ignored: ignored.into_values().collect(),
+        lowest_frequencies: None,
         errors: Vec::new(),
         warnings: Vec::new(),
     };

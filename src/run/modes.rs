@@ -85,6 +85,23 @@ pub struct ModalSolution {
     /// Each mode's grid displacements.
     #[serde(skip)]
     pub shapes: Vec<Vec<GridDisplacement>>,
+    /// Where the time went (not written: outputs repeat to the byte).
+    #[serde(skip)]
+    pub timing: ModalTiming,
+}
+
+/// Where a normal modes solution's time goes.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ModalTiming {
+    /// Building the structure and assembling K and M.
+    pub build: std::time::Duration,
+    /// Factorising K − σM.
+    pub factor: std::time::Duration,
+    /// Solves with the factor.
+    pub solves: std::time::Duration,
+    /// The Lanczos extraction in all (factorisation, solves, re-orthogonalisation,
+    /// tridiagonal eigenproblems, Ritz vectors).
+    pub lanczos: std::time::Duration,
 }
 
 /// Component `l` of the rigid-body motion `d` of the basic system (0-2: a unit
@@ -166,7 +183,6 @@ fn roots_of(e: &Eigr) -> Result<(Roots, String), StaticError> {
 /// Solves a normal modes deck (read with [`crate::deck::MODES`] as its solution): the
 /// roots its METHOD's EIGR or EIGRL asks for, with the model builder's warnings.
 pub fn solve(deck: &Deck) -> Result<(ModalSolution, Vec<Diagnostic>), StaticError> {
-    let refuse = |d: Diagnostic| StaticError::Model(ModelError { diagnostics: vec![d] });
     let Some(sel) = &deck.case.method else {
         return Err(refuse(Diagnostic::error(
             deck.case.at.clone(),
@@ -183,6 +199,32 @@ pub fn solve(deck: &Deck) -> Result<(ModalSolution, Vec<Diagnostic>), StaticErro
         ));
     };
     let (roots, roots_asked) = roots_of(card)?;
+    let method = format!("{} {} ({})", card.at.name, card.sid, card.method);
+    solve_for(deck, &roots, roots_asked, card.norm, method)
+}
+
+/// The `count` lowest roots of a deck's structure (rigid-body roots included),
+/// normalised to unit generalised mass, whatever its solution sequence: what
+/// `impactlab check --modes N` prints.
+pub fn lowest(deck: &Deck, count: usize) -> Result<(ModalSolution, Vec<Diagnostic>), StaticError> {
+    let roots = Roots {
+        above: f64::NEG_INFINITY,
+        below: None,
+        count: Some(count),
+    };
+    let asked = format!("the {count} lowest roots");
+    solve_for(deck, &roots, asked, Norm::Mass, "Lanczos (check --modes)".into())
+}
+
+/// The roots of a deck's structure that `roots` asks for.
+fn solve_for(
+    deck: &Deck,
+    roots: &Roots,
+    roots_asked: String,
+    norm: Norm,
+    method: String,
+) -> Result<(ModalSolution, Vec<Diagnostic>), StaticError> {
+    let t0 = std::time::Instant::now();
     let (s, mut warnings) = build_structure(deck)?;
     for (key, r) in deck.case.outputs.iter().filter(|(k, _)| k.as_str() != "DISP") {
         warnings.push(Diagnostic::warning(
@@ -203,10 +245,11 @@ pub fn solve(deck: &Deck) -> Result<(ModalSolution, Vec<Diagnostic>), StaticErro
     }
     let sys = full.restricted(&map, kept.len());
     let labels: Vec<DofLabel> = kept.iter().map(|&i| s.dofs[i]).collect();
-    let pairs = lanczos(&sys, &labels, &roots, &LanczosParams::default())?;
+    let build = t0.elapsed();
+    let pairs = lanczos(&sys, &labels, roots, &LanczosParams::default())?;
     let point =
         |g: i64, c: usize| -> Option<usize> { labels.iter().position(|l| l.point == g && usize::from(l.comp) == c) };
-    let normalised = match card.norm {
+    let normalised = match norm {
         Norm::Mass => "unit generalised mass".to_string(),
         Norm::Max => "unit largest component".to_string(),
         Norm::Point(g, c) => format!(
@@ -241,7 +284,7 @@ pub fn solve(deck: &Deck) -> Result<(ModalSolution, Vec<Diagnostic>), StaticErro
             .iter()
             .copied()
             .fold(0.0_f64, |a, b| if b.abs() > a.abs() { b } else { a });
-        let scale = match card.norm {
+        let scale = match norm {
             Norm::Mass => 1.0,
             Norm::Max => largest,
             // "Defaults to MAX if defined component is zero": zero to round-off.
@@ -285,7 +328,7 @@ pub fn solve(deck: &Deck) -> Result<(ModalSolution, Vec<Diagnostic>), StaticErro
             deck: deck.name.clone(),
             deck_sha256: deck.sha256.clone(),
             units: UnitSystem::of(&deck.units),
-            method: format!("{} {} ({})", card.at.name, card.sid, card.method),
+            method,
             roots_asked,
             normalised,
             dofs: kept.len(),
@@ -294,6 +337,12 @@ pub fn solve(deck: &Deck) -> Result<(ModalSolution, Vec<Diagnostic>), StaticErro
             lanczos_steps: pairs.steps,
             modes,
             shapes,
+            timing: ModalTiming {
+                build,
+                factor: pairs.factor_time,
+                solves: pairs.solve_time,
+                lanczos: pairs.time,
+            },
         },
         warnings,
     ))

@@ -474,3 +474,43 @@ pub fn bench_check(repeats: usize) -> Result<String, StudyError> {
     }
     Ok(out)
 }
+
+/// `impactlab bench --modes`: the cost of the Lanczos extraction
+/// ([`crate::eigen::lanczos`]) as the model grows: the paper's plate, its structure
+/// alone (`mesh::plate_structure_deck`), on the 49×49, 99×99 and 199×199 meshes, its
+/// `roots` lowest roots (`check --modes`' extraction), once each. Reports the DOFs,
+/// the structure's build and assembly, the factorisation, the solves, the rest of the
+/// extraction (re-orthogonalisation, tridiagonal eigenproblems, Ritz vectors), the
+/// Lanczos steps, and the extraction's time per root.
+pub fn bench_modes(sizes: &[usize], roots: usize) -> Result<String, StudyError> {
+    let mut out = format!(
+        "normal modes of the paper's plate (its structure alone), the {roots} lowest roots by Lanczos; one run each\n"
+    );
+    let _ = writeln!(
+        out,
+        "{:>8} {:>8} {:>10} {:>10} {:>10} {:>10} {:>6} {:>12}",
+        "mesh", "DOFs", "build [s]", "factor [s]", "solves [s]", "rest [s]", "steps", "per root [s]"
+    );
+    for &n in sizes {
+        let text = crate::mesh::plate_structure_deck(n)?;
+        let deck = crate::deck::parse_deck_str(&format!("plate{n}"), &text, Default::default())
+            .map_err(crate::model::LoadError::from)?;
+        let (s, _) = crate::run::modes::lowest(&deck, roots).map_err(|e| StudyError::Input(e.to_string()))?;
+        let t = s.timing;
+        let secs = |d: std::time::Duration| d.as_secs_f64();
+        let rest = secs(t.lanczos) - secs(t.factor) - secs(t.solves);
+        let _ = writeln!(
+            out,
+            "{:>8} {:>8} {:>10.3} {:>10.3} {:>10.3} {:>10.3} {:>6} {:>12.4}",
+            format!("{n}×{n}"),
+            s.dofs,
+            secs(t.build),
+            secs(t.factor),
+            secs(t.solves),
+            rest,
+            s.lanczos_steps,
+            secs(t.lanczos) / s.modes.len().max(1) as f64
+        );
+    }
+    Ok(out)
+}

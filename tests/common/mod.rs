@@ -127,31 +127,5 @@ pub fn pynastran_json<T: serde::de::DeserializeOwned>(script: &str, args: &[&std
 /// The paper's plate deck on an n×n mesh with its impactor, contact and transient
 /// cards taken out: the structure alone, as an analyst's SOL 103 deck would hold it.
 pub fn plate_structure(n: usize) -> String {
-    impactlab::mesh::plate_deck(n)
-        .unwrap()
-        .lines()
-        .filter(|l| {
-            ![
-                "GRID,999",
-                "CONM2",
-                "+CON2",
-                "SPC1,1,12456,999",
-                "NOLIN3",
-                "TF",
-                "+TF",
-                "TIC",
-                "EPOINT",
-                "  IC",
-                "  NONLINEAR",
-                "  TSTEP",
-                "  TFL",
-                "  SET 15",
-                "  NLLOAD",
-                "  DISP",
-            ]
-            .iter()
-            .any(|p| l.starts_with(p))
-        })
-        .map(|l| if l == "SOL 27" { "SOL 103\n" } else { l }.to_string() + if l == "SOL 27" { "" } else { "\n" })
-        .collect()
+    impactlab::mesh::plate_structure_deck(n).unwrap()
 }
