@@ -236,15 +236,7 @@ fn taken_static_decks_are_solved_and_compared_with_nastran95() {
     for r in &rows {
         let _ = writeln!(table, "{r}");
     }
-    let path = root().join("reference-data/nastran95-demos-statics.md");
-    if std::env::var_os("IMPACTLAB_WRITE_DEMO_TABLE").is_some() {
-        std::fs::write(&path, &table).unwrap();
-    }
-    let committed = std::fs::read_to_string(&path).expect("the committed table");
-    assert_eq!(
-        committed, table,
-        "reference-data/nastran95-demos-statics.md is not what the code makes now"
-    );
+    table_is_current("nastran95-demos-statics.md", &table);
 }
 
 /// The theoretical frequencies a deck's own comments give, as NASTRAN-95's plate
@@ -340,13 +332,16 @@ fn taken_modal_decks_are_solved_and_compared_with_nastran95() {
     for r in &rows {
         let _ = writeln!(table, "{r}");
     }
-    let path = root().join("reference-data/nastran95-demos-modes.md");
+    table_is_current("nastran95-demos-modes.md", &table);
+}
+
+/// The committed `reference-data/NAME` is `table` (written first when
+/// `IMPACTLAB_WRITE_DEMO_TABLE` is set).
+fn table_is_current(name: &str, table: &str) {
+    let path = root().join("reference-data").join(name);
     if std::env::var_os("IMPACTLAB_WRITE_DEMO_TABLE").is_some() {
-        std::fs::write(&path, &table).unwrap();
+        std::fs::write(&path, table).unwrap();
     }
     let committed = std::fs::read_to_string(&path).expect("the committed table");
-    assert_eq!(
-        committed, table,
-        "reference-data/nastran95-demos-modes.md is not what the code makes now"
-    );
+    assert_eq!(committed, table, "reference-data/{name} is not what the code makes now");
 }

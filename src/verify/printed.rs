@@ -124,13 +124,19 @@ pub fn read_printed(text: &str) -> Printed {
     out
 }
 
-/// Reads a printed output file.
-pub fn read_printed_file(path: &Path) -> Result<Printed, PrintedError> {
+/// A printed output's text (bytes that are not UTF-8 replaced: NASTRAN-95's pages are
+/// ASCII).
+fn read_text(path: &Path) -> Result<String, PrintedError> {
     let bytes = std::fs::read(path).map_err(|source| PrintedError::Io {
         path: path.display().to_string(),
         source,
     })?;
-    let printed = read_printed(&String::from_utf8_lossy(&bytes));
+    Ok(String::from_utf8_lossy(&bytes).into_owned())
+}
+
+/// Reads a printed output file.
+pub fn read_printed_file(path: &Path) -> Result<Printed, PrintedError> {
+    let printed = read_printed(&read_text(path)?);
     if printed.subcases.is_empty() {
         return Err(PrintedError::Format {
             path: path.display().to_string(),
@@ -203,11 +209,7 @@ pub fn read_eigenvalues(text: &str) -> Vec<PrintedRoot> {
 
 /// Reads a printed output file's REAL EIGENVALUES tables.
 pub fn read_eigenvalues_file(path: &Path) -> Result<Vec<PrintedRoot>, PrintedError> {
-    let bytes = std::fs::read(path).map_err(|source| PrintedError::Io {
-        path: path.display().to_string(),
-        source,
-    })?;
-    let roots = read_eigenvalues(&String::from_utf8_lossy(&bytes));
+    let roots = read_eigenvalues(&read_text(path)?);
     if roots.is_empty() {
         return Err(PrintedError::Format {
             path: path.display().to_string(),

@@ -256,23 +256,18 @@ pub(super) fn card_eigr(r: &mut Reader, b: &mut Bulk) {
         }
     }
     let ne = r.int_opt(4, "NE");
-    let nd = r.int_opt(5, "ND");
+    let nd = root_count(r, 5);
     r.int_opt(6, "NZ");
     r.real_opt(7, "E");
     let norm = norm(r, 8, Some((9, 10)));
     r.extra_fields(11);
-    if let (Some(n), true) = (nd, r.ok) {
-        if n < 0 {
-            r.fail(5, "ND", "must not be negative");
-        }
-    }
     if r.ok {
         b.eigrs.push(Eigr {
             sid,
             method,
             range,
             ne,
-            nd: nd.filter(|&n| n > 0),
+            nd,
             norm,
             at: r.at(),
         });
@@ -284,7 +279,7 @@ pub(super) fn card_eigr(r: &mut Reader, b: &mut Bulk) {
 pub(super) fn card_eigrl(r: &mut Reader, b: &mut Bulk) {
     let sid = r.id(0, "SID");
     let range = [r.real_opt(1, "V1"), r.real_opt(2, "V2")];
-    let nd = r.int_opt(3, "ND");
+    let nd = root_count(r, 3);
     r.int_opt(4, "MSGLVL");
     r.int_opt(5, "MAXSET");
     r.real_opt(6, "SHFSCL");
@@ -299,22 +294,26 @@ pub(super) fn card_eigrl(r: &mut Reader, b: &mut Bulk) {
             break;
         }
     }
-    if let (Some(n), true) = (nd, r.ok) {
-        if n < 0 {
-            r.fail(3, "ND", "must not be negative");
-        }
-    }
     if r.ok {
         b.eigrs.push(Eigr {
             sid,
             method: "LAN".into(),
             range,
             ne: None,
-            nd: nd.filter(|&n| n > 0),
+            nd,
             norm,
             at: r.at(),
         });
     }
+}
+
+/// ND at field `k`: the number of roots desired, when positive (0 reads as blank).
+fn root_count(r: &mut Reader, k: usize) -> Option<i64> {
+    let nd = r.int_opt(k, "ND");
+    if nd.is_some_and(|n| n < 0) {
+        r.fail(k, "ND", "must not be negative");
+    }
+    nd.filter(|&n| n > 0)
 }
 
 /// NORM at field `k` (MASS when blank), with POINT's G and C at fields `point`.
