@@ -739,19 +739,24 @@ impl Element {
         self.turned(self.kernel.mass())
     }
 
-    /// Each grid's mass m when [`Element::mass`] is one lumped mass, m·I on each grid's
-    /// translations in grid and component order and nothing else (a zero m for a grid
-    /// it leaves out), without forming it; `None` otherwise.
-    pub fn lumped_translational_mass(&self) -> Option<Vec<f64>> {
+    /// [`Element::mass`], or, when it is one lumped mass (m·I on each grid's
+    /// translations in grid and component order and nothing else), each grid's m (a
+    /// zero m for a grid it leaves out) without forming it. The kernel's mass is
+    /// computed once either way.
+    pub fn mass_or_lumped(&self) -> Result<Vec<f64>, Vec<LocalMatrix>> {
         let n = self.grids.len();
         let local = self.kernel.mass();
-        let [l] = local.as_slice() else { return None };
-        let m = lumped_translations(l, n)?;
-        match &self.placement {
-            // Turned, such a mass is kept exactly m·I, over all DOFs in order.
-            Some(p) => (0..n).all(|g| p.rotates_only(g)).then_some(m),
-            None => l.at.windows(2).all(|w| w[0] < w[1]).then_some(m),
+        if let [l] = local.as_slice() {
+            let lumped = lumped_translations(l, n).filter(|_| match &self.placement {
+                // Turned, such a mass is kept exactly m·I, over all DOFs in order.
+                Some(p) => (0..n).all(|g| p.rotates_only(g)),
+                None => l.at.windows(2).all(|w| w[0] < w[1]),
+            });
+            if let Some(m) = lumped {
+                return Ok(m);
+            }
         }
+        Err(self.turned(local))
     }
 
     /// The kernel's matrices as they act on the grids' DOFs: unchanged when the element

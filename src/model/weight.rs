@@ -76,18 +76,21 @@ impl RigidBodyMass {
                 turn * rigid
             })
             .collect();
-        // A lumped mass: the diagonal terms of the loop below, in its order.
-        if let Some(m) = e.lumped_translational_mass() {
-            for (g, &m) in m.iter().enumerate() {
-                if m != 0.0 && at[g].is_some() {
-                    for c in 0..3 {
-                        self.m0 += d[g].row(c).transpose() * d[g].row(c) * m;
+        let full = match e.mass_or_lumped() {
+            // A lumped mass: the diagonal terms of the loop below, in its order.
+            Ok(m) => {
+                for (g, &m) in m.iter().enumerate() {
+                    if m != 0.0 && at[g].is_some() {
+                        for c in 0..3 {
+                            self.m0 += d[g].row(c).transpose() * d[g].row(c) * m;
+                        }
                     }
                 }
+                return;
             }
-            return;
-        }
-        for l in e.mass() {
+            Err(full) => full,
+        };
+        for l in full {
             for (a, &(ga, ca)) in l.at.iter().enumerate() {
                 for (b, &(gb, cb)) in l.at.iter().enumerate() {
                     let v = l.values[(a, b)];

@@ -231,14 +231,20 @@ pub struct RunRoot {
     pub cycles: f64,
 }
 
-/// The roots of an impactlab normal modes run (`modes.csv` of its directory).
-pub fn read_run_roots(dir: &Path) -> Result<Vec<RunRoot>, PrintedError> {
-    let path = dir.join("modes.csv");
+/// A run's CSV file opened for reading, with its name for messages.
+fn open_csv(path: &Path) -> Result<(csv::Reader<std::fs::File>, String), PrintedError> {
     let name = path.display().to_string();
-    let mut r = csv::Reader::from_path(&path).map_err(|e| PrintedError::Io {
+    let r = csv::Reader::from_path(path).map_err(|e| PrintedError::Io {
         path: name.clone(),
         source: std::io::Error::other(e.to_string()),
     })?;
+    Ok((r, name))
+}
+
+/// The roots of an impactlab normal modes run (`modes.csv` of its directory).
+pub fn read_run_roots(dir: &Path) -> Result<Vec<RunRoot>, PrintedError> {
+    let path = dir.join("modes.csv");
+    let (mut r, name) = open_csv(&path)?;
     let mut out = Vec::new();
     for (i, rec) in r.records().enumerate() {
         let bad = |message: String| PrintedError::Format {
@@ -313,11 +319,7 @@ pub fn render_roots(c: &[RootComparison], ours: usize, theirs: usize) -> String 
 /// in the same form: per SUBCASE (1 for a deck of one), each grid's T1..R3.
 pub fn read_run(dir: &Path) -> Result<Printed, PrintedError> {
     let path = dir.join("displacements.csv");
-    let name = path.display().to_string();
-    let mut r = csv::Reader::from_path(&path).map_err(|e| PrintedError::Io {
-        path: name.clone(),
-        source: std::io::Error::other(e.to_string()),
-    })?;
+    let (mut r, name) = open_csv(&path)?;
     let bad = |line: usize, message: String| PrintedError::Format {
         path: name.clone(),
         line,
