@@ -3,7 +3,7 @@
 //! writes nothing. Property test: random edits of the paper's decks never panic the
 //! reader or the model builder.
 
-mod common;
+use crate::common;
 
 use common::root;
 use proptest::prelude::*;

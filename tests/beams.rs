@@ -2,7 +2,7 @@
 //! section formulas, and a deck of CBARs, PBARL sections and offset CONM2s weighed
 //! against pyNastran's mass_properties.
 
-mod common;
+use crate::common;
 
 use impactlab::elements::section::{constants, Shape};
 

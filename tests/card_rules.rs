@@ -3,7 +3,7 @@
 //! and MSC's where the two dialects differ. Each test reads a small deck written by
 //! the rule and checks the typed result; a reader that breaks the rule fails it.
 
-mod common;
+use crate::common;
 
 use common::{bulk_deck as deck, BULK_HEAD as HEAD};
 use impactlab::deck::cards::BarOrientation;

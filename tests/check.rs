@@ -2,7 +2,7 @@
 //! weighed against an independent reader (pyNastran's mass_properties), and every
 //! card it does not take.
 
-mod common;
+use crate::common;
 
 use common::impactlab;
 use serde_json::Value;

@@ -1,6 +1,6 @@
 //! The `impactlab` binary end to end: outputs, summary keys, exit codes.
 
-mod common;
+use crate::common;
 use common::*;
 use std::process::Command;
 

@@ -4,7 +4,7 @@
 //! its kernel for the two properties a linear elastic target must have: passivity and
 //! reciprocity.
 
-mod common;
+use crate::common;
 
 use common::{deck, rod_model};
 use impactlab::integrate::convolution::{linear_response, unit_response, Convolver};

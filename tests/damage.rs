@@ -1,7 +1,7 @@
 //! Damage onset and the threshold impact: the delamination threshold and the plies'
 //! failure indices in the run's summary, and `sweep --find velocity --until …`.
 
-mod common;
+use crate::common;
 
 use common::{deck, hill, impactlab, pcomp_with_ft, rod_model, ALLOWABLES};
 use impactlab::run::{run_model, RunOptions};

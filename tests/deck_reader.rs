@@ -1,7 +1,7 @@
 //! The NASTRAN deck reader, feature by feature. Each test feeds a small deck and
 //! checks the typed result or the exact diagnostic.
 
-mod common;
+use crate::common;
 
 use common::{bulk_deck as deck, bulk_errors, deck_errors as errors, BULK_HEAD as HEAD};
 use impactlab::deck::{parse_deck_str, ReadOptions};

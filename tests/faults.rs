@@ -5,7 +5,7 @@
 //! unshare and mount from util-linux).
 #![cfg(target_os = "linux")]
 
-mod common;
+use crate::common;
 
 use common::deck;
 use std::collections::BTreeMap;

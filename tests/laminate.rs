@@ -3,7 +3,7 @@
 //! PSHELL plate. The lamination's own closed forms are unit tests in
 //! `src/laminate.rs`; here, what a deck makes of them.
 
-mod common;
+use crate::common;
 
 use common::{bulk_deck as bulk, bulk_errors, deck, root};
 use impactlab::deck::cards::{Lam, Ply};

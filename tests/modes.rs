@@ -3,7 +3,7 @@
 //! (every root twice), the roots of a plate against a dense eigen-solver, and the
 //! hinged plate of NASTRAN-95's demonstration decks against its theory on two meshes.
 
-mod common;
+use crate::common;
 
 use common::{impactlab, plate_structure, root};
 use impactlab::deck::{parse_deck_str, read_deck};

@@ -6,13 +6,13 @@
 //! Goal: no deck is refused for a reading error (NASTRAN-95 read every one of them),
 //! and no deck's verdict changes unnoticed. A deck that moves in the table fails the
 //! test until the table is written again on purpose:
-//! `IMPACTLAB_WRITE_DEMO_TABLE=1 cargo test --test nastran95_demos`.
+//! `IMPACTLAB_WRITE_DEMO_TABLE=1 cargo test --test integration nastran95_demos::`.
 //!
 //! The static (SOL 1) decks it takes are then solved and their displacements compared
 //! with NASTRAN-95's printed output (`reference-data/nastran95-demos/demoout/`), in the
 //! committed table `reference-data/nastran95-demos-statics.md`, written the same way.
 
-mod common;
+use crate::common;
 
 use common::root;
 use impactlab::deck::{read_deck, ReadOptions};
@@ -81,7 +81,7 @@ fn every_demonstration_deck_is_read_and_its_verdict_is_the_tables() {
         table,
         "# NASTRAN-95's demonstration decks through `impactlab check`\n\n\
          Written by `tests/nastran95_demos.rs` (`IMPACTLAB_WRITE_DEMO_TABLE=1 cargo test --test \
-         nastran95_demos`), which fails when a deck's verdict differs from this table. The decks are \
+         integration nastran95_demos::`), which fails when a deck's verdict differs from this table. The decks are \
          NASTRAN-95's own (`nastran95-demos/inp/`, see its README). Taken: {taken} of {}.\n\n\
          | deck | SOL | verdict | elements, cards not supported, or the first error |\n|---|---|---|---|",
         decks.len()
@@ -224,7 +224,7 @@ fn taken_static_decks_are_solved_and_compared_with_nastran95() {
         table,
         "# NASTRAN-95's static demonstration decks solved by impactlab\n\n\
          Written by `tests/nastran95_demos.rs` (`IMPACTLAB_WRITE_DEMO_TABLE=1 cargo test --test \
-         nastran95_demos`): every SOL 1 deck `impactlab check` takes (`nastran95-demos.md`), solved for \
+         integration nastran95_demos::`): every SOL 1 deck `impactlab check` takes (`nastran95-demos.md`), solved for \
          every SUBCASE and compared with NASTRAN-95's printed displacements \
          (`nastran95-demos/demoout/`). A difference is relative to the largest translation (rotation, \
          for R1-R3) NASTRAN-95 printed in that SUBCASE. Solved: {solved} of {}; agreeing to NASTRAN-95's \
@@ -317,7 +317,7 @@ fn taken_modal_decks_are_solved_and_compared_with_nastran95() {
         table,
         "# NASTRAN-95's normal modes demonstration decks solved by impactlab\n\n\
          Written by `tests/nastran95_demos.rs` (`IMPACTLAB_WRITE_DEMO_TABLE=1 cargo test --test \
-         nastran95_demos`): every SOL 3 deck `impactlab check` takes (`nastran95-demos.md`), solved for \
+         integration nastran95_demos::`): every SOL 3 deck `impactlab check` takes (`nastran95-demos.md`), solved for \
          the roots its METHOD's EIGR asks for (`impactlab run`), each root against the one of the same \
          rank in NASTRAN-95's printed REAL EIGENVALUES table (`nastran95-demos/demoout/`) and against \
          the theoretical frequency the deck's own comments give (the hinged plate's, \

@@ -4,7 +4,7 @@
 //! One Newmark run of the restored deck at the paper's Δt = 1e-7 s, 3000 steps (the
 //! deck's 2000 steps end before separation), shared by the tests below.
 
-mod common;
+use crate::common;
 
 use common::deck;
 use impactlab::integrate::Scheme;

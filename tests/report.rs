@@ -4,7 +4,7 @@
 //! check, a round-off-level number, removed, and the gold and superposition checks'
 //! values, differences at round-off, masked: they differ between machines).
 
-mod common;
+use crate::common;
 
 use common::root;
 use impactlab::report::{report_case, sig};

@@ -4,7 +4,7 @@
 //! from their committed CSV alone, and remade here from it. The case reports are
 //! judged in `tests/verify_gate.rs`, from the one evaluation of every case there.
 
-mod common;
+use crate::common;
 
 use common::root;
 

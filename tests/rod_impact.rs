@@ -4,7 +4,7 @@
 //! restored deck `reference-data/decks/rod.bdf` (Δt = 2e-7 s, 2500 steps).
 //! C = √(E/ρ) = 2e5 in/s, L/C = 180 µs.
 
-mod common;
+use crate::common;
 use common::*;
 use impactlab::integrate::Scheme;
 use impactlab::numerics::interp;

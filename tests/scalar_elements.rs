@@ -2,7 +2,7 @@
 //! springs in series under a static force, a mass between two points, and a spring
 //! in the paper's rod, whose ledger must close with the spring's energy in it.
 
-mod common;
+use crate::common;
 
 use common::run;
 use impactlab::integrate::Scheme;

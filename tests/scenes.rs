@@ -2,7 +2,7 @@
 //! a scene and the deck it writes give the same answer, and only the effects the
 //! scene calls for are simulated (the rest are listed as skipped, with why).
 
-mod common;
+use crate::common;
 
 use common::{impactlab, plate_structure, root};
 use impactlab::run::run_model;

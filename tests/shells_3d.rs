@@ -4,7 +4,7 @@
 //! the closed cylinder's frequencies are verification cases: `verification/
 //! scordelis-lo`, `pinched-cylinder`, `pinched-hemisphere`, `panel-flat-limit`.)
 
-mod common;
+use crate::common;
 
 use impactlab::integrate::Scheme;
 use impactlab::model::Model;

@@ -3,7 +3,7 @@
 //! CI (`CI` set; `.ci/run` installs the packages) a missing Slurm fails the test;
 //! elsewhere the test says it skipped.
 
-mod common;
+use crate::common;
 
 use common::{deck, root};
 use std::path::Path;

@@ -4,7 +4,7 @@
 //! for implicit schemes no growth of the energy error once contact has ended (the
 //! linear trapezoidal rule conserves the quadratic energy exactly).
 
-mod common;
+use crate::common;
 
 use common::{deck, rod_model};
 use impactlab::integrate::{Scheme, SolveError};

@@ -3,7 +3,7 @@
 //! LOAD) against pyNastran's load summation and the model's own mass, and the
 //! refusals a static or transient deck earns.
 
-mod common;
+use crate::common;
 
 use common::impactlab;
 use impactlab::run::statics::{solve, StaticSolution};

@@ -8,7 +8,7 @@
 //! and `impactlab report` evaluate them (`study::cases::evaluate_all`), and the gate,
 //! the snapshots and the reports are judged from that one evaluation.
 
-mod common;
+use crate::common;
 
 use common::{impactlab, root};
 use impactlab::verify::{self, Case, CaseOutcome};

@@ -1,0 +1,33 @@
+//! The integration tests, built as one crate: each file of `tests/` is a module of
+//! it (run one with `cargo test --test integration MODULE::`). One test binary is
+//! linked instead of one a file, and its tests share one pool of threads: a file's
+//! slow test no longer holds the others back.
+
+mod common;
+
+mod bad_decks;
+mod beams;
+mod card_rules;
+mod check;
+mod cli;
+mod convolution;
+mod damage;
+mod deck_reader;
+mod elements;
+mod faults;
+mod laminate;
+mod modes;
+mod nastran95_demos;
+mod plate_element;
+mod plate_impact;
+mod report;
+mod reports_current;
+mod rod_impact;
+mod scalar_elements;
+mod scenes;
+mod shells_3d;
+mod slurm;
+mod stability;
+mod stages;
+mod statics;
+mod verify_gate;
