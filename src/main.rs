@@ -287,6 +287,7 @@ pub struct RunArgs {
     pub steps: Option<usize>,
     /// The energy guard: stop with exit code 3 when |relative energy error| exceeds
     /// this, writing the outputs up to there marked incomplete; `off` disables it.
+    /// A structure loaded from rest (DLOAD, no initial energy) is not guarded.
     #[arg(long, value_parser = energy_guard_parser, default_value = "5e-2")]
     pub max_energy_error: EnergyGuard,
     /// Refuse, before allocating, a run estimated to need more than this many GiB
@@ -408,10 +409,12 @@ pub struct AuditArgs {
 
 #[derive(clap::Args)]
 pub struct CompareArgs {
-    /// The output directory of `impactlab run` on a static or normal modes deck.
+    /// The output directory of `impactlab run` on a static, normal modes or transient
+    /// deck.
     pub run: PathBuf,
-    /// NASTRAN's printed output of the same deck (its DISPLACEMENT VECTOR tables, or
-    /// its REAL EIGENVALUES table for a normal modes run).
+    /// NASTRAN's printed output of the same deck (its DISPLACEMENT VECTOR tables, its
+    /// REAL EIGENVALUES table for a normal modes run, or its SORT2 displacement
+    /// histories for a transient run).
     pub nastran: PathBuf,
     /// How many of the largest differences to list per SUBCASE.
     #[arg(long, default_value_t = 10)]

@@ -325,3 +325,49 @@ fn limits_stop_a_deck_that_asks_for_too_much() {
         "{e}"
     );
 }
+
+/// Goal: the dynamic load cards are read by NASTRAN-95's field rules (BULK.TXT):
+/// DAREA and DELAY with "One or two" triples on a card, TLOAD1's DELAY set and MSC's
+/// real delay, TLOAD2's continuation (C, B), TABLED2's X1 with a SKIP entry left out,
+/// a descending TABLED1 turned ascending, and DLOAD's combination; and DLOAD's rule
+/// "The Li must be unique" refused naming the field.
+#[test]
+fn dynamic_load_cards_read_by_the_manuals_rules() {
+    use impactlab::deck::cards::{DelayRef, TableFunction, TloadShape};
+    let d = deck(
+        "DAREA,8,1,2,1.5,2,3,-2.0\nDELAY,5,1,2,1.0-4\nTLOAD1,4,8,5,,6\nTLOAD1,7,8,2.5-4,LOAD,6\n\
+         TLOAD2,9,8,,,0.0,1.0-3,100.,90.\n,-2.0,1.0\nTABLED2,6,1.0-4,,,,,,,+T\n+T,0.0,0.0,SKIP,SKIP,1.0,2.0,ENDT\n\
+         TABLED1,3\n,2.0,1.0,1.0,5.0,ENDT\nDLOAD,10,2.0,1.0,4,-1.0,9\n\
+         GRID,1,,0.,0.,0.\nGRID,2,,1.,0.,0.",
+    );
+    let b = &d.bulk;
+    assert_eq!(b.dareas.len(), 2);
+    assert_eq!((b.dareas[1].p, b.dareas[1].c, b.dareas[1].a), (2, 3, -2.0));
+    assert_eq!((b.delays[0].p, b.delays[0].t), (1, 1e-4));
+    assert_eq!(b.tloads[0].delay, DelayRef::Set(5));
+    assert_eq!(b.tloads[0].shape, TloadShape::Table(6));
+    assert_eq!(b.tloads[1].delay, DelayRef::Value(2.5e-4));
+    let TloadShape::Formula(f) = b.tloads[2].shape else {
+        panic!("TLOAD2")
+    };
+    assert_eq!((f.t2, f.f, f.p, f.c, f.b), (1e-3, 100.0, 90.0, -2.0, 1.0));
+    let TableFunction::Points { x1, points, .. } = &b.tableds[0].function else {
+        panic!("TABLED2")
+    };
+    assert_eq!((*x1, points.as_slice()), (1e-4, &[(0.0, 0.0), (1.0, 2.0)][..]));
+    let TableFunction::Points { points, .. } = &b.tableds[1].function else {
+        panic!("TABLED1")
+    };
+    assert_eq!(points.as_slice(), &[(1.0, 5.0), (2.0, 1.0)]);
+    assert_eq!(
+        (b.dloads[0].scale, b.dloads[0].terms.as_slice()),
+        (2.0, &[(1.0, 4), (-1.0, 9)][..])
+    );
+    let errors = bulk_errors("DLOAD,10,1.0,1.0,4,2.0,4");
+    assert!(
+        errors
+            .iter()
+            .any(|e| e.contains("DLOAD field 7 (Li)") && e.contains("The Li must be unique")),
+        "{errors:?}"
+    );
+}

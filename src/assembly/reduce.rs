@@ -1,11 +1,12 @@
-//! Dropping inert DOFs: groups of solved DOFs that no load, initial condition or
-//! contact ever reaches stay exactly zero for the whole run, so they need not be
+//! Dropping inert DOFs: groups of solved DOFs that no load, initial condition,
+//! contact or dynamic load ever reaches stay exactly zero for the whole run, so they need not be
 //! solved.
 //!
 //! Two DOFs are coupled when an assembled stiffness or mass entry between them is
 //! nonzero, or when both appear in the contact (its driver functional, its loads, the
 //! impactor) or in one TF. A group of coupled DOFs is *live* when any of its DOFs has a
-//! nonzero initial displacement or velocity or belongs to the contact; every other
+//! nonzero initial displacement or velocity, belongs to the contact or carries a
+//! dynamic load; every other
 //! group is governed by M ü + K u = 0 with zero initial state and stays at zero. The
 //! classic case is a flat plate struck transversely: with no membrane–bending coupling
 //! (B = 0) the in-plane T1/T2 DOFs form such a group.
@@ -53,6 +54,9 @@ fn live_dofs(model: &Model, sys: &System) -> Vec<bool> {
             uf.union(w[0], w[1]);
         }
         seeds.extend(group);
+    }
+    if let Some(ex) = &model.excitation {
+        seeds.extend(ex.terms.iter().map(|t| t.dof));
     }
     for d in model.dependent.iter().filter(|d| !d.tied) {
         for w in d.functional.windows(2) {
@@ -113,6 +117,11 @@ pub fn drop_inert(model: &Model, sys: &System) -> Option<(Model, System)> {
         }
         c.impactor.dof = re(c.impactor.dof);
         c.impactor.dofs = c.impactor.dofs.iter().map(|&d| re(d)).collect();
+    }
+    if let Some(ex) = &mut m.excitation {
+        for t in &mut ex.terms {
+            t.dof = re(t.dof);
+        }
     }
     for list in [&mut m.outputs.disp, &mut m.outputs.velo] {
         for (_, s) in list.iter_mut() {

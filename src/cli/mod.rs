@@ -809,6 +809,9 @@ pub fn compare(a: CompareArgs) -> Result<u8, Error> {
     if a.run.join("modes.csv").exists() {
         return compare_roots(&a);
     }
+    if a.run.join("history.csv").exists() {
+        return compare_histories(&a);
+    }
     let theirs = read_printed_file(&a.nastran)?;
     let ours = read_run(&a.run)?;
     let comparisons = compare(&ours, &theirs);
@@ -823,13 +826,36 @@ pub fn compare(a: CompareArgs) -> Result<u8, Error> {
     }
     say(&render(&comparisons, a.top));
     let worst = comparisons.iter().map(|c| c.worst()).fold(0.0, f64::max);
-    Ok(match a.tolerance {
+    Ok(verdict(worst, a.tolerance))
+}
+
+/// Exit status 1 (said) when the largest difference exceeds the tolerance, 0 otherwise.
+fn verdict(worst: f64, tolerance: Option<f64>) -> u8 {
+    match tolerance {
         Some(t) if worst > t => {
             sayln(&format!("largest difference {worst:.2e} exceeds --tolerance {t:e}"));
             1
         }
         _ => 0,
-    })
+    }
+}
+
+/// `impactlab compare` of a transient run: its displacement histories against the
+/// printed SORT2 ones, time by time.
+fn compare_histories(a: &CompareArgs) -> Result<u8, Error> {
+    use impactlab::verify::printed::{compare_histories, read_run_histories, read_transient_file, render_histories};
+    let theirs = read_transient_file(&a.nastran)?;
+    let ours = read_run_histories(&a.run)?;
+    let c = compare_histories(&ours, &theirs);
+    if c.differences.is_empty() {
+        return Err(Error::Usage(format!(
+            "{} and {} have no displacement at a common time and DOF",
+            a.nastran.display(),
+            a.run.display()
+        )));
+    }
+    say(&render_histories(&c, a.top));
+    Ok(verdict(c.worst(), a.tolerance))
 }
 
 /// `impactlab compare` of a normal modes run: its roots against the printed REAL
@@ -841,13 +867,7 @@ fn compare_roots(a: &CompareArgs) -> Result<u8, Error> {
     let c = compare_roots(&ours, &theirs);
     say(&render_roots(&c, ours.len(), theirs.len()));
     let worst = c.iter().map(|r| r.relative).fold(0.0, f64::max);
-    Ok(match a.tolerance {
-        Some(t) if worst > t => {
-            sayln(&format!("largest difference {worst:.2e} exceeds --tolerance {t:e}"));
-            1
-        }
-        _ => 0,
-    })
+    Ok(verdict(worst, a.tolerance))
 }
 
 /// `impactlab audit`: what moved between two runs; exit 1 when anything moved

@@ -104,6 +104,8 @@ pub struct CaseControl {
     pub load: Option<Selection>,
     /// METHOD selection (the EIGR or EIGRL of a normal modes deck).
     pub method: Option<Selection>,
+    /// DLOAD selection (the TLOAD1, TLOAD2 or DLOAD of a transient deck's dynamic load).
+    pub dload: Option<Selection>,
     /// Output requests by keyword: NLLOAD, DISP, VELO, ACCEL, STRESS, STRAIN, FORCE,
     /// ELFORCE (NASTRAN's longer names and synonyms read as these).
     pub outputs: BTreeMap<String, OutputRequest>,
@@ -297,7 +299,7 @@ fn parse_id_list(text: &str, pos: &Pos, src: &str, ids_left: &mut usize, diags: 
     out
 }
 
-const SELECTORS: [&str; 7] = ["SPC", "IC", "NONLINEAR", "TSTEP", "TFL", "LOAD", "METHOD"];
+const SELECTORS: [&str; 8] = ["SPC", "IC", "NONLINEAR", "TSTEP", "TFL", "LOAD", "METHOD", "DLOAD"];
 
 /// Output requests impactlab writes: NASTRAN's name, and the key it is kept under.
 /// A request may be written by any abbreviation of its name of four letters or more
@@ -613,7 +615,8 @@ fn set_definition(
     }
 }
 
-/// `SPC = n`, `IC = n`, `NONLINEAR = n`, `TSTEP = n`, `TFL = n`, `LOAD = n`, `METHOD = n`.
+/// `SPC = n`, `IC = n`, `NONLINEAR = n`, `TSTEP = n`, `TFL = n`, `LOAD = n`, `METHOD = n`,
+/// `DLOAD = n`.
 fn selector(cc: &mut CaseControl, k: &str, rhs: &str, pos: Pos, text: &str, diags: &mut Diagnostics) {
     match parse_int(rhs) {
         Some(id) => {
@@ -625,6 +628,7 @@ fn selector(cc: &mut CaseControl, k: &str, rhs: &str, pos: Pos, text: &str, diag
                 "TSTEP" => cc.tstep = sel,
                 "LOAD" => cc.load = sel,
                 "METHOD" => cc.method = sel,
+                "DLOAD" => cc.dload = sel,
                 _ => cc.tfl = sel,
             }
         }

@@ -277,6 +277,15 @@ fn finish(
             line: l.line,
             column: 1,
         });
+    if let (Some(sel), Some(STATICS | MODES), false) = (&case.dload, executive.sol, opts.structure) {
+        diags.push(
+            Diagnostic::warning(
+                Some(sel.pos.clone()),
+                "DLOAD selects a dynamic load, which a static or normal modes solution does not apply; ignored",
+            )
+            .card("DLOAD"),
+        );
+    }
     if let (Some((statement, at)), false) = (&case.substructuring, opts.structure) {
         // "Phase 3: completion of the analysis of individual substructures using the
         // {ua} vector produced in Phase 2" (User's Manual 1.10): the answer is not in

@@ -1,10 +1,11 @@
 //! Explicit central differences in velocity-Verlet form (leapfrog; Newmark β = 0,
 //! γ = 1/2), with a diagonal (lumped) mass matrix:
 //!
-//!   a(n)   = M⁻¹ (g φ(α(n)) − K u(n))
+//!   a(n)   = M⁻¹ (g φ(α(n)) + P(t(n)) − K u(n))
 //!   u(n+1) = u(n) + Δt v(n) + Δt²/2 a(n)
 //!   v(n+1) = v(n) + Δt/2 (a(n) + a(n+1))
 //!
+//! P is the deck's dynamic load (DLOAD), its work booked as Δu·(P(n) + P(n+1))/2.
 //! Order 2, symplectic (energy error bounded and oscillating, no drift, while stable),
 //! no linear solve. Stable for Δt ≤ Δt_crit = 2/ω_max; ω_max² is bounded above by the
 //! Gershgorin bound of M^(-1/2) K M^(-1/2), max_i Σ_j |K_ij| / √(m_i m_j), so the
@@ -15,7 +16,7 @@
 //! before the run starts, naming the critical step. Every solved DOF
 //! needs mass: a plate without rotary inertia is an error (use an implicit scheme).
 
-use super::{contact_vectors, Current, SolveError, StepCosts, Stepper};
+use super::{contact_vectors, AppliedLoad, Current, SolveError, StepCosts, Stepper};
 use crate::assembly::System;
 use crate::model::{apply, Contact, Functional, Model};
 
@@ -60,6 +61,7 @@ pub struct Central<'a> {
     alpha: f64,
     phi_n: f64,
     phi_prev: f64,
+    applied: Option<AppliedLoad<'a>>,
 }
 
 impl<'a> Central<'a> {
@@ -93,22 +95,33 @@ impl<'a> Central<'a> {
             alpha,
             phi_n,
             phi_prev: phi_n,
+            applied: AppliedLoad::new(model),
         };
-        s.accelerate();
+        let p0 = s.applied.as_ref().map(|p| p.now.clone());
+        s.accelerate(p0.as_deref());
         Ok(s)
     }
 
-    /// a = M⁻¹ (g φ − K u) at the current state.
-    fn accelerate(&mut self) {
+    /// a = M⁻¹ (g φ + P − K u) at the current state, P the dynamic load `p` there.
+    fn accelerate(&mut self, p: Option<&[f64]>) {
         self.sys.k_mul(&self.u, &mut self.ku);
-        for i in 0..self.u.len() {
-            self.a[i] = (self.g[i] * self.phi_n - self.ku[i]) / self.m[i];
+        match p {
+            None => {
+                for i in 0..self.u.len() {
+                    self.a[i] = (self.g[i] * self.phi_n - self.ku[i]) / self.m[i];
+                }
+            }
+            Some(p) => {
+                for (i, load) in p.iter().enumerate() {
+                    self.a[i] = (self.g[i] * self.phi_n + load - self.ku[i]) / self.m[i];
+                }
+            }
         }
     }
 }
 
 impl Stepper for Central<'_> {
-    fn advance(&mut self, _step: usize, _time: f64) -> Result<(), SolveError> {
+    fn advance(&mut self, _step: usize, time: f64) -> Result<(), SolveError> {
         let (n, dt) = (self.u.len(), self.dt);
         for i in 0..n {
             self.v[i] += 0.5 * dt * self.a[i];
@@ -117,7 +130,14 @@ impl Stepper for Central<'_> {
         self.phi_prev = self.phi_n;
         self.alpha = apply(&self.c, &self.u);
         self.phi_n = self.contact.map_or(0.0, |ct| ct.law(self.alpha));
-        self.accelerate();
+        let mut applied = self.applied.take();
+        if let Some(p) = &mut applied {
+            p.load_end(time);
+            // Δu = Δt v(n+½), the half-step velocity in v now.
+            p.book(|i| dt * self.v[i]);
+        }
+        self.accelerate(applied.as_ref().map(|p| &p.now[..]));
+        self.applied = applied;
         for i in 0..n {
             self.v[i] += 0.5 * dt * self.a[i];
         }
@@ -132,6 +152,7 @@ impl Stepper for Central<'_> {
             alpha: self.alpha,
             load_factor: self.phi_n,
             work_factor: 0.5 * (self.phi_prev + self.phi_n),
+            applied_work: self.applied.as_ref().map_or(0.0, |p| p.work),
         }
     }
 

@@ -170,6 +170,7 @@ pub fn linear_response(
             dt,
             (&v, &f, &mut mv, &mut du),
             (k == 1).then_some((load, 1.0)),
+            None,
         );
         complete(sys, dt, &du, &mut kdu, (&mut u, &mut f, &mut v));
         record(&u, &v);

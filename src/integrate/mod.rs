@@ -166,6 +166,9 @@ pub struct StepState<'a> {
     /// Mean load factor the scheme applied over the step that ended here; the work of
     /// the contact loads over the step is (Δu · g)·work_factor.
     pub work_factor: f64,
+    /// The work the deck's dynamic load ([`crate::model::excitation`]) has done from
+    /// the start to this state, as the scheme applies it (0 without one).
+    pub applied_work: f64,
 }
 
 /// Receives each state; may stop the run (returns false) or fail it.
@@ -219,6 +222,8 @@ pub struct Current<'a> {
     pub load_factor: f64,
     /// Mean load factor the scheme applied over the step that ended here.
     pub work_factor: f64,
+    /// Work of the dynamic load from the start to this state.
+    pub applied_work: f64,
 }
 
 /// What a scheme's step costs: linear algebra and the contact solve.
@@ -293,6 +298,7 @@ fn observe(model: &Model, step: usize, time: f64, c: Current, obs: &mut dyn Obse
         alpha: c.alpha,
         load_factor: c.load_factor,
         work_factor: c.work_factor,
+        applied_work: c.applied_work,
     })
 }
 
@@ -323,6 +329,49 @@ fn contact_vectors(model: &Model) -> (Vec<f64>, Vec<(usize, f64)>) {
         c = ct.driver.clone();
     }
     (g, c)
+}
+
+/// The deck's dynamic load as a scheme applies it: P(t) at the two ends of the step
+/// being taken, and the work it has done, booked step by step as
+/// Δu·(P(n) + P(n+1))/2 — for the trapezoidal rule exactly the work its energy
+/// identity books, so that the ledger balances to round-off.
+pub(crate) struct AppliedLoad<'a> {
+    excitation: &'a crate::model::excitation::Excitation,
+    /// P at the current state.
+    pub now: Vec<f64>,
+    /// P at the end of the step being taken (after [`AppliedLoad::load_end`]).
+    pub next: Vec<f64>,
+    /// The work done from the start to the current state.
+    pub work: f64,
+}
+
+impl<'a> AppliedLoad<'a> {
+    /// P(0) in place, when the model has a dynamic load.
+    pub fn new(model: &'a Model) -> Option<Self> {
+        let excitation = model.excitation.as_ref()?;
+        let mut now = vec![0.0; model.n()];
+        excitation.load_at(0.0, &mut now);
+        Some(AppliedLoad {
+            excitation,
+            now,
+            next: vec![0.0; model.n()],
+            work: 0.0,
+        })
+    }
+
+    /// P at the end of the step, t.
+    pub fn load_end(&mut self, t: f64) {
+        self.excitation.load_at(t, &mut self.next);
+    }
+
+    /// Books the work of the step over the increment `du` and makes its end current.
+    pub fn book(&mut self, du: impl Fn(usize) -> f64) {
+        self.work += 0.5
+            * (0..self.now.len())
+                .map(|i| du(i) * (self.now[i] + self.next[i]))
+                .sum::<f64>();
+        std::mem::swap(&mut self.now, &mut self.next);
+    }
 }
 
 #[cfg(test)]

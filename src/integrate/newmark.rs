@@ -29,10 +29,14 @@
 //!   of its potential exactly, so U_t is conserved to round-off at every Δt. Order 2.
 //!
 //! Both solve the condensed scalar equation of the contact module each step.
+//!
+//! A dynamic load P(t) (DLOAD) enters the trapezoidal rule as the contact does, at
+//! both ends: F = −K u + g ψ + P, so the increment's right-hand side gains
+//! P(n) + P(n+1), and its work over the step is Δu·(P(n) + P(n+1))/2 exactly.
 
 use super::contact::{discrete_gradient, solve};
 use super::linear::Factor;
-use super::{contact_vectors, Current, SolveError, StepCosts, Stepper};
+use super::{contact_vectors, AppliedLoad, Current, SolveError, StepCosts, Stepper};
 use crate::assembly::System;
 use crate::model::{apply, Contact, Functional, Model};
 
@@ -88,6 +92,7 @@ pub struct Newmark<'a> {
     alpha: f64,
     phi_n: f64,
     work_factor: f64,
+    applied: Option<AppliedLoad<'a>>,
     contact_iterations: usize,
 }
 
@@ -128,6 +133,7 @@ impl<'a> Newmark<'a> {
             alpha,
             phi_n,
             work_factor: phi_n,
+            applied: AppliedLoad::new(model),
             contact_iterations: 0,
         })
     }
@@ -143,13 +149,15 @@ impl<'a> Newmark<'a> {
 }
 
 /// The trapezoidal rule's contact-free predictor: du = A⁻¹(4M v/Δt − 2f), plus g·φ
-/// when `load` = (g, φ) is given. `vectors` = (v, f, workspace for M v, du).
+/// when `load` = (g, φ) is given and P(n) + P(n+1) when `applied` is.
+/// `vectors` = (v, f, workspace for M v, du).
 pub(crate) fn predictor(
     sys: &System,
     factor: &mut Factor,
     dt: f64,
     vectors: (&[f64], &[f64], &mut [f64], &mut [f64]),
     load: Option<(&[f64], f64)>,
+    applied: Option<&AppliedLoad>,
 ) {
     let (v, f, mv, du) = vectors;
     sys.m_mul(v, mv);
@@ -163,6 +171,11 @@ pub(crate) fn predictor(
             for i in 0..du.len() {
                 du[i] = 4.0 / dt * mv[i] - 2.0 * f[i] + g[i] * phi;
             }
+        }
+    }
+    if let Some(p) = applied {
+        for ((d, now), next) in du.iter_mut().zip(&p.now).zip(&p.next) {
+            *d += now + next;
         }
     }
     factor.solve_in_place(du);
@@ -229,8 +242,18 @@ impl Stepper for Newmark<'_> {
     fn advance(&mut self, step: usize, time: f64) -> Result<(), SolveError> {
         let n = self.u.len();
         let load = (self.form == ContactForm::Endpoint && self.phi_n != 0.0).then_some((&self.g[..], self.phi_n));
+        if let Some(p) = &mut self.applied {
+            p.load_end(time);
+        }
         let step_vectors = (&self.v[..], &self.f[..], &mut self.mv[..], &mut self.du[..]);
-        predictor(self.sys, &mut self.factor, self.dt, step_vectors, load);
+        predictor(
+            self.sys,
+            &mut self.factor,
+            self.dt,
+            step_vectors,
+            load,
+            self.applied.as_ref(),
+        );
         // Contact: α = α* + s ψ(α), α* the indentation of the contact-free predictor.
         let mut psi = 0.0;
         if let Some(ct) = self.contact {
@@ -249,6 +272,9 @@ impl Stepper for Newmark<'_> {
             &mut self.kdu,
             (&mut self.u, &mut self.f, &mut self.v),
         );
+        if let Some(p) = &mut self.applied {
+            p.book(|i| self.du[i]);
+        }
         let alpha = apply(&self.c, &self.u);
         let phi_new = self.contact.map_or(0.0, |ct| ct.law(alpha));
         self.work_factor = match self.form {
@@ -268,6 +294,7 @@ impl Stepper for Newmark<'_> {
             alpha: self.alpha,
             load_factor: self.phi_n,
             work_factor: self.work_factor,
+            applied_work: self.applied.as_ref().map_or(0.0, |p| p.work),
         }
     }
 

@@ -3,6 +3,8 @@
 //! solvers on its test models).
 //!
 //! - [`oscillator`]: a mass on a linear spring, u = (v0/ω) sin ωt.
+//! - [`forced_oscillator`]: the same from rest under P0 sin Ωt (a TLOAD2):
+//!   u = P0/(k(1 − r²)) (sin Ωt − r sin ωt), r = Ω/ω.
 //! - [`hertz_wall`]: a mass striking a rigid wall through a Hertz spring F = Kα^1.5:
 //!   α_max = (5mv0²/4K)^(2/5), F_max = Kα_max^1.5, contact time
 //!   (4/5)·B(2/5, 1/2)·α_max/v0 = 2.9432752 α_max/v0, rebound at −v0 (restitution 1).
@@ -89,6 +91,7 @@ fn one_dof(mass: f64, spring: f64, v0: f64, hertz: Option<f64>) -> Model {
         dependent: Vec::new(),
         elements: elements.into(),
         contact,
+        excitation: None,
         u0: vec![0.0],
         v0: vec![v0],
         time: TimeControl {
@@ -136,6 +139,87 @@ impl Oscillator {
     pub fn energy(&self, u: f64, v: f64) -> f64 {
         0.5 * self.mass * v * v + 0.5 * self.stiffness * u * u
     }
+}
+
+/// The oscillator's mass and spring (m = 2, k = 8, ω = 2) from rest under
+/// P(t) = P0 sin Ωt, P0 = 3, Ω = 1: a TLOAD2 with F = Ω/2π and P = −90°.
+pub struct ForcedOscillator {
+    pub model: Model,
+    pub mass: f64,
+    pub stiffness: f64,
+    pub omega: f64,
+    pub forcing: f64,
+    pub p0: f64,
+}
+
+pub fn forced_oscillator() -> ForcedOscillator {
+    use crate::model::excitation::{Excitation, LoadTerm, TimeFunction};
+    let (mass, stiffness, p0, forcing) = (2.0, 8.0, 3.0, 1.0);
+    let mut model = one_dof(mass, stiffness, 0.0, None);
+    model.excitation = Some(Excitation {
+        terms: vec![LoadTerm {
+            dof: 0,
+            scale: p0,
+            delay: 0.0,
+            function: 0,
+        }],
+        functions: vec![TimeFunction::Formula(crate::deck::cards::Formula {
+            t1: 0.0,
+            t2: 1e9,
+            f: forcing / (2.0 * std::f64::consts::PI),
+            p: -90.0,
+            c: 0.0,
+            b: 0.0,
+        })],
+        source: "TLOAD2 of the test model".into(),
+    });
+    ForcedOscillator {
+        model,
+        mass,
+        stiffness,
+        omega: (stiffness / mass).sqrt(),
+        forcing,
+        p0,
+    }
+}
+
+impl ForcedOscillator {
+    /// The exact displacement.
+    pub fn exact(&self, t: f64) -> f64 {
+        let r = self.forcing / self.omega;
+        self.amplitude() * ((self.forcing * t).sin() - r * (self.omega * t).sin())
+    }
+    /// P0/(k(1 − r²)).
+    pub fn amplitude(&self) -> f64 {
+        let r = self.forcing / self.omega;
+        self.p0 / (self.stiffness * (1.0 - r * r))
+    }
+    /// The forcing period 2π/Ω.
+    pub fn period(&self) -> f64 {
+        2.0 * std::f64::consts::PI / self.forcing
+    }
+    pub fn energy(&self, u: f64, v: f64) -> f64 {
+        0.5 * self.mass * v * v + 0.5 * self.stiffness * u * u
+    }
+}
+
+/// The states of a run with the work of its dynamic load: (time, u, v, W).
+#[derive(Default)]
+pub struct Worked(pub Vec<(f64, f64, f64, f64)>);
+
+impl Observer for Worked {
+    fn observe(&mut self, s: &StepState) -> Result<bool, SolveError> {
+        self.0.push((s.time, s.u[0], s.v[0], s.applied_work));
+        Ok(true)
+    }
+}
+
+/// Runs `scheme` on a one-DOF model with a dynamic load.
+pub fn run_worked(model: &Model, scheme: Scheme, dt: f64, steps: usize) -> Worked {
+    let sys = assemble(model);
+    let mut rec = Worked::default();
+    integrate(model, &sys, scheme, dt, steps, &mut rec).expect("the test model runs");
+    rec
 }
 
 /// The paper's steel ball (m = 9.587e-5 lbf·s²/in, K = 6.24e6 lbf/in^1.5) at

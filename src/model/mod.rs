@@ -8,6 +8,7 @@
 
 mod build;
 pub mod check;
+pub mod excitation;
 pub mod loads;
 mod modify;
 pub mod rigid;
@@ -274,6 +275,8 @@ pub struct Model {
     pub elements: std::sync::Arc<Vec<Element>>,
     /// The Hertzian contact, if the deck has NOLIN3 loads.
     pub contact: Option<Contact>,
+    /// The dynamic load the case control's DLOAD selects, if any.
+    pub excitation: Option<excitation::Excitation>,
     /// Initial displacements (TIC).
     pub u0: Vec<f64>,
     /// Initial velocities (TIC).

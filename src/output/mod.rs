@@ -214,52 +214,65 @@ pub fn human_summary(model: &Model, run: &RunResult) -> String {
         .iter()
         .map(|i| format!("{}..{}", time(Some(i[0])), time(Some(i[1]))))
         .collect();
-    out += &format!(
-        "  contact:  {}\n",
-        if intervals.is_empty() {
-            "none".into()
-        } else {
-            intervals.join(", ")
-        }
-    );
-    out += &format!(
-        "  peak force {} {} at {}\n",
-        num(Some(s.contact.peak_force)),
-        u.force,
-        time(s.contact.peak_force_time)
-    );
-    if let Some(d) = &s.delamination {
+    if let Some(ex) = &model.excitation {
         out += &format!(
-            "  delamination threshold F_crit {} {} (G_IIc {} {}/{}): peak / F_crit {:.4}{}\n",
-            num(Some(d.onset.critical_force)),
-            u.force,
-            num(Some(d.onset.g_iic)),
-            u.force,
-            u.length,
-            d.peak_over_critical,
-            if d.peak_over_critical >= 1.0 { ", reached" } else { "" }
+            "  load:     {}, work {} {}\n",
+            ex.source,
+            num(run.energy.last().map(|r| r.external_work)),
+            s.units.energy
         );
     }
-    if let Some(f) = &s.failure {
-        for i in std::iter::once(&f.theory).chain(&f.max_stress).chain(&f.bond) {
+    // Without a contact there is no impactor to summarise.
+    if model.contact.is_none() {
+        out += "  contact:  none (no NOLIN3)\n";
+    } else {
+        out += &format!(
+            "  contact:  {}\n",
+            if intervals.is_empty() {
+                "none".into()
+            } else {
+                intervals.join(", ")
+            }
+        );
+        out += &format!(
+            "  peak force {} {} at {}\n",
+            num(Some(s.contact.peak_force)),
+            u.force,
+            time(s.contact.peak_force_time)
+        );
+        if let Some(d) = &s.delamination {
             out += &format!(
-                "  failure index {} {:.4} at {} (element {}, ply {} {}), first reaches 1 at {}\n",
-                i.name,
-                i.largest,
-                time(Some(i.time)),
-                i.element,
-                i.ply,
-                i.face,
-                i.first_reaches_one.map_or("never".into(), |t| time(Some(t)))
+                "  delamination threshold F_crit {} {} (G_IIc {} {}/{}): peak / F_crit {:.4}{}\n",
+                num(Some(d.onset.critical_force)),
+                u.force,
+                num(Some(d.onset.g_iic)),
+                u.force,
+                u.length,
+                d.peak_over_critical,
+                if d.peak_over_critical >= 1.0 { ", reached" } else { "" }
             );
         }
+        if let Some(f) = &s.failure {
+            for i in std::iter::once(&f.theory).chain(&f.max_stress).chain(&f.bond) {
+                out += &format!(
+                    "  failure index {} {:.4} at {} (element {}, ply {} {}), first reaches 1 at {}\n",
+                    i.name,
+                    i.largest,
+                    time(Some(i.time)),
+                    i.element,
+                    i.ply,
+                    i.face,
+                    i.first_reaches_one.map_or("never".into(), |t| time(Some(t)))
+                );
+            }
+        }
+        out += &format!(
+            "  impactor: v0 {} {velocity}, at rest at {}, rebound {} {velocity}\n",
+            num(Some(s.impactor.initial_velocity)),
+            time(s.impactor.velocity_zero_time),
+            num(s.impactor.rebound_velocity),
+        );
     }
-    out += &format!(
-        "  impactor: v0 {} {velocity}, at rest at {}, rebound {} {velocity}\n",
-        num(Some(s.impactor.initial_velocity)),
-        time(s.impactor.velocity_zero_time),
-        num(s.impactor.rebound_velocity),
-    );
     out += &format!(
         "  energy:   initial {} {}, transferred {}, max |error| {}\n",
         num(s.energy.initial),

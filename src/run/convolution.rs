@@ -309,8 +309,15 @@ fn at(y: &[f64], n: usize) -> f64 {
 }
 
 /// What the convolution engine can run: a trapezoidal scheme's contact form, no field
-/// snapshots, a model with a contact.
+/// snapshots, a model with a contact and no dynamic load.
 fn runnable<'m>(model: &'m Model, opts: &RunOptions) -> Result<(ContactForm, &'m Contact), RunError> {
+    if let Some(ex) = &model.excitation {
+        return Err(RunError::Engine(format!(
+            "the convolution engine sums the response to the contact alone; this model also has a dynamic load \
+             ({}): run it on the direct engine",
+            ex.source
+        )));
+    }
     let form = opts.scheme.newmark_params().map(|p| p.contact).ok_or_else(|| {
         RunError::Engine(format!(
             "the convolution engine runs the trapezoidal schemes (newmark, energy), not {}",

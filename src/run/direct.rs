@@ -38,6 +38,9 @@ pub fn run(model: &Model, sys: &System, opts: &RunOptions) -> Result<RunResult, 
     };
     let stats = integrate(model, sys, opts.scheme, dt, steps, &mut rec)?;
     rec.bar.finish_and_clear();
+    if let Some(ledger) = &rec.ledger {
+        ledger.finish(&mut rec.energy);
+    }
     let mut run = RunResult {
         scheme: opts.scheme,
         dt,
@@ -83,7 +86,8 @@ impl Observer for Recorder<'_> {
         let m = self.model;
         if let Some(ledger) = &mut self.ledger {
             let row = ledger.record(s);
-            if let Some(limit) = self.max_energy_error {
+            // A run from rest is judged at its end (see `Ledger::finish`).
+            if let Some(limit) = self.max_energy_error.filter(|_| ledger.judged_online()) {
                 if row.error.abs() > limit || row.error.is_nan() {
                     self.tripped = Some(GuardTrip {
                         step: s.step,
@@ -100,22 +104,23 @@ impl Observer for Recorder<'_> {
         } else if self.in_contact && self.separated_at.is_none() {
             self.separated_at = Some(s.time);
         }
-        let (force, iu) = match &m.contact {
-            Some(c) => (c.stiffness * s.load_factor, c.impactor.dof),
-            None => (0.0, 0),
+        // Without a contact there is no impactor: its series are zero.
+        let (force, iu, iv) = match &m.contact {
+            Some(c) => (c.stiffness * s.load_factor, s.u[c.impactor.dof], s.v[c.impactor.dof]),
+            None => (0.0, 0.0, 0.0),
         };
         self.series.time.push(s.time);
         self.series.alpha.push(s.alpha);
         self.series.force.push(force);
-        self.series.impactor_u.push(s.u.get(iu).copied().unwrap_or(0.0));
-        self.series.impactor_v.push(s.v.get(iu).copied().unwrap_or(0.0));
+        self.series.impactor_u.push(iu);
+        self.series.impactor_v.push(iv);
         if s.step % self.every == 0 {
             let head = RowHead {
                 time: s.time,
                 force,
                 alpha: s.alpha,
-                impactor_u: m.contact.as_ref().map_or(0.0, |c| s.u[c.impactor.dof]),
-                impactor_v: m.contact.as_ref().map_or(0.0, |c| s.v[c.impactor.dof]),
+                impactor_u: iu,
+                impactor_v: iv,
                 load_factor: s.load_factor,
             };
             self.history.push(history_row(m, &head, &linear_outputs(m, s.u, s.v)));

@@ -37,7 +37,9 @@ pub struct RunOptions {
     /// The energy guard: stop when |relative energy error| exceeds this (like
     /// LS-DYNA's ENDENG or Radioss' /STOP Emax); `None` disables it. The run then
     /// fails with [`RunError::EnergyGuard`], which keeps what was recorded up to
-    /// there. Default [`DEFAULT_ENERGY_GUARD`].
+    /// there. Default [`DEFAULT_ENERGY_GUARD`]. A run from rest (loaded by a DLOAD)
+    /// is not guarded: its error's scale is known only when it ends
+    /// ([`crate::ledger::Ledger::finish`]); the finite checks still stop it.
     pub max_energy_error: Option<f64>,
     /// A progress bar to advance, created and styled by the caller (the CLI); the run
     /// sets its length to the step count and clears it at the end.

@@ -1,6 +1,6 @@
 //! NASTRAN's printed output (the `.f06` of MSC, the `.out` of NASTRAN-95) read for
-//! its displacements and its real eigenvalues, and an impactlab static run compared
-//! with it.
+//! its displacements, its real eigenvalues and its transient displacement histories
+//! (SORT2), and an impactlab run compared with it.
 //!
 //! The page format: every page starts with a line whose first column is `1`, then
 //! the title, the subtitle and a line (first column `0`) that ends with `SUBCASE n`;
@@ -231,27 +231,33 @@ pub struct RunRoot {
     pub cycles: f64,
 }
 
-/// A run's CSV file opened for reading, with its name for messages.
-fn open_csv(path: &Path) -> Result<(csv::Reader<std::fs::File>, String), PrintedError> {
+/// A run's CSV file opened for reading, with its headers and its name for messages.
+fn open_csv(path: &Path) -> Result<(csv::Reader<std::fs::File>, csv::StringRecord, String), PrintedError> {
     let name = path.display().to_string();
-    let r = csv::Reader::from_path(path).map_err(|e| PrintedError::Io {
+    let mut r = csv::Reader::from_path(path).map_err(|e| PrintedError::Io {
         path: name.clone(),
         source: std::io::Error::other(e.to_string()),
     })?;
-    Ok((r, name))
+    let headers = r.headers().map_err(|e| format_error(&name, 1, e.to_string()))?.clone();
+    Ok((r, headers, name))
+}
+
+/// What is wrong at a line of a file.
+fn format_error(path: &str, line: usize, message: String) -> PrintedError {
+    PrintedError::Format {
+        path: path.to_string(),
+        line,
+        message,
+    }
 }
 
 /// The roots of an impactlab normal modes run (`modes.csv` of its directory).
 pub fn read_run_roots(dir: &Path) -> Result<Vec<RunRoot>, PrintedError> {
     let path = dir.join("modes.csv");
-    let (mut r, name) = open_csv(&path)?;
+    let (mut r, _, name) = open_csv(&path)?;
     let mut out = Vec::new();
     for (i, rec) in r.records().enumerate() {
-        let bad = |message: String| PrintedError::Format {
-            path: name.clone(),
-            line: i + 2,
-            message,
-        };
+        let bad = |message: String| format_error(&name, i + 2, message);
         let rec = rec.map_err(|e| bad(e.to_string()))?;
         let field = |k: usize| rec.get(k).and_then(|t| t.parse::<f64>().ok());
         match (rec.get(0).and_then(|t| t.parse().ok()), field(1), field(3)) {
@@ -319,13 +325,8 @@ pub fn render_roots(c: &[RootComparison], ours: usize, theirs: usize) -> String 
 /// in the same form: per SUBCASE (1 for a deck of one), each grid's T1..R3.
 pub fn read_run(dir: &Path) -> Result<Printed, PrintedError> {
     let path = dir.join("displacements.csv");
-    let (mut r, name) = open_csv(&path)?;
-    let bad = |line: usize, message: String| PrintedError::Format {
-        path: name.clone(),
-        line,
-        message,
-    };
-    let headers = r.headers().map_err(|e| bad(1, e.to_string()))?.clone();
+    let (mut r, headers, name) = open_csv(&path)?;
+    let bad = |line: usize, message: String| format_error(&name, line, message);
     let col = |h: &str| headers.iter().position(|x| x == h);
     let (Some(grid), Some(t1)) = (col("grid"), col("T1")) else {
         return Err(bad(
@@ -354,6 +355,255 @@ pub fn read_run(dir: &Path) -> Result<Printed, PrintedError> {
         }
     }
     Ok(out)
+}
+
+/// A transient solution's displacement histories as NASTRAN prints them in SORT2:
+/// per (point, component: 1..6 for a grid, 0 for a scalar point), its (time, value)
+/// rows in the order printed.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Histories {
+    /// (point, component) → (time, value).
+    pub series: BTreeMap<(i64, u8), Vec<(f64, f64)>>,
+}
+
+/// Reads the real displacement histories of a transient solution's printed output
+/// (SORT2: `POINT-ID = n` above the table's title, then `TIME TYPE T1 …` and a row a
+/// printed time, `time G` and six components or `time S` and one value). SUBCASEs
+/// are not told apart: a transient deck has one.
+pub fn read_transient(text: &str) -> Histories {
+    let mut out = Histories::default();
+    let mut point = None;
+    let mut in_table = false;
+    for line in text.lines() {
+        let trimmed = line.trim_end();
+        if let Some((_, n)) = trimmed.split_once("POINT-ID =") {
+            point = n.trim().parse::<i64>().ok();
+            continue;
+        }
+        if trimmed.contains(TITLE) {
+            in_table = trimmed.trim_start().starts_with(TITLE);
+            continue;
+        }
+        if !in_table || trimmed.trim().is_empty() {
+            continue;
+        }
+        let words: Vec<&str> = trimmed.split_whitespace().collect();
+        if words.starts_with(&["TIME", "TYPE"]) {
+            continue;
+        }
+        let row = (|| {
+            let time = words.first()?.parse::<f64>().ok()?;
+            let values: Vec<f64> = words[2..]
+                .iter()
+                .map(|w| w.parse::<f64>().ok())
+                .collect::<Option<_>>()?;
+            Some((time, *words.get(1)?, values))
+        })();
+        let (Some(p), Some((time, kind, values))) = (point, row) else {
+            in_table = false;
+            continue;
+        };
+        match (kind, values.len()) {
+            ("G", 6) => {
+                for (c, v) in values.iter().enumerate() {
+                    out.series.entry((p, c as u8 + 1)).or_default().push((time, *v));
+                }
+            }
+            ("S", 1) => out.series.entry((p, 0)).or_default().push((time, values[0])),
+            _ => in_table = false,
+        }
+    }
+    out
+}
+
+/// Reads a transient printed output file's displacement histories.
+pub fn read_transient_file(path: &Path) -> Result<Histories, PrintedError> {
+    let h = read_transient(&read_text(path)?);
+    if h.series.is_empty() {
+        return Err(PrintedError::Format {
+            path: path.display().to_string(),
+            line: 0,
+            message: "has no SORT2 displacement history (POINT-ID = n, D I S P L A C E M E N T   V E C T O R, \
+                      TIME TYPE T1 ...)"
+                .into(),
+        });
+    }
+    Ok(h)
+}
+
+/// A transient run's displacement histories (the `disp_…` columns of its
+/// `history.csv`, those in the basic system or a scalar point's), in the same form.
+pub fn read_run_histories(dir: &Path) -> Result<Histories, PrintedError> {
+    let path = dir.join("history.csv");
+    let (mut r, headers, name) = open_csv(&path)?;
+    let bad = |line: usize, message: String| format_error(&name, line, message);
+    const C: [&str; 6] = ["T1", "T2", "T3", "R1", "R2", "R3"];
+    // `disp_12_T3 [unit]` → (12, 3); `disp_7 [unit]` → (7, 0).
+    let dof = |h: &str| -> Option<(i64, u8)> {
+        let name = h.split(' ').next()?.strip_prefix("disp_")?;
+        match name.split_once('_') {
+            None => Some((name.parse().ok()?, 0)),
+            Some((p, c)) => Some((p.parse().ok()?, C.iter().position(|x| *x == c)? as u8 + 1)),
+        }
+    };
+    let columns: Vec<(usize, (i64, u8))> = headers
+        .iter()
+        .enumerate()
+        .filter_map(|(i, h)| Some((i, dof(h)?)))
+        .collect();
+    if headers.get(0).is_none_or(|h| !h.starts_with("time")) || columns.is_empty() {
+        return Err(bad(
+            1,
+            "is not a transient run's history.csv with displacements (time, disp_…)".into(),
+        ));
+    }
+    let mut out = Histories::default();
+    for (k, row) in r.records().enumerate() {
+        let line = k + 2;
+        let row = row.map_err(|e| bad(line, e.to_string()))?;
+        let num = |i: usize| row.get(i).and_then(|t| t.parse::<f64>().ok());
+        let time = num(0).ok_or_else(|| bad(line, "time is not a number".into()))?;
+        for &(i, key) in &columns {
+            let v = num(i).ok_or_else(|| bad(line, format!("{} is not a number", &headers[i])))?;
+            out.series.entry(key).or_default().push((time, v));
+        }
+    }
+    Ok(out)
+}
+
+/// A transient run compared with NASTRAN's printed histories: at every printed time,
+/// the run's row at the same time (within a hundredth of the run's output interval:
+/// NASTRAN prints its times in single precision).
+#[derive(Debug, Clone, PartialEq)]
+pub struct HistoryComparison {
+    /// The largest |value| NASTRAN printed of a translation (or scalar point).
+    pub scale: f64,
+    /// The largest |value| NASTRAN printed of a rotation.
+    pub rotation_scale: f64,
+    /// Every (time, component) both give, with the time: the largest relative
+    /// difference first.
+    pub differences: Vec<(f64, Difference)>,
+    /// Printed (point, component) histories the run does not write.
+    pub missing: Vec<(i64, u8)>,
+    /// Printed times the run has no row at.
+    pub unmatched_times: usize,
+}
+
+impl HistoryComparison {
+    /// A difference relative to the scale of its kind (translations, rotations; see
+    /// [`SubcaseComparison::relative`]).
+    pub fn relative(&self, d: &Difference) -> f64 {
+        let sc = SubcaseComparison {
+            subcase: 0,
+            translation_scale: self.scale,
+            rotation_scale: self.rotation_scale,
+            differences: Vec::new(),
+            missing: Vec::new(),
+        };
+        sc.relative(d)
+    }
+
+    /// The largest relative difference.
+    pub fn worst(&self) -> f64 {
+        self.differences.first().map_or(0.0, |(_, d)| self.relative(d))
+    }
+}
+
+/// Compares a run's histories with the printed ones.
+pub fn compare_histories(ours: &Histories, theirs: &Histories) -> HistoryComparison {
+    let scale = |rot: bool| {
+        theirs
+            .series
+            .iter()
+            .filter(|((_, c), _)| (4..=6).contains(c) == rot)
+            .flat_map(|(_, s)| s.iter().map(|p| p.1.abs()))
+            .fold(0.0f64, f64::max)
+    };
+    let mut cmp = HistoryComparison {
+        scale: scale(false),
+        rotation_scale: scale(true),
+        differences: Vec::new(),
+        missing: Vec::new(),
+        unmatched_times: 0,
+    };
+    for (&(point, component), printed) in &theirs.series {
+        let Some(run) = ours.series.get(&(point, component)) else {
+            cmp.missing.push((point, component));
+            continue;
+        };
+        let interval = match run.as_slice() {
+            [a, b, ..] => b.0 - a.0,
+            _ => f64::INFINITY,
+        };
+        for &(t, v) in printed {
+            let k = run.partition_point(|r| r.0 < t - 0.01 * interval);
+            match run.get(k).filter(|r| (r.0 - t).abs() <= 0.01 * interval) {
+                Some(&(_, ours)) => cmp.differences.push((
+                    t,
+                    Difference {
+                        point,
+                        component,
+                        ours,
+                        theirs: v,
+                    },
+                )),
+                None => cmp.unmatched_times += 1,
+            }
+        }
+    }
+    let mut diffs = std::mem::take(&mut cmp.differences);
+    diffs.sort_by(|a, b| cmp.relative(&b.1).total_cmp(&cmp.relative(&a.1)));
+    cmp.differences = diffs;
+    cmp
+}
+
+/// The history comparison as a table: the scales, the largest relative difference
+/// and the `top` largest differences by point, component and time.
+pub fn render_histories(c: &HistoryComparison, top: usize) -> String {
+    let mut s = format!(
+        "{} values compared; largest printed translation {:.6e}, rotation {:.6e}; largest difference {:.2e} of its \
+         scale\n",
+        c.differences.len(),
+        c.scale,
+        c.rotation_scale,
+        c.worst()
+    );
+    if !c.missing.is_empty() {
+        s += &format!(
+            "  not in the run: {} printed history(ies), first point {}\n",
+            c.missing.len(),
+            c.missing[0].0
+        );
+    }
+    if c.unmatched_times > 0 {
+        s += &format!("  printed times without a run row: {}\n", c.unmatched_times);
+    }
+    s += &format!(
+        "  {:>9} {:>4} {:>13} {:>14} {:>14} {:>12} {:>10}\n",
+        "point", "comp", "time", "impactlab", "NASTRAN", "difference", "relative"
+    );
+    for (t, d) in c.differences.iter().take(top) {
+        s += &format!(
+            "  {:>9} {:>4} {:>13.6e} {:>14.6e} {:>14.6e} {:>12.3e} {:>10.2e}\n",
+            d.point,
+            component_name(d.component),
+            t,
+            d.ours,
+            d.theirs,
+            d.delta(),
+            c.relative(d)
+        );
+    }
+    s
+}
+
+/// A component's name in the printed tables: S (scalar point), T1..T3, R1..R3.
+fn component_name(c: u8) -> String {
+    match c {
+        0 => "S".to_string(),
+        1..=3 => format!("T{c}"),
+        _ => format!("R{}", c - 3),
+    }
 }
 
 /// One component's difference.
@@ -470,11 +720,7 @@ pub fn compare(ours: &Printed, theirs: &Printed) -> Vec<SubcaseComparison> {
 /// The comparison as a table: per SUBCASE the scales, the largest relative
 /// difference and the `top` largest differences by grid and component.
 pub fn render(comparisons: &[SubcaseComparison], top: usize) -> String {
-    let name = |c: u8| match c {
-        0 => "S".to_string(),
-        1..=3 => format!("T{c}"),
-        _ => format!("R{}", c - 3),
-    };
+    let name = component_name;
     let mut s = String::new();
     for c in comparisons {
         s += &format!(
@@ -602,6 +848,49 @@ mod tests {
         assert_eq!(p.subcases[&1][&(12, 3)], 3.598766E-02);
         assert_eq!(p.subcases[&2][&(12, 1)], 7.075042E-04);
         assert_eq!(p.subcases[&2].len(), 6);
+    }
+
+    /// Goal: a transient SORT2 table (NASTRAN-95's t09071a.out) is read a point at a
+    /// time over a page break, its rows by time; a run's rows are matched by time.
+    #[test]
+    fn a_transient_sort2_history_is_read_and_matched_by_time() {
+        let page = "\
+0     A DYNAMIC TRANSIENT RESPONSE ANALYSIS - IMPACT LOADING                                                 SUBCASE 1
+      POINT-ID =       1
+                                             D I S P L A C E M E N T   V E C T O R
+ 
+       TIME       TYPE          T1             T2             T3             R1             R2             R3
+   0.0              G      0.0            0.0            0.0            0.0            0.0            0.0
+   5.000000E-05     G      0.0            7.791522E-05   0.0            0.0            0.0            0.0
+1     DYNAMIC DELAMINATION BUCKLING IN COMPOSITE LAMINATES UDER             /    95 SUN SOLARIS NASTRAN    / M
+0     A DYNAMIC TRANSIENT RESPONSE ANALYSIS - IMPACT LOADING                                                 SUBCASE 1
+      POINT-ID =       1
+                                             D I S P L A C E M E N T   V E C T O R
+ 
+       TIME       TYPE          T1             T2             T3             R1             R2             R3
+   2.499999E-04     G      0.0            7.243613E-04   0.0            0.0            0.0            0.0
+      POINT-ID =       2
+                                             D I S P L A C E M E N T   V E C T O R
+       TIME       TYPE          T1             T2             T3             R1             R2             R3
+   0.0              G      0.0            0.0            0.0            0.0            0.0            0.0
+";
+        let h = read_transient(page);
+        assert_eq!(
+            h.series[&(1, 2)],
+            [(0.0, 0.0), (5e-5, 7.791522e-5), (2.499999e-4, 7.243613e-4)]
+        );
+        assert_eq!(h.series[&(2, 6)], [(0.0, 0.0)]);
+        assert_eq!(h.series.len(), 12);
+        let mut ours = Histories::default();
+        ours.series.insert(
+            (1, 2),
+            vec![(0.0, 0.0), (5e-5, 7.8e-5), (1e-4, 1.0), (2.5e-4, 7.243613e-4)],
+        );
+        let c = compare_histories(&ours, &h);
+        assert_eq!(c.differences.len(), 3);
+        assert_eq!(c.missing.len(), 11);
+        assert_eq!(c.differences[0].0, 5e-5);
+        assert!((c.worst() - (7.8e-5 - 7.791522e-5) / 7.243613e-4).abs() < 1e-15);
     }
 
     /// Goal: differences are read against the largest printed translation (rotation),

@@ -347,11 +347,14 @@ pub(super) fn card_temprb(r: &mut Reader, b: &mut Bulk) {
     }
 }
 
-/// LOAD: SID S S1 L1 S2 L2 ….
+/// LOAD and DLOAD: `SID S S1 L1 S2 L2 …`, the static (LOAD) or dynamic (DLOAD) load
+/// S Σ Sᵢ Pᵢ. Both cards' remarks (BULK.TXT): "The Li must be unique"; a set does not
+/// include itself (DLOAD: "SID must be different from all Li").
 pub(super) fn card_load(r: &mut Reader, b: &mut Bulk) {
+    let name = r.card.name.clone();
     let sid = r.id(0, "SID");
     let scale = r.real(1, "S");
-    let mut terms = Vec::new();
+    let mut terms: Vec<(f64, i64)> = Vec::new();
     let mut k = 2;
     while k < r.card.fields.len() {
         if r.text(k).is_empty() && r.text(k + 1).is_empty() {
@@ -361,13 +364,16 @@ pub(super) fn card_load(r: &mut Reader, b: &mut Bulk) {
         let s = r.real(k, "Si");
         let l = r.id(k + 1, "Li");
         if r.ok && l == sid {
-            r.fail(k + 1, "Li", format!("LOAD {sid} cannot include itself"));
+            r.fail(k + 1, "Li", format!("{name} {sid} cannot include itself"));
+        }
+        if r.ok && terms.iter().any(|&(_, x)| x == l) {
+            r.fail(k + 1, "Li", "is listed twice (\"The Li must be unique\")");
         }
         terms.push((s, l));
         k += 2;
     }
     if r.ok && terms.is_empty() {
-        r.fail(2, "S1", "LOAD combines no set");
+        r.fail(2, "S1", format!("{name} combines no set"));
     }
     let l = LoadCombination {
         sid,
@@ -376,6 +382,9 @@ pub(super) fn card_load(r: &mut Reader, b: &mut Bulk) {
         at: r.at(),
     };
     if r.ok {
-        b.load_combinations.push(l);
+        match name.as_str() {
+            "DLOAD" => b.dloads.push(l),
+            _ => b.load_combinations.push(l),
+        }
     }
 }

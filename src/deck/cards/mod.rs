@@ -6,6 +6,7 @@
 mod constraints;
 mod dynamic;
 mod elements;
+mod excitation;
 mod geometry;
 mod loads;
 mod materials;
@@ -14,6 +15,7 @@ mod properties;
 pub use constraints::*;
 pub use dynamic::*;
 pub use elements::*;
+pub use excitation::*;
 pub use geometry::*;
 pub use loads::*;
 pub use materials::*;
@@ -158,6 +160,16 @@ pub struct Bulk {
     pub tics: Vec<Tic>,
     /// EIGR and EIGRL cards.
     pub eigrs: Vec<Eigr>,
+    /// DAREA cards (one entry per P, C, A).
+    pub dareas: Vec<Darea>,
+    /// DELAY cards (one entry per P, C, T).
+    pub delays: Vec<Delay>,
+    /// TLOAD1 and TLOAD2 cards.
+    pub tloads: Vec<Tload>,
+    /// TABLED1-4 cards.
+    pub tableds: Vec<Tabled>,
+    /// DLOAD cards.
+    pub dloads: Vec<LoadCombination>,
     /// FORCE and MOMENT cards.
     pub point_loads: Vec<PointLoad>,
     /// PLOAD4 cards.
@@ -440,6 +452,17 @@ impl<'a> Reader<'a> {
         out
     }
 
+    /// Fails on the first non-blank field in `from..to`.
+    fn extra_fields_in(&mut self, from: usize, to: usize) {
+        if let Some(k) = (from..to).find(|&k| !self.text(k).is_empty()) {
+            self.fail(
+                k,
+                "unused",
+                format!("{} has no field here; this value would be ignored", self.card.name),
+            );
+        }
+    }
+
     fn extra_fields(&mut self, max: usize) {
         for k in max..self.card.fields.len() {
             if !self.text(k).is_empty() {
@@ -456,14 +479,15 @@ impl<'a> Reader<'a> {
 
 /// Cards the reader knows. `PARAM` is accepted and ignored with a warning.
 /// Element cards are those of [`crate::elements::KINDS`] besides these.
-pub const KNOWN_CARDS: [&str; 77] = [
+pub const KNOWN_CARDS: [&str; 86] = [
     "GRID", "GRDSET", "CORD1R", "CORD1C", "CORD1S", "CORD2R", "CORD2C", "CORD2S", "EPOINT", "SPOINT", "PROD", "PBAR",
     "PBARL", "PBEAM", "PBEAML", "PSHELL", "PCOMP", "MAT1", "MAT2", "MAT8", "CONM2", "RBE2", "RBE3", "SPC1", "SPC",
     "SPCADD", "TF", "TSTEP", "NOLIN3", "TIC", "FORCE", "MOMENT", "PLOAD4", "GRAV", "LOAD", "PARAM", "INCLUDE",
     "ENDDATA", "BAROR", "PTUBE", "CELAS1", "CELAS2", "CELAS3", "CELAS4", "CMASS1", "CMASS2", "CMASS3", "CMASS4",
     "PELAS", "PMASS", "CQUAD1", "CQUAD2", "CQDMEM", "CQDMEM1", "CQDMEM2", "CTRIA1", "CTRIA2", "CTRMEM", "PQUAD1",
     "PTRIA1", "PQUAD2", "PTRIA2", "PQDMEM", "PQDMEM1", "PQDMEM2", "PTRMEM", "PCOMP1", "PCOMP2", "CRIGD1", "PSHEAR",
-    "GENEL", "SPCD", "PLOAD2", "PLOAD", "TEMPRB", "EIGR", "EIGRL",
+    "GENEL", "SPCD", "PLOAD2", "PLOAD", "TEMPRB", "EIGR", "EIGRL", "DAREA", "DELAY", "TLOAD1", "TLOAD2", "TABLED1",
+    "TABLED2", "TABLED3", "TABLED4", "DLOAD",
 ];
 
 /// Every card the reader types: the element cards of [`crate::elements::KINDS`] and
@@ -609,7 +633,15 @@ impl Typer {
                 "TEMPRB" => card_temprb(&mut r, b),
                 "EIGR" => card_eigr(&mut r, b),
                 "EIGRL" => card_eigrl(&mut r, b),
-                "LOAD" => card_load(&mut r, b),
+                "DAREA" => card_darea_delay(&mut r, b, false),
+                "DELAY" => card_darea_delay(&mut r, b, true),
+                "TLOAD1" => card_tload(&mut r, b, false),
+                "TLOAD2" => card_tload(&mut r, b, true),
+                "TABLED1" => card_tabled(&mut r, b, 1),
+                "TABLED2" => card_tabled(&mut r, b, 2),
+                "TABLED3" => card_tabled(&mut r, b, 3),
+                "TABLED4" => card_tabled(&mut r, b, 4),
+                "LOAD" | "DLOAD" => card_load(&mut r, b),
                 "PARAM" => card_param(&mut r, b, card),
                 name => match crate::elements::kind(name) {
                     Some(kind) => card_element(&mut r, b, kind),

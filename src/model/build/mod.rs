@@ -19,12 +19,14 @@ use std::collections::{BTreeMap, HashMap};
 mod contact;
 mod dofs;
 mod elements;
+mod excitation;
 mod outputs;
 mod properties;
 
 use contact::*;
 use dofs::*;
 use elements::*;
+use excitation::*;
 use outputs::*;
 use properties::*;
 
@@ -259,6 +261,7 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
     let contact = build_contact(&mut cx, &sel.nolins, &refs, |cx, at, w, g, c| {
         num.lookup(cx, at, w, g, c)
     });
+    let excitation = excitation(&mut cx, deck, &num);
     let outputs = output_plan(&mut cx, deck, &num, (&dependent, &tied), &elements, contact.as_ref());
     let rod = rod_info(&elements.list);
     let model = Model {
@@ -270,6 +273,7 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
         dependent: dependent.points,
         elements: elements.list.into(),
         contact,
+        excitation,
         u0,
         v0,
         time,
@@ -440,8 +444,8 @@ fn structure<'s>(
 /// would answer another question than the deck asks.
 fn no_static_loads(cx: &mut Ctx, deck: &Deck) {
     let b = &deck.bulk;
-    let why = "is a static load, which a transient run does not apply (its load is the contact's NOLIN3): \
-               remove it, or solve the deck as SOL 101";
+    let why = "is a static load, which a transient run does not apply (it applies the contact's NOLIN3 and the \
+               DLOAD's dynamic loads): remove it, or solve the deck as SOL 101";
     let firsts = [
         b.point_loads.first().map(|l| &l.at),
         b.pload4s.first().map(|l| &l.at),

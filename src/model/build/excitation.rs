@@ -1,0 +1,118 @@
+//! The dynamic load stage: the case control's DLOAD resolved to an [`Excitation`].
+
+use super::*;
+use crate::deck::cards::{DelayRef, Tload, TloadShape};
+use crate::model::excitation::{Excitation, LoadTerm, TimeFunction};
+
+/// The dynamic load the case control's DLOAD selects: a DLOAD card's combination of
+/// TLOAD sets, or one TLOAD set; `None` without a DLOAD request (TLOAD cards are then
+/// warned about: they are not applied).
+pub(super) fn excitation(cx: &mut Ctx, deck: &Deck, num: &Numbering) -> Option<Excitation> {
+    let b = &deck.bulk;
+    let Some(sel) = &deck.case.dload else {
+        if let Some(t) = b.tloads.first() {
+            cx.warn(t.at.error(format!(
+                "{} TLOAD card(s), but case control has no DLOAD request: no dynamic load is applied",
+                b.tloads.len()
+            )));
+        }
+        return None;
+    };
+    for (k, t) in b.tloads.iter().enumerate() {
+        if let Some(first) = b.tloads[..k].iter().find(|o| o.sid == t.sid) {
+            cx.err(t.at.error(format!(
+                "TLOAD set {} is defined again (first at {}): \"SID must be unique for all TLOAD1, TLOAD2\" cards",
+                t.sid, first.at.pos
+            )));
+        }
+    }
+    let (sets, source): (Vec<(f64, i64, &CardRef)>, &CardRef) = match b.dloads.iter().find(|d| d.sid == sel.id) {
+        Some(d) => {
+            if let Some(t) = b.tloads.iter().find(|t| t.sid == d.sid) {
+                cx.err(t.at.error(format!(
+                    "has SID {}, which a DLOAD also has (at {}): DLOAD = {} is ambiguous",
+                    t.sid, d.at.pos, sel.id
+                )));
+            }
+            (d.terms.iter().map(|&(s, l)| (d.scale * s, l, &d.at)).collect(), &d.at)
+        }
+        None => match b.tloads.iter().find(|t| t.sid == sel.id) {
+            Some(t) => (vec![(1.0, sel.id, &t.at)], &t.at),
+            None => {
+                cx.err(
+                    Diagnostic::error(
+                        Some(sel.pos.clone()),
+                        format!(
+                            "case control DLOAD = {} selects no DLOAD, TLOAD1 or TLOAD2 card",
+                            sel.id
+                        ),
+                    )
+                    .card("DLOAD"),
+                );
+                return None;
+            }
+        },
+    };
+    let mut ex = Excitation {
+        terms: Vec::new(),
+        functions: Vec::new(),
+        source: format!("{} {} at {}", source.name, sel.id, source.pos),
+    };
+    for (scale, l, at) in sets {
+        let Some(t) = b.tloads.iter().find(|t| t.sid == l) else {
+            cx.err(at.error(format!(
+                "DLOAD combines load set {l}, which no TLOAD1 or TLOAD2 defines"
+            )));
+            continue;
+        };
+        let Some(function) = time_function(cx, deck, t) else {
+            continue;
+        };
+        ex.functions.push(function);
+        let function = ex.functions.len() - 1;
+        let dareas: Vec<_> = b.dareas.iter().filter(|d| d.sid == t.excite).collect();
+        if dareas.is_empty() {
+            cx.err(t.at.error(format!("its L = {} names no DAREA set", t.excite)));
+        }
+        for d in dareas {
+            let Some(dof) = num.lookup(cx, &d.at, "DAREA", d.p, d.c) else {
+                continue;
+            };
+            let delay = match t.delay {
+                DelayRef::None => 0.0,
+                DelayRef::Value(tau) => tau,
+                DelayRef::Set(m) => {
+                    if !b.delays.iter().any(|e| e.sid == m) {
+                        cx.err(t.at.error(format!("its M = {m} names no DELAY set")));
+                    }
+                    // A DOF the DELAY set does not list is not delayed.
+                    b.delays
+                        .iter()
+                        .find(|e| e.sid == m && e.p == d.p && e.c == d.c)
+                        .map_or(0.0, |e| e.t)
+                }
+            };
+            ex.terms.push(LoadTerm {
+                dof,
+                scale: scale * d.a,
+                delay,
+                function,
+            });
+        }
+    }
+    Some(ex)
+}
+
+/// A TLOAD's time function: TLOAD2's formula, or TLOAD1's table.
+fn time_function(cx: &mut Ctx, deck: &Deck, t: &Tload) -> Option<TimeFunction> {
+    match t.shape {
+        TloadShape::Formula(f) => Some(TimeFunction::Formula(f)),
+        TloadShape::Table(tid) => match deck.bulk.tableds.iter().find(|d| d.id == tid) {
+            Some(d) => Some(TimeFunction::Table(d.function.clone())),
+            None => {
+                cx.err(t.at.error(format!("its TID = {tid} names no TABLED1, TABLED2, TABLED3 or TABLED4")));
+                None
+            }
+        },
+    }
+}
