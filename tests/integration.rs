@@ -13,6 +13,7 @@ mod cli;
 mod convolution;
 mod damage;
 mod deck_reader;
+mod dynamic_loads;
 mod elements;
 mod faults;
 mod laminate;

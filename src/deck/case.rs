@@ -106,6 +106,9 @@ pub struct CaseControl {
     pub method: Option<Selection>,
     /// DLOAD selection (the TLOAD1, TLOAD2 or DLOAD of a transient deck's dynamic load).
     pub dload: Option<Selection>,
+    /// LOADSET selection (the LSEQ cards that give static load sets as the dynamic
+    /// loads' distributions).
+    pub loadset: Option<Selection>,
     /// Output requests by keyword: NLLOAD, DISP, VELO, ACCEL, STRESS, STRAIN, FORCE,
     /// ELFORCE (NASTRAN's longer names and synonyms read as these).
     pub outputs: BTreeMap<String, OutputRequest>,
@@ -299,7 +302,17 @@ fn parse_id_list(text: &str, pos: &Pos, src: &str, ids_left: &mut usize, diags: 
     out
 }
 
-const SELECTORS: [&str; 8] = ["SPC", "IC", "NONLINEAR", "TSTEP", "TFL", "LOAD", "METHOD", "DLOAD"];
+const SELECTORS: [&str; 9] = [
+    "SPC",
+    "IC",
+    "NONLINEAR",
+    "TSTEP",
+    "TFL",
+    "LOAD",
+    "METHOD",
+    "DLOAD",
+    "LOADSET",
+];
 
 /// Output requests impactlab writes: NASTRAN's name, and the key it is kept under.
 /// A request may be written by any abbreviation of its name of four letters or more
@@ -616,7 +629,7 @@ fn set_definition(
 }
 
 /// `SPC = n`, `IC = n`, `NONLINEAR = n`, `TSTEP = n`, `TFL = n`, `LOAD = n`, `METHOD = n`,
-/// `DLOAD = n`.
+/// `DLOAD = n`, `LOADSET = n`.
 fn selector(cc: &mut CaseControl, k: &str, rhs: &str, pos: Pos, text: &str, diags: &mut Diagnostics) {
     match parse_int(rhs) {
         Some(id) => {
@@ -629,6 +642,7 @@ fn selector(cc: &mut CaseControl, k: &str, rhs: &str, pos: Pos, text: &str, diag
                 "LOAD" => cc.load = sel,
                 "METHOD" => cc.method = sel,
                 "DLOAD" => cc.dload = sel,
+                "LOADSET" => cc.loadset = sel,
                 _ => cc.tfl = sel,
             }
         }

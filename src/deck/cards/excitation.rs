@@ -1,5 +1,5 @@
-//! The dynamic load cards of transient response: DAREA, DELAY, TLOAD1, TLOAD2 and
-//! TABLED1-4 (DLOAD is read as LOAD is, in `loads.rs`), as NASTRAN-95's User's Manual (`manual/BULK.TXT`) defines
+//! The dynamic load cards of transient response: DAREA, DELAY, TLOAD1, TLOAD2,
+//! TABLED1-4 and MSC's LSEQ (DLOAD is read as LOAD is, in `loads.rs`), as NASTRAN-95's User's Manual (`manual/BULK.TXT`) defines
 //! them, with MSC's additions read where they mean the same (TLOAD's TYPE field, a
 //! real DELAY, TABLED1's axes).
 
@@ -215,6 +215,42 @@ pub(super) fn card_darea_delay(r: &mut Reader, b: &mut Bulk, delay: bool) {
         }
     }
     r.extra_fields(7);
+}
+
+/// LSEQ (MSC): the static load set LID (FORCE, MOMENT, PLOAD, PLOAD2, PLOAD4, GRAV or
+/// a LOAD of them) as the spatial distribution of the dynamic load sets whose
+/// EXCITEID is this card's, selected by case control LOADSET.
+#[derive(Debug, Clone)]
+pub struct Lseq {
+    /// Set id (field 2), which LOADSET selects.
+    pub sid: i64,
+    /// EXCITEID (field 3): the TLOADs' L it stands for.
+    pub excite: i64,
+    /// LID (field 4): the static load set.
+    pub lid: i64,
+    /// The card.
+    pub at: CardRef,
+}
+
+/// LSEQ: `LSEQ SID EXCITEID LID TID`; a thermal TID is refused.
+pub(super) fn card_lseq(r: &mut Reader, b: &mut Bulk) {
+    let l = Lseq {
+        sid: r.id(0, "SID"),
+        excite: r.id(1, "EXCITEID"),
+        lid: r.id(2, "LID"),
+        at: r.at(),
+    };
+    if !r.text(3).is_empty() {
+        r.fail(
+            3,
+            "TID",
+            "is a thermal load set, which impactlab does not apply in a transient run",
+        );
+    }
+    r.extra_fields(4);
+    if r.ok {
+        b.lseqs.push(l);
+    }
 }
 
 /// TLOAD1 (`TLOAD1 SID L M TYPE TID`) and TLOAD2 (`TLOAD2 SID L M TYPE T1 T2 F P`,

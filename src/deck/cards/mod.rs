@@ -170,6 +170,8 @@ pub struct Bulk {
     pub tableds: Vec<Tabled>,
     /// DLOAD cards.
     pub dloads: Vec<LoadCombination>,
+    /// LSEQ cards.
+    pub lseqs: Vec<Lseq>,
     /// FORCE and MOMENT cards.
     pub point_loads: Vec<PointLoad>,
     /// PLOAD4 cards.
@@ -479,7 +481,7 @@ impl<'a> Reader<'a> {
 
 /// Cards the reader knows. `PARAM` is accepted and ignored with a warning.
 /// Element cards are those of [`crate::elements::KINDS`] besides these.
-pub const KNOWN_CARDS: [&str; 86] = [
+pub const KNOWN_CARDS: [&str; 87] = [
     "GRID", "GRDSET", "CORD1R", "CORD1C", "CORD1S", "CORD2R", "CORD2C", "CORD2S", "EPOINT", "SPOINT", "PROD", "PBAR",
     "PBARL", "PBEAM", "PBEAML", "PSHELL", "PCOMP", "MAT1", "MAT2", "MAT8", "CONM2", "RBE2", "RBE3", "SPC1", "SPC",
     "SPCADD", "TF", "TSTEP", "NOLIN3", "TIC", "FORCE", "MOMENT", "PLOAD4", "GRAV", "LOAD", "PARAM", "INCLUDE",
@@ -487,7 +489,7 @@ pub const KNOWN_CARDS: [&str; 86] = [
     "PELAS", "PMASS", "CQUAD1", "CQUAD2", "CQDMEM", "CQDMEM1", "CQDMEM2", "CTRIA1", "CTRIA2", "CTRMEM", "PQUAD1",
     "PTRIA1", "PQUAD2", "PTRIA2", "PQDMEM", "PQDMEM1", "PQDMEM2", "PTRMEM", "PCOMP1", "PCOMP2", "CRIGD1", "PSHEAR",
     "GENEL", "SPCD", "PLOAD2", "PLOAD", "TEMPRB", "EIGR", "EIGRL", "DAREA", "DELAY", "TLOAD1", "TLOAD2", "TABLED1",
-    "TABLED2", "TABLED3", "TABLED4", "DLOAD",
+    "TABLED2", "TABLED3", "TABLED4", "DLOAD", "LSEQ",
 ];
 
 /// Every card the reader types: the element cards of [`crate::elements::KINDS`] and
@@ -641,6 +643,7 @@ impl Typer {
                 "TABLED2" => card_tabled(&mut r, b, 2),
                 "TABLED3" => card_tabled(&mut r, b, 3),
                 "TABLED4" => card_tabled(&mut r, b, 4),
+                "LSEQ" => card_lseq(&mut r, b),
                 "LOAD" | "DLOAD" => card_load(&mut r, b),
                 "PARAM" => card_param(&mut r, b, card),
                 name => match crate::elements::kind(name) {

@@ -1,4 +1,10 @@
 //! The dynamic load stage: the case control's DLOAD resolved to an [`Excitation`].
+//! A TLOAD's L names the DAREA set and the LSEQ cards (of the case control's LOADSET)
+//! whose EXCITEID it is: each DAREA entry loads its DOF with A; each LSEQ's static
+//! load set LID (FORCE, MOMENT, PLOAD, PLOAD2, PLOAD4, GRAV, LOAD) is assembled as a
+//! static solution assembles it ([`crate::model::loads`]), its components on the
+//! solved DOFs (a dependent grid's carried by the grids it follows, those on
+//! constrained DOFs dropped, as a static solution's) each a term of the load.
 
 use super::*;
 use crate::deck::cards::{DelayRef, Tload, TloadShape};
@@ -53,6 +59,7 @@ pub(super) fn excitation(cx: &mut Ctx, deck: &Deck, num: &Numbering) -> Option<E
             }
         },
     };
+    let mut structure = None;
     let mut ex = Excitation {
         terms: Vec::new(),
         functions: Vec::new(),
@@ -70,37 +77,97 @@ pub(super) fn excitation(cx: &mut Ctx, deck: &Deck, num: &Numbering) -> Option<E
         };
         ex.functions.push(function);
         let function = ex.functions.len() - 1;
+        if let DelayRef::Set(m) = t.delay {
+            if !b.delays.iter().any(|e| e.sid == m) {
+                cx.err(t.at.error(format!("its M = {m} names no DELAY set")));
+            }
+        }
+        // A DOF the DELAY set does not list is not delayed.
+        let delay = |p: i64, c: usize| match t.delay {
+            DelayRef::None => 0.0,
+            DelayRef::Value(tau) => tau,
+            DelayRef::Set(m) => b
+                .delays
+                .iter()
+                .find(|e| e.sid == m && e.p == p && e.c == c)
+                .map_or(0.0, |e| e.t),
+        };
         let dareas: Vec<_> = b.dareas.iter().filter(|d| d.sid == t.excite).collect();
-        if dareas.is_empty() {
-            cx.err(t.at.error(format!("its L = {} names no DAREA set", t.excite)));
+        let lseqs: Vec<_> = match &deck.case.loadset {
+            Some(ls) => b
+                .lseqs
+                .iter()
+                .filter(|l| l.sid == ls.id && l.excite == t.excite)
+                .collect(),
+            None => Vec::new(),
+        };
+        if dareas.is_empty() && lseqs.is_empty() {
+            cx.err(t.at.error(format!(
+                "its L = {} names no DAREA set{}",
+                t.excite,
+                match &deck.case.loadset {
+                    Some(ls) => format!(" and no LSEQ of LOADSET {} has it as EXCITEID", ls.id),
+                    None => String::new(),
+                }
+            )));
         }
         for d in dareas {
             let Some(dof) = num.lookup(cx, &d.at, "DAREA", d.p, d.c) else {
                 continue;
             };
-            let delay = match t.delay {
-                DelayRef::None => 0.0,
-                DelayRef::Value(tau) => tau,
-                DelayRef::Set(m) => {
-                    if !b.delays.iter().any(|e| e.sid == m) {
-                        cx.err(t.at.error(format!("its M = {m} names no DELAY set")));
-                    }
-                    // A DOF the DELAY set does not list is not delayed.
-                    b.delays
-                        .iter()
-                        .find(|e| e.sid == m && e.p == d.p && e.c == d.c)
-                        .map_or(0.0, |e| e.t)
-                }
-            };
             ex.terms.push(LoadTerm {
                 dof,
                 scale: scale * d.a,
-                delay,
+                delay: delay(d.p, d.c),
                 function,
             });
         }
+        for l in lseqs {
+            let Some(s) = static_structure(cx, deck, &mut structure) else {
+                break;
+            };
+            let sel = Selection {
+                id: l.lid,
+                pos: l.at.pos.clone(),
+            };
+            let loads = match crate::model::loads::static_load_of(deck, s, Some(&sel)) {
+                Ok(loads) => loads,
+                Err(e) => {
+                    e.diagnostics.into_iter().for_each(|d| cx.err(d));
+                    continue;
+                }
+            };
+            for (g, l) in loads {
+                for (g, l) in s.rigid.carry(g, l) {
+                    for (c, v) in l.into_iter().enumerate().filter(|(_, v)| *v != 0.0) {
+                        let label = DofLabel {
+                            point: g,
+                            comp: c as u8 + 1,
+                        };
+                        if let Some(dof) = num.index(&label) {
+                            ex.terms.push(LoadTerm {
+                                dof,
+                                scale: scale * v,
+                                delay: delay(g, c + 1),
+                                function,
+                            });
+                        }
+                    }
+                }
+            }
+        }
     }
     Some(ex)
+}
+
+/// The deck's structure, built once for the static load sets an LSEQ names (their
+/// pressures and gravity need its elements); `None` when it does not build (the
+/// model's own stages report why).
+fn static_structure<'s>(cx: &mut Ctx, deck: &Deck, structure: &'s mut Option<Structure>) -> Option<&'s Structure> {
+    if structure.is_none() && !cx.diags.iter().any(|d| d.is_error()) {
+        *structure = build_structure(deck).ok().map(|(s, _)| s);
+    }
+    structure.as_ref()
 }
 
 /// A TLOAD's time function: TLOAD2's formula, or TLOAD1's table.

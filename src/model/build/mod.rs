@@ -440,19 +440,34 @@ fn structure<'s>(
 }
 
 /// A transient deck's static load cards and LOAD selection are errors: a transient
-/// run applies none of them (its load is the contact's NOLIN3), and ignoring them
-/// would answer another question than the deck asks.
+/// run applies none of them (its loads are the contact's NOLIN3 and the DLOAD), and
+/// ignoring them would answer another question than the deck asks. The static load
+/// sets that the LSEQ cards of the case control's LOADSET name (directly or through a
+/// LOAD) are the dynamic loads' distributions: their cards are taken.
 fn no_static_loads(cx: &mut Ctx, deck: &Deck) {
     let b = &deck.bulk;
+    let mut named: FxHashSet<i64> = match &deck.case.loadset {
+        Some(sel) => b.lseqs.iter().filter(|l| l.sid == sel.id).map(|l| l.lid).collect(),
+        None => FxHashSet::default(),
+    };
+    let combined: Vec<i64> = b
+        .load_combinations
+        .iter()
+        .filter(|c| named.contains(&c.sid))
+        .flat_map(|c| c.terms.iter().map(|t| t.1))
+        .collect();
+    named.extend(combined);
+    let free = |sid: &i64| !named.contains(sid);
     let why = "is a static load, which a transient run does not apply (it applies the contact's NOLIN3 and the \
-               DLOAD's dynamic loads): remove it, or solve the deck as SOL 101";
+               DLOAD's dynamic loads, and the static load sets a LOADSET's LSEQ names): remove it, or solve the \
+               deck as SOL 101";
     let firsts = [
-        b.point_loads.first().map(|l| &l.at),
-        b.pload4s.first().map(|l| &l.at),
-        b.ploads.first().map(|l| &l.at),
-        b.gravs.first().map(|l| &l.at),
+        b.point_loads.iter().find(|l| free(&l.sid)).map(|l| &l.at),
+        b.pload4s.iter().find(|l| free(&l.sid)).map(|l| &l.at),
+        b.ploads.iter().find(|l| free(&l.sid)).map(|l| &l.at),
+        b.gravs.iter().find(|l| free(&l.sid)).map(|l| &l.at),
         b.spcds.first().map(|l| &l.at),
-        b.load_combinations.first().map(|l| &l.at),
+        b.load_combinations.iter().find(|l| free(&l.sid)).map(|l| &l.at),
     ];
     for at in firsts.into_iter().flatten() {
         cx.err(at.error(format!("{} {why}", at.name)));
