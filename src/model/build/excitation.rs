@@ -32,7 +32,15 @@ pub(super) fn excitation(cx: &mut Ctx, deck: &Deck, num: &Numbering) -> Option<E
             )));
         }
     }
-    let (sets, source): (Vec<(f64, i64, &CardRef)>, &CardRef) = match b.dloads.iter().find(|d| d.sid == sel.id) {
+    let dloads: Vec<_> = b.dloads.iter().filter(|d| d.sid == sel.id).collect();
+    if let [first, second, ..] = dloads.as_slice() {
+        cx.err(
+            second
+                .at
+                .error(format!("DLOAD {} is defined twice (first at {})", sel.id, first.at.pos)),
+        );
+    }
+    let (sets, source): (Vec<(f64, i64, &CardRef)>, &CardRef) = match dloads.first() {
         Some(d) => {
             if let Some(t) = b.tloads.iter().find(|t| t.sid == d.sid) {
                 cx.err(t.at.error(format!(
