@@ -1,6 +1,6 @@
 //! Dropping inert DOFs: groups of solved DOFs that no load, initial condition,
-//! contact or dynamic load ever reaches stay exactly zero for the whole run, so they need not be
-//! solved.
+//! contact or dynamic load ever reaches stay exactly zero for the whole run, so they
+//! need not be solved.
 //!
 //! Two DOFs are coupled when an assembled stiffness or mass entry between them is
 //! nonzero, or when both appear in the contact (its driver functional, its loads, the

@@ -97,15 +97,14 @@ impl<'a> Central<'a> {
             phi_prev: phi_n,
             applied: AppliedLoad::new(model),
         };
-        let p0 = s.applied.as_ref().map(|p| p.now.clone());
-        s.accelerate(p0.as_deref());
+        s.accelerate();
         Ok(s)
     }
 
-    /// a = M⁻¹ (g φ + P − K u) at the current state, P the dynamic load `p` there.
-    fn accelerate(&mut self, p: Option<&[f64]>) {
+    /// a = M⁻¹ (g φ + P − K u) at the current state, P the dynamic load there.
+    fn accelerate(&mut self) {
         self.sys.k_mul(&self.u, &mut self.ku);
-        match p {
+        match self.applied.as_ref().map(|p| &p.now) {
             None => {
                 for i in 0..self.u.len() {
                     self.a[i] = (self.g[i] * self.phi_n - self.ku[i]) / self.m[i];
@@ -130,14 +129,13 @@ impl Stepper for Central<'_> {
         self.phi_prev = self.phi_n;
         self.alpha = apply(&self.c, &self.u);
         self.phi_n = self.contact.map_or(0.0, |ct| ct.law(self.alpha));
-        let mut applied = self.applied.take();
-        if let Some(p) = &mut applied {
+        if let Some(p) = &mut self.applied {
             p.load_end(time);
             // Δu = Δt v(n+½), the half-step velocity in v now.
-            p.book(|i| dt * self.v[i]);
+            let v = &self.v;
+            p.book(|i| dt * v[i]);
         }
-        self.accelerate(applied.as_ref().map(|p| &p.now[..]));
-        self.applied = applied;
+        self.accelerate();
         for i in 0..n {
             self.v[i] += 0.5 * dt * self.a[i];
         }

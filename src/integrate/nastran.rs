@@ -17,8 +17,7 @@
 //! P is the deck's dynamic load (DLOAD) at the step times, P(−1) taken as P(0) (the
 //! load held before the start; NASTRAN-95's outputs cannot tell this apart, t09071a
 //! starting from P(0) = 0). The work of P and of the start loads is booked as the
-//! scheme's own energy
-//! identity books it: multiplied by d(n) = (u(n+1) − u(n−1))/2, step n's equation is
+//! scheme's own energy identity books it: multiplied by d(n) = (u(n+1) − u(n−1))/2, step n's equation is
 //! exactly E(n+½) − E(n−½) = P̄(n)·d(n), with P̄(n) = βP(n+1) + (1 − 2β)P(n) + βP(n−1)
 //! and E(n+½) the energy of the half step (kinetic from (u(n+1) − u(n))/Δt). The
 //! ledger's energies at state n are the mean of those at n ± ½ to O(Δt²), so the work
@@ -83,10 +82,10 @@ struct ThreePointLoad<'a> {
     pbar: Vec<f64>,
     /// Σ_(k<n) P̄(k)·d(k).
     full: f64,
-    /// ½P̄(n)·d(n).
-    half: f64,
-    /// ½P̄(0)·d(0).
-    half0: f64,
+    /// P̄(n)·d(n).
+    last: f64,
+    /// P̄(0)·d(0).
+    first: f64,
 }
 
 impl<'a> ThreePoint<'a> {
@@ -137,8 +136,8 @@ impl<'a> ThreePoint<'a> {
                 start,
                 pbar: vec![0.0; n],
                 full: 0.0,
-                half: 0.0,
-                half0: 0.0,
+                last: 0.0,
+                first: 0.0,
             });
         }
         s.solve_next(0)?;
@@ -189,14 +188,13 @@ impl<'a> ThreePoint<'a> {
         }
         self.factor.solve_in_place(&mut self.u_next);
         if let Some(a) = &mut self.applied {
-            a.full += 2.0 * a.half;
-            let d: f64 = (0..n)
+            a.full += a.last;
+            a.last = (0..n)
                 .map(|i| a.pbar[i] * (self.u_next[i] - self.u_prev[i]))
                 .sum::<f64>()
                 / 2.0;
-            a.half = 0.5 * d;
             if step == 0 {
-                a.half0 = a.half;
+                a.first = a.last;
             }
         }
         check_finite(self.model, step + 1, (step + 1) as f64 * dt, &self.u_next)
@@ -233,7 +231,10 @@ impl Stepper for ThreePoint<'_> {
             alpha: self.alpha,
             load_factor: self.phi_n,
             work_factor: 0.5 * (self.phi_prev + self.phi_n),
-            applied_work: self.applied.as_ref().map_or(0.0, |a| a.full + a.half - a.half0),
+            applied_work: self
+                .applied
+                .as_ref()
+                .map_or(0.0, |a| a.full + 0.5 * a.last - 0.5 * a.first),
         }
     }
 

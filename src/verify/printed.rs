@@ -493,14 +493,7 @@ impl HistoryComparison {
     /// A difference relative to the scale of its kind (translations, rotations; see
     /// [`SubcaseComparison::relative`]).
     pub fn relative(&self, d: &Difference) -> f64 {
-        let sc = SubcaseComparison {
-            subcase: 0,
-            translation_scale: self.scale,
-            rotation_scale: self.rotation_scale,
-            differences: Vec::new(),
-            missing: Vec::new(),
-        };
-        sc.relative(d)
+        relative(self.scale, self.rotation_scale, d)
     }
 
     /// The largest relative difference.
@@ -626,6 +619,25 @@ impl Difference {
     }
 }
 
+/// A difference relative to the scale of its component's kind: the largest printed
+/// translation, or for R1-R3 the largest printed rotation (at least 1e-9 of the
+/// translation's: rotations printed as round-off are no scale); 0 where the
+/// difference is 0, infinite where only the scale is.
+fn relative(translation_scale: f64, rotation_scale: f64, d: &Difference) -> f64 {
+    let scale = if (4..=6).contains(&d.component) {
+        rotation_scale.max(1e-9 * translation_scale)
+    } else {
+        translation_scale
+    };
+    if d.delta() == 0.0 {
+        0.0
+    } else if scale == 0.0 {
+        f64::INFINITY
+    } else {
+        d.delta().abs() / scale
+    }
+}
+
 /// One SUBCASE compared: the largest printed translation and rotation (the scales
 /// differences are read against, [`SubcaseComparison::relative`]) and every component's difference, largest first
 /// relative to its scale.
@@ -649,18 +661,7 @@ impl SubcaseComparison {
     /// model's, ~1e-18) are no scale: the rotations' scale is at least 1e-9 of the
     /// largest translation's value.
     pub fn relative(&self, d: &Difference) -> f64 {
-        let scale = if (4..=6).contains(&d.component) {
-            self.rotation_scale.max(1e-9 * self.translation_scale)
-        } else {
-            self.translation_scale
-        };
-        if d.delta() == 0.0 {
-            0.0
-        } else if scale == 0.0 {
-            f64::INFINITY
-        } else {
-            d.delta().abs() / scale
-        }
+        relative(self.translation_scale, self.rotation_scale, d)
     }
 
     /// The largest relative difference.
