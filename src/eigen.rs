@@ -269,6 +269,28 @@ pub fn lanczos(
     Ok(out)
 }
 
+/// The lowest `count` natural frequencies ω = √λ (radians per the deck's time unit) of
+/// a model's structure by [`lanczos`], ascending: the DOFs with neither stiffness nor
+/// mass left out (as a normal modes run leaves them), a rigid-body root as 0.
+pub fn lowest_frequencies(model: &crate::model::Model, count: usize) -> Result<Vec<f64>, SolveError> {
+    let full = crate::assembly::assemble(model);
+    let (k, m) = (full.k_diag(), full.m_diag());
+    let mut map = vec![None; model.n()];
+    let mut labels = Vec::new();
+    for i in (0..model.n()).filter(|&i| k[i] != 0.0 || m[i] != 0.0) {
+        map[i] = Some(labels.len());
+        labels.push(model.dofs[i]);
+    }
+    let sys = full.restricted(&map, labels.len());
+    let roots = Roots {
+        above: f64::NEG_INFINITY,
+        below: None,
+        count: Some(count),
+    };
+    let pairs = lanczos(&sys, &labels, &roots, &LanczosParams::default())?;
+    Ok(pairs.values.iter().map(|l| l.max(0.0).sqrt()).collect())
+}
+
 /// K − σM factorised: σ = 0 when K is positive definite, else a shift below the
 /// rigid-body roots, small against the structure's highest roots (K_ii/M_ii).
 fn factorise(sys: &System, labels: &[DofLabel]) -> Result<(Factor, f64), SolveError> {

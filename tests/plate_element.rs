@@ -116,7 +116,7 @@ fn simply_supported_orthotropic_plate_natural_frequencies_match_navier() {
     }
     let f = |n: usize| {
         let m = impactlab::mesh::navier_plate(n, a, t, g, rho, None, Cells::Quad4).unwrap();
-        impactlab::assembly::lowest_frequencies(&m, 3).unwrap()
+        impactlab::eigen::lowest_frequencies(&m, 3).unwrap()
     };
     let (f8, f16, f32) = (f(8), f(16), f(32));
     for k in 0..3 {
@@ -158,7 +158,7 @@ fn mindlin_plate_frequency(n: usize, a: f64, t: f64, cells: Cells) -> f64 {
         .replace("ENDDATA", &format!("{}ENDDATA", impactlab::mesh::hard_supports(n)));
     let m = impactlab::model_from_text("mindlin-plate", &cells.cut(deck)).unwrap_or_else(|e| panic!("{e}"));
     assert!(m.elements.iter().all(|e| e.kernel.card() == cells.card()));
-    impactlab::assembly::lowest_frequencies(&m, 1).unwrap()[0]
+    impactlab::eigen::lowest_frequencies(&m, 1).unwrap()[0]
 }
 
 use impactlab::mesh::Cells;
@@ -257,7 +257,7 @@ fn simply_supported_orthotropic_thick_plate_frequency_matches_mindlin() {
                     .elements
                     .iter()
                     .all(|e| e.kernel.card() == cells.card() && e.kernel.family().shell().unwrap().shear.is_some()));
-                impactlab::assembly::lowest_frequencies(&m, 1).unwrap()[0]
+                impactlab::eigen::lowest_frequencies(&m, 1).unwrap()[0]
             })
             .collect();
         let err = |k: usize| (w[k] - mindlin).abs();

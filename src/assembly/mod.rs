@@ -242,15 +242,11 @@ impl LowerRows {
     }
 }
 
-/// The lowest `count` natural frequencies (rad/time) of a small model with lumped mass,
-/// dense: the massless DOFs (a plate's rotations) condensed out statically, then the
-/// symmetric eigenproblem M^(-1/2) K_c M^(-1/2) in the DOFs with mass. For verification
-/// models of a few thousand DOFs; None when the massless block is singular.
-pub fn lowest_frequencies(model: &Model, count: usize) -> Option<Vec<f64>> {
-    frequencies_of(&model.elements, model.n(), count)
-}
-
-/// [`lowest_frequencies`] of elements over `n` solved DOFs.
+/// The lowest `count` natural frequencies (rad/time) of `elements` over `n` solved DOFs
+/// with lumped mass, dense: the massless DOFs (a plate's rotations) condensed out
+/// statically, then the symmetric eigenproblem M^(-1/2) K_c M^(-1/2) in the DOFs with
+/// mass. An eigen-solver independent of [`crate::eigen::lanczos`], for models of a few
+/// thousand DOFs at most (n³ operations); None when the massless block is singular.
 pub fn frequencies_of(elements: &[crate::elements::Element], n: usize, count: usize) -> Option<Vec<f64>> {
     use nalgebra::{DMatrix, DVector};
     let sys = assemble_elements(elements, n);

@@ -1105,10 +1105,10 @@ fn navier_frequencies(
             message: e.to_string(),
         })?;
         fem.push(
-            crate::assembly::lowest_frequencies(&m, modes).ok_or_else(|| CheckError::Failed {
+            crate::eigen::lowest_frequencies(&m, modes).map_err(|e| CheckError::Failed {
                 case: case(),
                 check,
-                message: format!("the {n}x{n} plate's rotations are not restrained"),
+                message: format!("the {n}x{n} plate: {e}"),
             })?,
         );
     }
@@ -1178,8 +1178,8 @@ fn cylinder_frequencies(
         let mut w = Vec::new();
         for &[around, along] in meshes {
             let m = crate::mesh::cylinder_model(t, around, along).map_err(|e| failed(e.to_string()))?;
-            let f = crate::assembly::lowest_frequencies(&m, 4)
-                .ok_or_else(|| failed(format!("the {around}×{along} cylinder's rotations are not restrained")))?;
+            let f = crate::eigen::lowest_frequencies(&m, 4)
+                .map_err(|e| failed(format!("the {around}×{along} cylinder: {e}")))?;
             // The lowest nonzero frequency, as Ω = √(ρ(1 − ν²)/E)·Rω with R = E = ρ = 1.
             let omega = f.iter().copied().find(|&x| x > 1e-6).unwrap_or(f64::NAN);
             w.push(omega * (1.0 - nu * nu).sqrt());
