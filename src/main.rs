@@ -267,11 +267,18 @@ pub struct RunArgs {
     /// Time integration scheme [default: newmark, or the scene's].
     #[arg(long, value_parser = scheme_parser())]
     pub scheme: Option<Scheme>,
-    /// How to compute the run: `direct` (step by step, the reference) or
+    /// How to compute the run: `direct` (step by step, the reference),
     /// `convolution` (the target's response to a unit contact load once, then the
-    /// contact by an exact history sum; newmark and energy only, no --fields).
+    /// contact by an exact history sum; newmark and energy only, no --fields) or
+    /// `modal` (the target reduced to its modes up to --modes-up-to and residual
+    /// vectors at the contact and the loads; not central).
     #[arg(long, default_value = "direct", value_parser = engine_parser())]
     pub engine: Engine,
+    /// The modal engine's cutoff: keep the modes up to this frequency, in cycles per
+    /// the deck's time unit [default: 40 cycles over the impactor's Hertz contact time
+    /// on a rigid target].
+    #[arg(long, value_name = "FREQUENCY")]
+    pub modes_up_to: Option<f64>,
     /// Keep the convolution engine's kernels in DIR [default: $XDG_CACHE_HOME/impactlab,
     /// or ~/.cache/impactlab].
     #[arg(long, value_name = "DIR")]
@@ -476,11 +483,12 @@ fn trapezoidal_scheme_parser() -> impl clap::builder::TypedValueParser<Value = S
         .map(|name| Scheme::from_name(&name).expect("one of the listed names"))
 }
 
-/// `--engine`: `direct` or `convolution`.
+/// `--engine`: `direct`, `convolution` or `modal`.
 fn engine_parser() -> impl clap::builder::TypedValueParser<Value = Engine> {
     use clap::builder::TypedValueParser;
-    clap::builder::PossibleValuesParser::new(["direct", "convolution"]).map(|name| match name.as_str() {
+    clap::builder::PossibleValuesParser::new(["direct", "convolution", "modal"]).map(|name| match name.as_str() {
         "convolution" => Engine::Convolution,
+        "modal" => Engine::Modal,
         _ => Engine::Direct,
     })
 }

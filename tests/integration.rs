@@ -17,6 +17,7 @@ mod dynamic_loads;
 mod elements;
 mod faults;
 mod laminate;
+mod modal;
 mod modes;
 mod nastran95_demos;
 mod plate_element;

@@ -75,6 +75,16 @@ impl System {
         sys
     }
 
+    /// The system of symmetric K and M given by their entries (row, column, value),
+    /// both triangles, as elements scatter theirs: a reduced model's, whose
+    /// coordinates are not an element's.
+    pub fn from_entries(n: usize, k: Vec<(usize, usize, f64)>, m: Vec<(usize, usize, f64)>) -> System {
+        let triplets = |v: Vec<(usize, usize, f64)>| -> Vec<Triplet<usize, usize, f64>> {
+            v.into_iter().map(|(i, j, x)| Triplet::new(i, j, x)).collect()
+        };
+        System::from_triplets(n, triplets(k), triplets(m))
+    }
+
     /// The system over the DOFs `map` keeps (`map[i]`: DOF i's new number, `None`
     /// to drop it), `n` of them: the element entries between kept DOFs, renumbered,
     /// in their order. The same entries, in the same order, as assembling the model

@@ -9,7 +9,7 @@ use crate::{
     StudyKind, SweepArgs, VerifyArgs,
 };
 use error::Error;
-use impactlab::run::RunOptions;
+use impactlab::run::{Engine, RunOptions};
 use impactlab::{deck, output, verify};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::{IsTerminal, Write};
@@ -175,6 +175,18 @@ pub fn run(a: RunArgs) -> Result<u8, Error> {
     if a.steps == Some(0) {
         return Err(Error::Usage("--steps must be positive".into()));
     }
+    if let Some(f) = a.modes_up_to {
+        if a.engine != Engine::Modal {
+            return Err(Error::Usage(
+                "--modes-up-to is the modal engine's cutoff: add --engine modal".into(),
+            ));
+        }
+        if !(f > 0.0 && f.is_finite()) {
+            return Err(Error::Usage(format!(
+                "--modes-up-to must be a positive frequency, not {f}"
+            )));
+        }
+    }
     let is_scene = a.deck.extension().is_some_and(|e| e == "toml");
     let (model, opts, scene) = if is_scene {
         if a.all_dofs || a.allow_unknown {
@@ -220,6 +232,10 @@ pub fn run(a: RunArgs) -> Result<u8, Error> {
         max_memory: Some((a.max_memory.max(0.0) * (1u64 << 30) as f64) as u64),
         progress: Some(progress(format!("{} {}", model.name, opts.scheme)).unwrap_or_else(ProgressBar::hidden)),
         engine: a.engine,
+        modal: impactlab::run::modal::ModalParams {
+            cutoff: a.modes_up_to,
+            ..Default::default()
+        },
         kernel_cache: kernel_cache(a.cache, a.no_cache),
         interlaminar_toughness: interlaminar_toughness(a.giic, &model)?,
         ..opts
@@ -344,6 +360,7 @@ fn refuse_transient_flags(a: &RunArgs, kind: &str) -> Result<(), Error> {
         (a.fields.is_some(), "--fields"),
         (a.all_dofs, "--all-dofs"),
         (!a.engine.is_direct(), "--engine"),
+        (a.modes_up_to.is_some(), "--modes-up-to"),
     ];
     match transient.iter().find(|t| t.0) {
         Some((_, flag)) => Err(Error::Usage(format!(

@@ -99,7 +99,8 @@ pub struct Ledger<'a> {
     direction: Vec<f64>,
     mv: Vec<f64>,
     u_prev: Vec<f64>,
-    eq16: Eq16Elements,
+    /// The Eq. 16 sums; `None` in reduced coordinates, which have no elements.
+    eq16: Option<Eq16Elements>,
     external_work: f64,
     initial: Option<f64>,
 }
@@ -115,9 +116,21 @@ impl<'a> Ledger<'a> {
             direction: model.momentum_weights(),
             mv: vec![0.0; n],
             u_prev: model.u0.clone(),
-            eq16: Eq16Elements::new(model),
+            eq16: Some(Eq16Elements::new(model)),
             external_work: 0.0,
             initial: None,
+        }
+    }
+
+    /// A ledger in a reduced model's coordinates ([`crate::run::modal`]): its energies
+    /// are ½q̇ᵀM_r q̇ and ½qᵀK_r q of the reduced system `sys` (the model has no
+    /// elements), `direction` the momentum's weights on M_r q̇, and KE_t by Eq. 16 is
+    /// not computed (NaN): it needs the elements' velocities.
+    pub fn reduced(model: &'a Model, sys: &'a System, direction: Vec<f64>) -> Self {
+        Ledger {
+            direction,
+            eq16: None,
+            ..Ledger::new(model, sys)
         }
     }
 
@@ -146,9 +159,14 @@ impl<'a> Ledger<'a> {
                 uf += s.u[i] * f[i];
             }
         }
-        let se_t = match s.internal_force {
-            Some(_) => 0.5 * uf,
-            None => strain_energy(m, s.u),
+        let se_t = match (s.internal_force, &self.eq16) {
+            (Some(_), _) => 0.5 * uf,
+            (None, Some(_)) => strain_energy(m, s.u),
+            (None, None) => {
+                let mut ku = vec![0.0; m.n()];
+                self.sys.k_mul(s.u, &mut ku);
+                0.5 * s.u.iter().zip(&ku).map(|(u, f)| u * f).sum::<f64>()
+            }
         };
         let se_i = m.contact.as_ref().map(|c| c.potential(s.alpha)).unwrap_or(0.0);
         if let Some(c) = &m.contact {
@@ -172,7 +190,7 @@ impl<'a> Ledger<'a> {
             ke_impactor: ke_i,
             se_impactor: se_i,
             ke_target: ke_t,
-            ke_target_eq16: self.eq16.kinetic_energy(s.v),
+            ke_target_eq16: self.eq16.as_ref().map_or(f64::NAN, |e| e.kinetic_energy(s.v)),
             se_target: se_t,
             total,
             external_work,

@@ -283,6 +283,20 @@ pub fn human_summary(model: &Model, run: &RunResult) -> String {
             .unwrap_or("-".into()),
         num(s.energy.max_relative_error)
     );
+    if let Some(t) = &s.run.modal {
+        out += &format!(
+            "  modal:    {} modes to {} cycles/{} ({} rigid), {} residual vectors; effective mass {:.4}, contact \
+             flexibility by the modes {:.4}, reduced {:.6}\n",
+            t.modes,
+            num(Some(t.cutoff_frequency)),
+            s.units.time,
+            t.rigid_modes,
+            t.residual_vectors,
+            t.effective_mass_fraction,
+            t.flexibility_by_modes,
+            t.flexibility_reduced
+        );
+    }
     if let Some(why) = &s.run.stopped_by {
         out += &format!(
             "  INCOMPLETE: stopped after {} of {} steps: {why}\n",

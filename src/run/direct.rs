@@ -13,6 +13,29 @@ use indicatif::ProgressBar;
 
 /// Runs a prepared model ([`super::prepare`]) step by step.
 pub fn run(model: &Model, sys: &System, opts: &RunOptions) -> Result<RunResult, RunError> {
+    let ledger = opts.ledger.then(|| Ledger::new(model, sys));
+    record(model, model, sys, ledger, Fields::Stepped, opts, Engine::Direct)
+}
+
+/// Where a recorder reads the history's outputs and the snapshots' fields from.
+pub(super) enum Fields<'a> {
+    /// The stepped state: the model's own DOFs.
+    Stepped,
+    /// A reduced state, through the reduction's basis ([`super::modal`]).
+    Reduced(&'a super::modal::Reduction),
+}
+
+/// Steps `stepped` (its system `sys`) and records the run of `model`: the same model,
+/// or the model a reduced one stands for (`fields` says which).
+pub(super) fn record(
+    model: &Model,
+    stepped: &Model,
+    sys: &System,
+    ledger: Option<Ledger>,
+    fields: Fields,
+    opts: &RunOptions,
+    engine: Engine,
+) -> Result<RunResult, RunError> {
     let dt = opts.dt.unwrap_or(model.time.dt);
     let steps = opts.steps.unwrap_or(model.time.steps);
     let bar = opts.progress.clone().unwrap_or_else(ProgressBar::hidden);
@@ -22,7 +45,9 @@ pub fn run(model: &Model, sys: &System, opts: &RunOptions) -> Result<RunResult, 
     bar.reset_elapsed();
     let mut rec = Recorder {
         model,
-        ledger: opts.ledger.then(|| Ledger::new(model, sys)),
+        stepped,
+        fields,
+        ledger,
         stop_after_separation: opts.stop_after_separation,
         separated_at: None,
         in_contact: false,
@@ -36,7 +61,7 @@ pub fn run(model: &Model, sys: &System, opts: &RunOptions) -> Result<RunResult, 
         snapshot_steps: opts.snapshot_times.iter().map(|t| (t / dt).round() as usize).collect(),
         snapshots: Vec::new(),
     };
-    let stats = integrate(model, sys, opts.scheme, dt, steps, &mut rec)?;
+    let stats = integrate(stepped, sys, opts.scheme, dt, steps, &mut rec)?;
     rec.bar.finish_and_clear();
     if let Some(ledger) = &rec.ledger {
         ledger.finish(&mut rec.energy);
@@ -54,7 +79,7 @@ pub fn run(model: &Model, sys: &System, opts: &RunOptions) -> Result<RunResult, 
         dofs: model.dofs.clone(),
         snapshots: rec.snapshots,
     };
-    run.summary = summarize(model, &run, rec.tripped, opts, Engine::Direct)?;
+    run.summary = summarize(model, &run, rec.tripped, opts, engine)?;
     match rec.tripped {
         None => Ok(run),
         Some(trip) => Err(RunError::EnergyGuard {
@@ -66,6 +91,8 @@ pub fn run(model: &Model, sys: &System, opts: &RunOptions) -> Result<RunResult, 
 
 struct Recorder<'a> {
     model: &'a Model,
+    stepped: &'a Model,
+    fields: Fields<'a>,
     ledger: Option<Ledger<'a>>,
     stop_after_separation: Option<f64>,
     separated_at: Option<f64>,
@@ -105,7 +132,7 @@ impl Observer for Recorder<'_> {
             self.separated_at = Some(s.time);
         }
         // Without a contact there is no impactor: its series are zero.
-        let (force, iu, iv) = match &m.contact {
+        let (force, iu, iv) = match &self.stepped.contact {
             Some(c) => (c.stiffness * s.load_factor, s.u[c.impactor.dof], s.v[c.impactor.dof]),
             None => (0.0, 0.0, 0.0),
         };
@@ -123,13 +150,21 @@ impl Observer for Recorder<'_> {
                 impactor_v: iv,
                 load_factor: s.load_factor,
             };
-            self.history.push(history_row(m, &head, &linear_outputs(m, s.u, s.v)));
+            let linear = match self.fields {
+                Fields::Stepped => linear_outputs(m, s.u, s.v),
+                Fields::Reduced(r) => r.outputs(s.u, s.v),
+            };
+            self.history.push(history_row(m, &head, &linear));
         }
         if self.snapshot_steps.contains(&s.step) {
+            let field = |x: &[f64]| match self.fields {
+                Fields::Stepped => x.to_vec(),
+                Fields::Reduced(r) => r.expand(x),
+            };
             self.snapshots.push(Snapshot {
                 time: s.time,
-                u: s.u.to_vec(),
-                v: s.v.to_vec(),
+                u: field(s.u),
+                v: field(s.v),
             });
         }
         if s.step % 64 == 0 {

@@ -19,6 +19,7 @@ pub use summary::{
 pub mod convolution;
 pub mod direct;
 pub mod history;
+pub mod modal;
 pub mod modes;
 pub mod statics;
 pub mod summary;
@@ -54,6 +55,8 @@ pub struct RunOptions {
     pub stop_after_separation: Option<f64>,
     /// How the run is computed.
     pub engine: Engine,
+    /// How the modal engine reduces the model.
+    pub modal: modal::ModalParams,
     /// Where the convolution engine keeps its kernels between runs
     /// ([`convolution::Kernels::cached`]); `None`: computed every time.
     pub kernel_cache: Option<std::path::PathBuf>,
@@ -104,7 +107,7 @@ pub fn record_bytes(model: &Model, steps: usize, engine: Engine) -> u64 {
     // Series (5 values) and ledger row (11) per step, history rows as vectors.
     let records = steps * 16 * 8 + rows * (columns * 8 + 24);
     let kernels = match engine {
-        Engine::Direct => 0,
+        Engine::Direct | Engine::Modal => 0,
         Engine::Convolution => steps * (columns + 4) * 8 * 2,
     };
     records + kernels
@@ -168,6 +171,9 @@ pub enum Engine {
     /// exact history sum ([`crate::integrate::convolution`]): the direct run to
     /// round-off, for `newmark` and `energy`, with the requested outputs only.
     Convolution,
+    /// The target reduced to its lowest modes and residual vectors
+    /// ([`modal`]), stepped by the same schemes and contact.
+    Modal,
 }
 
 impl Engine {
@@ -204,6 +210,7 @@ impl Default for RunOptions {
             ledger: true,
             stop_after_separation: None,
             engine: Engine::Direct,
+            modal: Default::default(),
             max_memory: Some(DEFAULT_MAX_MEMORY),
             kernel_cache: None,
             interlaminar_toughness: None,
@@ -716,6 +723,7 @@ pub fn run_model(model: &Model, opts: &RunOptions) -> Result<RunResult, RunError
     let run = match opts.engine {
         Engine::Direct => direct::run(model, sys, opts),
         Engine::Convolution => convolution::run(model, sys, opts),
+        Engine::Modal => modal::run(model, sys, opts),
     };
     match run {
         Ok(mut run) => {
@@ -847,6 +855,7 @@ fn summarize(
             scheme: run.scheme,
             engine,
             kernel_cache: None,
+            modal: None,
             dt: run.dt,
             steps: run.steps,
             steps_done: run.stats.steps,

@@ -227,6 +227,9 @@ pub struct RunSummary {
     /// Where the convolution engine's kernels came from (not written when off).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub kernel_cache: Option<super::convolution::CacheUse>,
+    /// What the modal engine's reduction kept (not written for the other engines).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub modal: Option<super::modal::Truncation>,
     /// Time step.
     pub dt: f64,
     /// Steps planned.
