@@ -725,13 +725,19 @@ pub fn run_model(model: &Model, opts: &RunOptions) -> Result<RunResult, RunError
         Engine::Convolution => convolution::run(model, sys, opts),
         Engine::Modal => modal::run(model, sys, opts),
     };
+    amended(run, with_assembly)
+}
+
+/// A run's result with `f` applied to what it recorded: the run, or the partial run
+/// the energy guard stopped.
+fn amended(run: Result<RunResult, RunError>, f: impl FnOnce(&mut RunResult)) -> Result<RunResult, RunError> {
     match run {
         Ok(mut run) => {
-            with_assembly(&mut run);
+            f(&mut run);
             Ok(run)
         }
         Err(RunError::EnergyGuard { trip, mut partial }) => {
-            with_assembly(&mut partial);
+            f(&mut partial);
             Err(RunError::EnergyGuard { trip, partial })
         }
         Err(e) => Err(e),

@@ -84,7 +84,7 @@ pub struct Truncation {
     pub cutoff_from: String,
     /// Modes kept, rigid-body modes included.
     pub modes: usize,
-    /// Of which rigid-body modes (frequency below 1e-6 of the cutoff).
+    /// Of which rigid-body modes (eigenvalue below 1e-12 of the largest K_ii/M_ii).
     pub rigid_modes: usize,
     /// The highest mode's frequency (cycles per the deck's time unit).
     pub highest_mode_frequency: f64,
@@ -178,18 +178,7 @@ pub fn run(model: &Model, sys: &System, opts: &RunOptions) -> Result<RunResult, 
         opts,
         Engine::Modal,
     );
-    let with_truncation = |run: &mut RunResult| run.summary.run.modal = Some(r.truncation.clone());
-    match result {
-        Ok(mut run) => {
-            with_truncation(&mut run);
-            Ok(run)
-        }
-        Err(RunError::EnergyGuard { trip, mut partial }) => {
-            with_truncation(&mut partial);
-            Err(RunError::EnergyGuard { trip, partial })
-        }
-        Err(e) => Err(e),
-    }
+    super::amended(result, |run| run.summary.run.modal = Some(r.truncation.clone()))
 }
 
 /// The cutoff frequency and where it came from.
@@ -268,7 +257,16 @@ pub fn reduce(model: &Model, sys: &System, params: &ModalParams) -> Result<Reduc
         s_sys.m_mul(x, &mut y);
         y
     };
-    let rigid_below = (1e-6 * omega_cut).powi(2);
+    // A rigid-body root is zero to the round-off of the largest K_ii/M_ii, far below
+    // any elastic root of a mesh (the rod of 144 elements: 1e-4 of it).
+    let (kd, md) = (s_sys.k_diag(), s_sys.m_diag());
+    let top = kd
+        .iter()
+        .zip(&md)
+        .filter(|(_, &m)| m > 0.0)
+        .map(|(k, m)| k / m)
+        .fold(0.0, f64::max);
+    let rigid_below = 1e-12 * top;
     let rigid_modes = pairs.values.iter().filter(|&&l| l < rigid_below).count();
     // Residual vectors, and the residual flexibility at the contact DOF.
     let contact_dof = model
@@ -329,15 +327,23 @@ pub fn reduce(model: &Model, sys: &System, params: &ModalParams) -> Result<Reduc
         let pick = (0..p)
             .filter(|j| !pivots.contains(j))
             .max_by(|&x, &y| columns[x][bl].abs().total_cmp(&columns[y][bl].abs()));
-        // A pivot small against its own column: the basis hardly moves this DOF.
+        // A pivot small against its own column's motion where there is mass (a
+        // massless rotation held by little stiffness may move far more): the basis
+        // hardly moves this DOF.
         let moved = |j: &usize| {
-            let size = columns[*j].iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            let size = columns[*j]
+                .iter()
+                .zip(&md)
+                .filter(|(_, &m)| m > 0.0)
+                .fold(0.0f64, |a, (x, _)| a.max(x.abs()));
             columns[*j][bl].abs() > 1e-10 * size
         };
         let Some(j) = pick.filter(moved) else {
             return Err(RunError::Input(format!(
-                "the modal basis does not move {} (the contact or a dynamic load acts there): raise the cutoff \
-                 frequency{}",
+                "the modal basis ({} modes, {} residual vectors) does not move {} (the contact or a dynamic load \
+                 acts there): raise the cutoff frequency{}",
+                pairs.values.len(),
+                residual.len(),
                 model.dofs[b],
                 if params.residual_vectors {
                     ""
