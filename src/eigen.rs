@@ -289,20 +289,25 @@ pub fn lowest_frequencies(model: &crate::model::Model, count: usize) -> Result<V
     Ok(pairs.values.iter().map(|l| l.max(0.0).sqrt()).collect())
 }
 
+/// The scale of a structure's highest roots: the largest K_ii/M_ii over the DOFs
+/// with mass (0 when none has).
+pub fn highest_root_scale(sys: &System) -> f64 {
+    let (k, m) = (sys.k_diag(), sys.m_diag());
+    k.iter()
+        .zip(&m)
+        .filter(|(_, &m)| m > 0.0)
+        .map(|(k, m)| k / m)
+        .fold(0.0_f64, f64::max)
+}
+
 /// K − σM factorised, and σ: σ = 0 when K is positive definite, else a shift below
-/// the rigid-body roots, small against the structure's highest roots (K_ii/M_ii).
+/// the rigid-body roots, small against the structure's highest roots
+/// ([`highest_root_scale`]).
 pub fn factorise(sys: &System, labels: &[DofLabel]) -> Result<(Factor, f64), SolveError> {
     match Factor::new(&sys.k_csc, labels) {
         Ok(f) => Ok((f, 0.0)),
         Err(SolveError::Mechanism { .. }) => {
-            let (k, m) = (sys.k_diag(), sys.m_diag());
-            let top = k
-                .iter()
-                .zip(&m)
-                .filter(|(_, &m)| m > 0.0)
-                .map(|(k, m)| k / m)
-                .fold(0.0_f64, f64::max);
-            let shift = -1e-8 * top.max(f64::MIN_POSITIVE);
+            let shift = -1e-8 * highest_root_scale(sys).max(f64::MIN_POSITIVE);
             Ok((Factor::effective(sys, -shift, 1.0, labels)?, shift))
         }
         Err(e) => Err(e),

@@ -141,16 +141,15 @@ fn run_engine_modal_reports_its_truncation() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("rod");
     let deck = common::root().join("reference-data/decks/rod.bdf");
-    let o = common::impactlab(&[
-        "run",
-        deck.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--engine",
-        "modal",
-        "--modes-up-to",
-        "50000",
-    ]);
+    let run = |flags: &[&str]| {
+        let args = [
+            &["run", deck.to_str().unwrap(), "--out", out.to_str().unwrap()][..],
+            flags,
+        ]
+        .concat();
+        common::impactlab(&args)
+    };
+    let o = run(&["--engine", "modal", "--modes-up-to", "50000"]);
     let text = String::from_utf8_lossy(&o.stdout);
     assert!(o.status.success(), "{text}{}", String::from_utf8_lossy(&o.stderr));
     assert!(
@@ -161,14 +160,7 @@ fn run_engine_modal_reports_its_truncation() {
     assert_eq!(s["run"]["engine"], "modal");
     assert_eq!(s["run"]["modal"]["modes"], 19);
     assert_eq!(s["run"]["modal"]["cutoff_from"], "as asked");
-    let o = common::impactlab(&[
-        "run",
-        deck.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--modes-up-to",
-        "5e4",
-    ]);
+    let o = run(&["--modes-up-to", "5e4"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("add --engine modal"));
 }

@@ -98,6 +98,8 @@ pub struct Ledger<'a> {
     target: Vec<bool>,
     direction: Vec<f64>,
     mv: Vec<f64>,
+    /// K u, for the strain energy in reduced coordinates (empty otherwise).
+    ku: Vec<f64>,
     u_prev: Vec<f64>,
     /// The Eq. 16 sums; `None` in reduced coordinates, which have no elements.
     eq16: Option<Eq16Elements>,
@@ -115,6 +117,7 @@ impl<'a> Ledger<'a> {
             target: model.target_mask(),
             direction: model.momentum_weights(),
             mv: vec![0.0; n],
+            ku: Vec::new(),
             u_prev: model.u0.clone(),
             eq16: Some(Eq16Elements::new(model)),
             external_work: 0.0,
@@ -130,6 +133,7 @@ impl<'a> Ledger<'a> {
         Ledger {
             direction,
             eq16: None,
+            ku: vec![0.0; model.n()],
             ..Ledger::new(model, sys)
         }
     }
@@ -163,9 +167,8 @@ impl<'a> Ledger<'a> {
             (Some(_), _) => 0.5 * uf,
             (None, Some(_)) => strain_energy(m, s.u),
             (None, None) => {
-                let mut ku = vec![0.0; m.n()];
-                self.sys.k_mul(s.u, &mut ku);
-                0.5 * s.u.iter().zip(&ku).map(|(u, f)| u * f).sum::<f64>()
+                self.sys.k_mul(s.u, &mut self.ku);
+                0.5 * crate::numerics::dot(s.u, &self.ku)
             }
         };
         let se_i = m.contact.as_ref().map(|c| c.potential(s.alpha)).unwrap_or(0.0);

@@ -34,7 +34,7 @@
 use super::direct::{record, Fields};
 use super::{linear_outputs, Engine, RunError, RunOptions, RunResult};
 use crate::assembly::System;
-use crate::eigen::{factorise, lanczos, LanczosParams, Roots};
+use crate::eigen::{factorise, highest_root_scale, lanczos, LanczosParams, Roots};
 use crate::integrate::Scheme;
 use crate::ledger::Ledger;
 use crate::model::{DofLabel, Model};
@@ -259,14 +259,8 @@ pub fn reduce(model: &Model, sys: &System, params: &ModalParams) -> Result<Reduc
     };
     // A rigid-body root is zero to the round-off of the largest K_ii/M_ii, far below
     // any elastic root of a mesh (the rod of 144 elements: 1e-4 of it).
-    let (kd, md) = (s_sys.k_diag(), s_sys.m_diag());
-    let top = kd
-        .iter()
-        .zip(&md)
-        .filter(|(_, &m)| m > 0.0)
-        .map(|(k, m)| k / m)
-        .fold(0.0, f64::max);
-    let rigid_below = 1e-12 * top;
+    let rigid_below = 1e-12 * highest_root_scale(&s_sys);
+    let md = s_sys.m_diag();
     let rigid_modes = pairs.values.iter().filter(|&&l| l < rigid_below).count();
     // Residual vectors, and the residual flexibility at the contact DOF.
     let contact_dof = model
@@ -374,10 +368,11 @@ pub fn reduce(model: &Model, sys: &System, params: &ModalParams) -> Result<Reduc
     let columns: Vec<Vec<f64>> = order.iter().map(|&j| std::mem::take(&mut columns[j])).collect();
     // The reduced coordinates: the impactor's DOFs, then T's columns.
     let nr = own.len() + p;
-    let mut map: Vec<Option<usize>> = vec![None; n];
+    let mut own_index: Vec<Option<usize>> = vec![None; n];
     for (k, &i) in own.iter().enumerate() {
-        map[i] = Some(k);
+        own_index[i] = Some(k);
     }
+    let mut map = own_index.clone();
     for (k, &b) in boundary.iter().enumerate() {
         map[b] = Some(own.len() + k);
     }
@@ -397,22 +392,16 @@ pub fn reduce(model: &Model, sys: &System, params: &ModalParams) -> Result<Reduc
         basis.push(e);
     }
     // K_r and M_r: the impactor's block as assembled, the structure's TᵀKT, TᵀMT.
-    let mut own_index = vec![None; n];
-    for (k, &i) in own.iter().enumerate() {
-        own_index[i] = Some(k);
-    }
-    let mut k_r = DMatrix::<f64>::zeros(nr, nr);
-    let mut m_r = DMatrix::<f64>::zeros(nr, nr);
-    for t in &sys.m {
-        if let (Some(a), Some(b)) = (own_index[t.row], own_index[t.col]) {
-            m_r[(a, b)] += t.val;
+    let own_block = |entries: &[faer::sparse::Triplet<usize, usize, f64>]| {
+        let mut x = DMatrix::<f64>::zeros(nr, nr);
+        for t in entries {
+            if let (Some(a), Some(b)) = (own_index[t.row], own_index[t.col]) {
+                x[(a, b)] += t.val;
+            }
         }
-    }
-    for t in &sys.k {
-        if let (Some(a), Some(b)) = (own_index[t.row], own_index[t.col]) {
-            k_r[(a, b)] += t.val;
-        }
-    }
+        x
+    };
+    let (mut k_r, mut m_r) = (own_block(&sys.k), own_block(&sys.m));
     let (kt, mt): (Vec<Vec<f64>>, Vec<Vec<f64>>) = columns
         .iter()
         .map(|c| {
@@ -457,7 +446,8 @@ pub fn reduce(model: &Model, sys: &System, params: &ModalParams) -> Result<Reduc
         }
         q
     };
-    let momentum = project(&model.momentum_weights());
+    let w = model.momentum_weights();
+    let momentum = project(&w);
     let (u0, v0) = (project(&model.u0), project(&model.v0));
     // The reduced model: coordinates labelled by the DOF they are, or as points.
     let dofs: Vec<DofLabel> = own
@@ -494,7 +484,6 @@ pub fn reduce(model: &Model, sys: &System, params: &ModalParams) -> Result<Reduc
     let outputs_u = basis.iter().map(|b| linear_outputs(model, b, &zero)).collect();
     let outputs_v = basis.iter().map(|b| linear_outputs(model, &zero, b)).collect();
     // Truncation: effective mass along the impact direction, flexibility at the contact.
-    let w = model.momentum_weights();
     let ws: Vec<f64> = structure.iter().map(|&i| w[i]).collect();
     let mw = m_mul(&ws);
     let total_mass = dot(&ws, &mw);
