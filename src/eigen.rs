@@ -21,11 +21,12 @@
 //! operator, |β_{j+1} s_j|, is at most `tolerance`·θ; its eigenvalue is then exact to
 //! about the square of that (Parlett, The Symmetric Eigenvalue Problem, 13-2). The
 //! roots asked for are taken when every Ritz value below them has been accepted, and
-//! again at the next test (ten steps later, or j/5 at step j) with the same values,
-//! since a root the start vector hardly excites may converge late. Cost: one solve
-//! with the factor and three M products a step, 4 n j operations to re-orthogonalise
-//! step j, a tridiagonal eigenproblem (j³) a test, and the j vectors of n stored: it
-//! is meant for tens to a few hundred roots, not for all of a large model's.
+//! again at the next test (ten steps later) with the same values, since a root the
+//! start vector hardly excites may converge late. Cost: one solve with the factor and
+//! three M products a step, 4 n j operations to re-orthogonalise step j, the
+//! tridiagonal's values (j² by implicit QL) a test, the Ritz vectors as one matrix
+//! product at the end, and the j vectors of n stored: it is meant for tens to a few
+//! hundred roots, not for all of a large model's.
 
 use crate::assembly::System;
 use crate::integrate::linear::Factor;
@@ -51,9 +52,8 @@ pub struct Roots {
 pub struct LanczosParams {
     /// A Ritz pair is accepted when its residual is at most this times its θ.
     pub tolerance: f64,
-    /// Lanczos steps between convergence tests, at least: a test solves the
-    /// tridiagonal eigenproblem (j³ operations at step j), so from step 5·`test_every`
-    /// on the tests are j/5 steps apart.
+    /// Lanczos steps between convergence tests (a test costs O(j²) at step j, against
+    /// the O(n j) of the step's re-orthogonalisation).
     pub test_every: usize,
 }
 
@@ -141,7 +141,7 @@ pub fn lanczos(
     let mut rng = Start(0x1D_2C_3B_4A);
     // Lanczos vectors q_i (M-orthonormal), the tridiagonal's α_i and β_i (β_i couples
     // q_{i-1} and q_i; 0 where the recurrence restarted).
-    let mut q: Vec<Vec<f64>> = Vec::new();
+    let mut q = Columns::new(n);
     let (mut alpha, mut beta) = (Vec::<f64>::new(), Vec::<f64>::new());
     let mut restarts = 0;
     let mut w = Vec::new();
@@ -199,11 +199,11 @@ pub fn lanczos(
         }
         alpha.push(a);
         norm_scale = norm_scale.max(a.abs());
-        q.push(qj);
+        q.push(&qj);
         orthogonalise(&mut w, &q, &m_mul);
         let j = q.len();
         if j == n || j >= next_test {
-            next_test = j + params.test_every.max(j / 5).max(1);
+            next_test = j + params.test_every.max(1);
             let next = dot(&w, &m_mul(&w)).max(0.0).sqrt();
             let (values, _) = ritz(&alpha, &beta, next, shift, roots, params, false);
             if let Some(v) = values {
@@ -240,13 +240,20 @@ pub fn lanczos(
         solve_time: factor.solve_time,
         time: Default::default(),
     };
-    for (lambda, s) in pairs {
-        let mut x = vec![0.0; n];
-        for (qi, si) in q.iter().zip(s.iter()) {
-            for (xk, qk) in x.iter_mut().zip(qi) {
-                *xk += si * qk;
-            }
-        }
+    // The Ritz vectors Q S, one matrix product.
+    let j = q.len();
+    let s = faer::Mat::<f64>::from_fn(j, pairs.len(), |r, c| pairs[c].1[r]);
+    let mut ritz_vectors = faer::Mat::<f64>::zeros(n, pairs.len());
+    faer::linalg::matmul::matmul(
+        ritz_vectors.as_mut(),
+        faer::Accum::Replace,
+        q.mat(),
+        s.as_ref(),
+        1.0,
+        faer::Par::Seq,
+    );
+    for (c, (lambda, _)) in pairs.into_iter().enumerate() {
+        let mut x: Vec<f64> = ritz_vectors.col(c).iter().copied().collect();
         let mx = m_mul(&x);
         let g = dot(&x, &mx).sqrt();
         x.iter_mut().for_each(|v| *v /= g);
@@ -314,18 +321,66 @@ pub fn factorise(sys: &System, labels: &[DofLabel]) -> Result<(Factor, f64), Sol
     }
 }
 
+/// Vectors of one length n stored one after another (column-major n × len), so that
+/// a product with all of them is one matrix product.
+pub struct Columns {
+    n: usize,
+    data: Vec<f64>,
+}
+
+impl Columns {
+    /// No vectors yet, each of length `n`.
+    pub fn new(n: usize) -> Self {
+        Columns { n, data: Vec::new() }
+    }
+
+    /// How many vectors.
+    pub fn len(&self) -> usize {
+        self.data.len() / self.n.max(1)
+    }
+
+    /// No vectors.
+    pub fn is_empty(&self) -> bool {
+        self.data.is_empty()
+    }
+
+    /// Adds a vector of length n.
+    pub fn push(&mut self, v: &[f64]) {
+        debug_assert_eq!(v.len(), self.n);
+        self.data.extend_from_slice(v);
+    }
+
+    /// The last vector.
+    pub fn last(&self) -> Option<&[f64]> {
+        (!self.is_empty()).then(|| &self.data[self.data.len() - self.n..])
+    }
+
+    /// The vectors in order.
+    pub fn iter(&self) -> impl Iterator<Item = &[f64]> {
+        self.data.chunks_exact(self.n.max(1))
+    }
+
+    /// The vectors as the columns of an n × len matrix.
+    pub fn mat(&self) -> faer::MatRef<'_, f64> {
+        faer::MatRef::from_column_major_slice(&self.data, self.n, self.len())
+    }
+}
+
 /// Makes `w` M-orthogonal to every vector of `q`: classical Gram-Schmidt, a second
 /// pass only when the first removed more than half of w's squared M-norm (Kahan's
 /// test: a pass that leaves at least 1/√2 of the norm leaves w orthogonal to working
 /// precision; Parlett, The Symmetric Eigenvalue Problem, 6-9). A Lanczos vector
 /// usually passes at once: the recurrence has already made it nearly orthogonal, and
 /// each pass streams every stored vector twice.
-fn orthogonalise(w: &mut [f64], q: &[Vec<f64>], m_mul: &impl Fn(&[f64]) -> Vec<f64>) {
+pub fn orthogonalise(w: &mut [f64], q: &Columns, m_mul: &impl Fn(&[f64]) -> Vec<f64>) {
     let mut mw = m_mul(w);
     let mut before = dot(w, &mw);
+    let mut c = vec![0.0; q.len()];
     for _ in 0..2 {
-        let c: Vec<f64> = q.iter().map(|qi| dot(qi, &mw)).collect();
-        for (qi, ci) in q.iter().zip(c) {
+        for (i, qi) in q.iter().enumerate() {
+            c[i] = dot(qi, &mw);
+        }
+        for (qi, ci) in q.iter().zip(&c) {
             for (wk, qk) in w.iter_mut().zip(qi) {
                 *wk -= ci * qk;
             }

@@ -34,11 +34,12 @@
 use super::direct::{record, Fields};
 use super::{linear_outputs, Engine, RunError, RunOptions, RunResult};
 use crate::assembly::System;
-use crate::eigen::{factorise, highest_root_scale, lanczos, LanczosParams, Roots};
+use crate::eigen::{factorise, highest_root_scale, lanczos, orthogonalise, Columns, LanczosParams, Roots};
 use crate::integrate::Scheme;
 use crate::ledger::Ledger;
 use crate::model::{DofLabel, Model};
 use crate::numerics::dot;
+use faer::linalg::matmul::matmul;
 use nalgebra::{DMatrix, DVector};
 
 /// How the modal engine reduces a model.
@@ -272,16 +273,25 @@ pub fn reduce(model: &Model, sys: &System, params: &ModalParams) -> Result<Reduc
     let mut residual_flexibility = f64::NAN;
     {
         let (mut factor, _) = factorise(&s_sys, &labels)?;
-        let m_phi: Vec<Vec<f64>> = pairs.vectors.iter().map(|phi| m_mul(phi)).collect();
+        // The basis so far, modes then residual vectors, as one matrix.
+        let mut kept = Columns::new(ns);
+        pairs.vectors.iter().for_each(|phi| kept.push(phi));
+        let modes = kept.len();
         for &b in &boundary {
             let bl = local[b].expect("boundary DOFs are the structure's");
             // (I − MΦΦᵀ) e_b: the modes' share of the load taken out.
-            let mut load = vec![0.0; ns];
-            load[bl] = 1.0;
-            for (mp, phi) in m_phi.iter().zip(&pairs.vectors) {
-                let c = phi[bl];
-                load.iter_mut().zip(mp).for_each(|(l, m)| *l -= c * m);
-            }
+            let mut share = vec![0.0; ns];
+            let phi = kept.mat().subcols(0, modes);
+            matmul(
+                faer::MatMut::from_column_major_slice_mut(&mut share, ns, 1),
+                faer::Accum::Replace,
+                phi,
+                phi.row(bl).transpose().as_mat(),
+                1.0,
+                faer::Par::Seq,
+            );
+            let mut load: Vec<f64> = m_mul(&share).iter().map(|x| -x).collect();
+            load[bl] += 1.0;
             for order in 0..if params.residual_vectors { RESIDUAL_ORDER } else { 1 } {
                 factor.solve_in_place(&mut load);
                 let mut psi = load;
@@ -291,16 +301,9 @@ pub fn reduce(model: &Model, sys: &System, params: &ModalParams) -> Result<Reduc
                 if !params.residual_vectors {
                     break;
                 }
-                // M-orthogonal to the modes and the residual vectors before it
-                // (classical Gram-Schmidt, twice).
+                // M-orthogonal to the modes and the residual vectors before it.
                 let size = dot(&psi, &m_mul(&psi)).max(0.0).sqrt();
-                for _ in 0..2 {
-                    let m_psi = m_mul(&psi);
-                    let c: Vec<f64> = pairs.vectors.iter().chain(&residual).map(|v| dot(v, &m_psi)).collect();
-                    for (v, c) in pairs.vectors.iter().chain(&residual).zip(c) {
-                        psi.iter_mut().zip(v).for_each(|(p, v)| *p -= c * v);
-                    }
-                }
+                orthogonalise(&mut psi, &kept, &m_mul);
                 let left = dot(&psi, &m_mul(&psi)).max(0.0).sqrt();
                 if left <= 1e-8 * size {
                     break;
@@ -308,6 +311,7 @@ pub fn reduce(model: &Model, sys: &System, params: &ModalParams) -> Result<Reduc
                 psi.iter_mut().for_each(|p| *p /= left);
                 // The next of the chain: the structure's response to this shape's inertia.
                 load = m_mul(&psi);
+                kept.push(&psi);
                 residual.push(psi);
             }
         }
@@ -402,21 +406,33 @@ pub fn reduce(model: &Model, sys: &System, params: &ModalParams) -> Result<Reduc
         x
     };
     let (mut k_r, mut m_r) = (own_block(&sys.k), own_block(&sys.m));
-    let (kt, mt): (Vec<Vec<f64>>, Vec<Vec<f64>>) = columns
-        .iter()
-        .map(|c| {
-            let mut k = vec![0.0; ns];
-            s_sys.k_mul(c, &mut k);
-            (k, m_mul(c))
-        })
-        .unzip();
+    // TᵀKT and TᵀMT: the sparse products column by column, then one matrix product
+    // each (symmetrised: the two triangles of a product differ by round-off).
+    let mut t = Columns::new(ns);
+    let (mut kt, mut mt) = (Columns::new(ns), Columns::new(ns));
+    for c in &columns {
+        let mut k = vec![0.0; ns];
+        s_sys.k_mul(c, &mut k);
+        t.push(c);
+        kt.push(&k);
+        mt.push(&m_mul(c));
+    }
     let o = own.len();
-    for (a, ca) in columns.iter().enumerate() {
-        for b in 0..=a {
-            let (kab, mab) = (dot(ca, &kt[b]), dot(ca, &mt[b]));
-            for (i, j) in [(o + a, o + b), (o + b, o + a)] {
-                k_r[(i, j)] = kab;
-                m_r[(i, j)] = mab;
+    for (x_r, xt) in [(&mut k_r, &kt), (&mut m_r, &mt)] {
+        let mut x = faer::Mat::<f64>::zeros(p, p);
+        matmul(
+            x.as_mut(),
+            faer::Accum::Replace,
+            t.mat().transpose(),
+            xt.mat(),
+            1.0,
+            faer::Par::Seq,
+        );
+        for a in 0..p {
+            for b in 0..=a {
+                let v = 0.5 * (x[(a, b)] + x[(b, a)]);
+                x_r[(o + a, o + b)] = v;
+                x_r[(o + b, o + a)] = v;
             }
         }
     }
