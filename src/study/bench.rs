@@ -29,6 +29,18 @@ pub fn bench_plate(repeats: usize, steps: usize) -> Result<String, StudyError> {
     }
     out += &stage_table(&timed.stages);
     out += &engine_ratios(&timed.ratios);
+    if let Some((duration, peak, t)) = &timed.modal {
+        out += &format!(
+            "  {:<66} {:>9.3}\n",
+            "modal engine run (reduction included) / direct run (goal 0.3)",
+            median(timed.ratios.iter().map(|r| r[7] / r[6]).collect())
+        );
+        out += &format!(
+            "    its reduction: {} modes, {} residual vectors, {} Lanczos steps, {:.3} s of which modes {:.3} s;\n    \
+             against the direct run: contact duration {duration:.1e}, peak force {peak:.1e} (goal 1e-3)\n",
+            t.modes, t.residual_vectors, t.lanczos_steps, t.reduction_s, t.modes_s
+        );
+    }
     out += &format!(
         "  {:<66} {:>9.3}\n",
         format!(
@@ -55,8 +67,11 @@ pub fn bench_plate(repeats: usize, steps: usize) -> Result<String, StudyError> {
 /// curved panel's stepping.
 struct PlateRepeats {
     stages: Vec<[f64; 7]>,
-    ratios: Vec<[f64; 6]>,
+    ratios: Vec<[f64; 8]>,
     solved: u64,
+    /// The modal run's relative differences from the direct run (contact duration,
+    /// peak force) and its truncation.
+    modal: Option<(f64, f64, crate::run::modal::Truncation)>,
     /// The curved panel's solved DOFs.
     panel_solved: u64,
 }
@@ -77,7 +92,8 @@ fn plate_repeats(repeats: usize, steps: usize) -> Result<PlateRepeats, StudyErro
     let mut stages: Vec<[f64; 7]> = Vec::new();
     // Per repeat: the direct run's loop and its solves, the convolution run's loop,
     // the shear plate's stepping and the thin plate's.
-    let mut ratios: Vec<[f64; 6]> = Vec::new();
+    let mut ratios: Vec<[f64; 8]> = Vec::new();
+    let mut modal_error = None;
     let shear_model = crate::paper::plate_shear_model()?;
     let panel_model = crate::mesh::panel_model(49, 10.0)?;
     let (mut solved, mut panel_solved) = (0, 0);
@@ -89,7 +105,9 @@ fn plate_repeats(repeats: usize, steps: usize) -> Result<PlateRepeats, StudyErro
             steps: Some(steps),
             ..Default::default()
         };
+        let direct_start = Instant::now();
         let run = run_model(&model, &opts)?;
+        let direct_wall = direct_start.elapsed().as_secs_f64();
         let t1 = Instant::now();
         let dir = tempfile::tempdir().map_err(|source| StudyError::Io {
             path: "temporary directory".into(),
@@ -117,9 +135,35 @@ fn plate_repeats(repeats: usize, steps: usize) -> Result<PlateRepeats, StudyErro
             &model,
             &RunOptions {
                 engine: crate::run::Engine::Convolution,
+                ..opts.clone()
+            },
+        )?;
+        let modal_start = Instant::now();
+        let modal = run_model(
+            &model,
+            &RunOptions {
+                engine: crate::run::Engine::Modal,
                 ..opts
             },
         )?;
+        let modal_wall = modal_start.elapsed().as_secs_f64();
+        if modal_error.is_none() {
+            let (m, d) = (&modal.summary.contact, &run.summary.contact);
+            let duration = match (m.duration, d.duration) {
+                (Some(a), Some(b)) => (a / b - 1.0).abs(),
+                _ => f64::NAN,
+            };
+            modal_error = Some((
+                duration,
+                (m.peak_force / d.peak_force - 1.0).abs(),
+                modal
+                    .summary
+                    .run
+                    .modal
+                    .clone()
+                    .expect("a modal run reports its truncation"),
+            ));
+        }
         if rep > 0 {
             let stepping = (shear.total_time - shear.factor_time).as_secs_f64();
             ratios.push([
@@ -129,6 +173,8 @@ fn plate_repeats(repeats: usize, steps: usize) -> Result<PlateRepeats, StudyErro
                 stepping,
                 total - factor,
                 (panel.total_time - panel.factor_time).as_secs_f64(),
+                direct_wall,
+                modal_wall,
             ]);
             stages.push([read, assembly, factor, solve, total - factor - solve, write, wall]);
         }
@@ -137,6 +183,7 @@ fn plate_repeats(repeats: usize, steps: usize) -> Result<PlateRepeats, StudyErro
         stages,
         ratios,
         solved,
+        modal: modal_error,
         panel_solved,
     })
 }
@@ -152,8 +199,8 @@ fn stage_table(stages: &[[f64; 7]]) -> String {
 }
 
 /// Ratios within each repeat (the machine's load cancels), then their median.
-fn engine_ratios(ratios: &[[f64; 6]]) -> String {
-    let ratio = |f: &dyn Fn(&[f64; 6]) -> f64| median(ratios.iter().map(f).collect());
+fn engine_ratios(ratios: &[[f64; 8]]) -> String {
+    let ratio = |f: &dyn Fn(&[f64; 8]) -> f64| median(ratios.iter().map(f).collect());
     let mut out = String::from("ratios, each measured within one repeat (median):\n");
     out += &format!(
         "  {:<66} {:>9.3}\n",
