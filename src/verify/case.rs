@@ -428,6 +428,18 @@ pub enum CheckSpec {
         /// Largest difference allowed, relative to the peak.
         max: f64,
     },
+    /// The case run again on the modal engine ([`crate::run::modal`]) with its modes
+    /// up to each of `fractions` of the default cutoff (ascending; the last is
+    /// usually 1, the default itself): the contact duration and the peak force
+    /// against the direct run's. Value: the larger relative difference at the last
+    /// cutoff, at most `max`; the difference must also fall at every cutoff raised
+    /// (modes added), or the reduction does not converge to the direct answer.
+    ModalEngine {
+        /// Largest relative difference allowed at the last cutoff.
+        max: f64,
+        /// The cutoffs, as fractions of the default one.
+        fractions: Vec<f64>,
+    },
     /// A rigid region stores no strain: the written strains of `elements` (every
     /// corner tied to one grid by an RBE2) stay below `max` of the largest written
     /// strain of any element, at every output time.

@@ -205,6 +205,7 @@ pub fn check(case: &Case, model: &Model, run: &RunResult, spec: &CheckSpec) -> R
             max,
         } => external_history(&cx, file, solver, what, time, columns, *max)?,
         CheckSpec::Superposition { max } => superposition(&cx, *max)?,
+        CheckSpec::ModalEngine { max, fractions } => modal_engine(&cx, *max, fractions)?,
         CheckSpec::RigidStrain { elements, max } => rigid_strain(&cx, elements, *max)?,
         CheckSpec::FailureIndices { allowables, sb } => failure_indices(&cx, *allowables, *sb),
         CheckSpec::DtConvergence { .. }
@@ -279,6 +280,76 @@ fn failure_indices(cx: &Cx, allowables: [f64; 5], sb: f64) -> CheckResult {
             reported[1].map_or("none".into(), |v| format!("{v:.6e}")),
         ),
     )
+}
+
+/// The direct run against the same case on the modal engine at rising cutoffs.
+fn modal_engine(cx: &Cx, max: f64, fractions: &[f64]) -> Result<CheckResult, CheckError> {
+    const CHECK: &str = "modal_engine";
+    let failed = |message: String| CheckError::Failed {
+        case: cx.case.name.clone(),
+        check: CHECK,
+        message,
+    };
+    if fractions.is_empty() || fractions.windows(2).any(|w| w[0] >= w[1]) || fractions[0] <= 0.0 {
+        return Err(failed(format!(
+            "fractions {fractions:?}: give positive fractions of the default cutoff, ascending"
+        )));
+    }
+    let run = |cutoff: Option<f64>| {
+        let opts = RunOptions {
+            engine: Engine::Modal,
+            snapshot_times: Vec::new(),
+            modal: crate::run::modal::ModalParams {
+                cutoff,
+                ..Default::default()
+            },
+            ..super::case_options(cx.case)
+        };
+        run_model(cx.model, &opts).map_err(|e| failed(e.to_string()))
+    };
+    let direct = &cx.run.summary.contact;
+    let (Some(duration), peak) = (direct.duration, direct.peak_force) else {
+        return Err(failed(
+            "the direct run's contact does not end: no duration to compare".into(),
+        ));
+    };
+    // The default cutoff, from the engine itself.
+    let default = run(None)?;
+    let cut = default
+        .summary
+        .run
+        .modal
+        .as_ref()
+        .map(|t| t.cutoff_frequency)
+        .ok_or_else(|| failed("the modal run reports no truncation".into()))?;
+    let mut rows = Vec::new();
+    for &f in fractions {
+        let r = if f == 1.0 { default.clone() } else { run(Some(f * cut))? };
+        let c = &r.summary.contact;
+        let d = c.duration.map_or(f64::INFINITY, |x| (x / duration - 1.0).abs());
+        let p = (c.peak_force / peak - 1.0).abs();
+        let modes = r.summary.run.modal.as_ref().map_or(0, |t| t.modes);
+        rows.push((f, modes, d.max(p), d, p));
+    }
+    let falls = rows.windows(2).all(|w| w[1].2 < w[0].2);
+    let last = rows.last().expect("fractions are not empty");
+    let detail = rows
+        .iter()
+        .map(|(f, m, _, d, p)| format!("{f} of {cut:.4e}: {m} modes, duration {d:.1e}, peak force {p:.1e}"))
+        .collect::<Vec<_>>()
+        .join("; ");
+    Ok(cx.result(
+        CHECK.into(),
+        last.2,
+        None,
+        Bound::at_most(max),
+        last.2 <= max && falls,
+        if falls {
+            detail
+        } else {
+            format!("the difference does not fall as modes are added: {detail}")
+        },
+    ))
 }
 
 /// The direct run against the same case on the convolution engine.
