@@ -55,6 +55,9 @@ pub struct LanczosParams {
     /// Lanczos steps between convergence tests (a test costs O(j²) at step j, against
     /// the O(n j) of the step's re-orthogonalisation).
     pub test_every: usize,
+    /// At most this many Lanczos vectors stored (n doubles each): an extraction that
+    /// has not converged when it reaches them fails ([`SolveError::Memory`]).
+    pub max_vectors: Option<usize>,
 }
 
 impl Default for LanczosParams {
@@ -62,6 +65,7 @@ impl Default for LanczosParams {
         LanczosParams {
             tolerance: 1e-10,
             test_every: 10,
+            max_vectors: None,
         }
     }
 }
@@ -202,7 +206,8 @@ pub fn lanczos(
         q.push(&qj);
         orthogonalise(&mut w, &q, &m_mul);
         let j = q.len();
-        if j == n || j >= next_test {
+        let full = params.max_vectors.is_some_and(|m| j >= m) && j < n;
+        if j == n || j >= next_test || full {
             next_test = j + params.test_every.max(1);
             let next = dot(&w, &m_mul(&w)).max(0.0).sqrt();
             let (values, _) = ritz(&alpha, &beta, next, shift, roots, params, false);
@@ -213,6 +218,12 @@ pub fn lanczos(
                 last = Some(v);
             } else {
                 last = None;
+            }
+            if full {
+                return Err(SolveError::Memory {
+                    what: format!("{j} Lanczos vectors of {n} DOFs, before the roots asked for converged"),
+                    bytes: (j * n * 8) as u64,
+                });
             }
         }
     }
@@ -353,6 +364,16 @@ impl Columns {
     /// The last vector.
     pub fn last(&self) -> Option<&[f64]> {
         (!self.is_empty()).then(|| &self.data[self.data.len() - self.n..])
+    }
+
+    /// Vector `i`.
+    pub fn col(&self, i: usize) -> &[f64] {
+        &self.data[i * self.n..(i + 1) * self.n]
+    }
+
+    /// Vector `i`, to change.
+    pub fn col_mut(&mut self, i: usize) -> &mut [f64] {
+        &mut self.data[i * self.n..(i + 1) * self.n]
     }
 
     /// The vectors in order.

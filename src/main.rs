@@ -298,7 +298,8 @@ pub struct RunArgs {
     #[arg(long, value_parser = energy_guard_parser, default_value = "5e-2")]
     pub max_energy_error: EnergyGuard,
     /// Refuse, before allocating, a run estimated to need more than this many GiB
-    /// (the system and the per-step records; exit 2).
+    /// (the system and the per-step records; exit 2). The modal engine's reduction
+    /// keeps to what the limit leaves, and stops (exit 2) when it would pass it.
     #[arg(long, default_value_t = 4.0)]
     pub max_memory: f64,
     /// The interface's mode II fracture toughness G_IIc in the deck's units

@@ -169,6 +169,45 @@ fn run_engine_modal_reports_its_truncation() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("add --engine modal"));
 }
 
+/// Goal: `--max-memory` holds the modal reduction too: every mode of the paper's plate
+/// (--modes-up-to 1e6 cycles/s, about 6 900 Lanczos vectors of 6 912 DOFs, 0.36 GiB)
+/// under a limit of 0.07 GiB (the run's system and records take 0.025 GiB of it) stops
+/// the extraction where its Lanczos vectors fill a third of the rest (289), exit 2,
+/// with what to lower; the default cutoff (320 vectors, 163 modes) runs under 0.08 GiB.
+#[test]
+fn max_memory_holds_the_modal_reduction() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("plate");
+    let deck = common::root().join("reference-data/decks/plate.bdf");
+    let run = |limit: &str, flags: &[&str]| {
+        let args = [
+            &[
+                "run",
+                deck.to_str().unwrap(),
+                "--out",
+                out.to_str().unwrap(),
+                "--engine",
+                "modal",
+                "--max-memory",
+                limit,
+            ][..],
+            flags,
+        ]
+        .concat();
+        common::impactlab(&args)
+    };
+    let o = run("0.07", &["--modes-up-to", "1e6"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("over the memory limit: 289 Lanczos vectors of 6912 DOFs") && err.contains("--modes-up-to"),
+        "{err}"
+    );
+    assert!(!out.exists(), "a refused run writes nothing");
+    let o = run("0.08", &["--steps", "100"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
 /// Goal: with every mode kept the reduced model spans what the direct run moves, so
 /// the modal engine is the direct engine to round-off: the dynamic-load path on
 /// NASTRAN-95's bar struck by a TLOAD1 (reference-data/decks/t09071a-subcase1.bdf,

@@ -144,6 +144,17 @@ pub enum SolveError {
     /// The sparse factorisation failed.
     #[error("linear solver failure: {0}")]
     Linear(String),
+    /// A stage would exceed the run's memory limit.
+    #[error(
+        "over the memory limit: {what} ({:.2} GiB); raise --max-memory, or ask for less",
+        *bytes as f64 / (1u64 << 30) as f64
+    )]
+    Memory {
+        /// What would not fit.
+        what: String,
+        /// The bytes it holds when stopped.
+        bytes: u64,
+    },
 }
 
 /// The state after a step, as observers see it.

@@ -122,10 +122,16 @@ pub struct Reduction {
     pub system: System,
     /// The momentum's weights on M_r q̇.
     momentum: Vec<f64>,
-    /// Each coordinate's basis vector over the full model's solved DOFs.
-    basis: Vec<Vec<f64>>,
+    /// The full model's solved DOFs.
+    n: usize,
+    /// The impactor's DOFs (the first coordinates, one each).
+    own: Vec<usize>,
+    /// The structure's DOFs, in the order of T's rows.
+    structure: Vec<usize>,
+    /// T: the structure's basis vector of each coordinate after the impactor's.
+    columns: Columns,
     /// The history's linear outputs of each coordinate's displacement and velocity:
-    /// `outputs_u[c]` is the output vector of u = basis c.
+    /// `outputs_u[c]` is the output vector of u = coordinate c's basis vector.
     outputs_u: Vec<Vec<f64>>,
     outputs_v: Vec<Vec<f64>>,
     /// What the reduction kept.
@@ -144,14 +150,25 @@ impl Reduction {
         out
     }
 
-    /// The full model's field T q of reduced coordinates q.
+    /// The full model's field of reduced coordinates q: the impactor's DOFs as they
+    /// are, the structure's T q.
     pub(super) fn expand(&self, q: &[f64]) -> Vec<f64> {
-        let n = self.basis.first().map_or(0, Vec::len);
-        let mut u = vec![0.0; n];
-        for (b, &x) in self.basis.iter().zip(q) {
-            if x != 0.0 {
-                u.iter_mut().zip(b).for_each(|(u, b)| *u += x * b);
-            }
+        let mut u = vec![0.0; self.n];
+        let o = self.own.len();
+        for (&i, &x) in self.own.iter().zip(q) {
+            u[i] = x;
+        }
+        let mut ts = vec![0.0; self.structure.len()];
+        matmul(
+            faer::MatMut::from_column_major_slice_mut(&mut ts, self.structure.len(), 1),
+            faer::Accum::Replace,
+            self.columns.mat(),
+            faer::MatRef::from_column_major_slice(&q[o..], q.len() - o, 1),
+            1.0,
+            faer::Par::Seq,
+        );
+        for (&i, x) in self.structure.iter().zip(ts) {
+            u[i] = x;
         }
         u
     }
@@ -166,7 +183,11 @@ pub fn run(model: &Model, sys: &System, opts: &RunOptions) -> Result<RunResult, 
                 .into(),
         ));
     }
-    let r = reduce(model, sys, &opts.modal)?;
+    let budget = opts.max_memory.map(|limit| {
+        let steps = opts.steps.unwrap_or(model.time.steps);
+        limit.saturating_sub(super::memory_estimate(model, steps, Engine::Modal))
+    });
+    let r = reduce(model, sys, &opts.modal, budget)?;
     let ledger = opts
         .ledger
         .then(|| Ledger::reduced(&r.model, &r.system, r.momentum.clone()));
@@ -217,8 +238,12 @@ fn cutoff(model: &Model, params: &ModalParams) -> Result<(f64, String), RunError
     ))
 }
 
-/// Reduces a prepared model (see the module's text).
-pub fn reduce(model: &Model, sys: &System, params: &ModalParams) -> Result<Reduction, RunError> {
+/// Reduces a prepared model (see the module's text), in at most `budget` bytes
+/// besides the run's system and records. Its storage is vectors over the structure's
+/// DOFs: j Lanczos vectors, with the m modes twice over as they are formed (j + 2m),
+/// then T and its reordered copy (2p, p = m + residual vectors); so the extraction
+/// may store a third of the budget in Lanczos vectors.
+pub fn reduce(model: &Model, sys: &System, params: &ModalParams, budget: Option<u64>) -> Result<Reduction, RunError> {
     let t0 = std::time::Instant::now();
     let n = model.n();
     let (cut, cutoff_from) = cutoff(model, params)?;
@@ -252,7 +277,19 @@ pub fn reduce(model: &Model, sys: &System, params: &ModalParams) -> Result<Reduc
         below: Some(omega_cut * omega_cut),
         count: None,
     };
-    let pairs = lanczos(&s_sys, &labels, &roots, &LanczosParams::default())?;
+    let lanczos_params = LanczosParams {
+        max_vectors: budget.map(|b| (b / 3 / (8 * ns.max(1) as u64)) as usize),
+        ..Default::default()
+    };
+    let mut pairs = lanczos(&s_sys, &labels, &roots, &lanczos_params).map_err(|e| match e {
+        crate::integrate::SolveError::Memory { what, bytes } => RunError::Input(format!(
+            "the modal reduction (modes up to {cut:.4e} cycles per the deck's time unit) is over the memory \
+             limit: {what}, {:.2} GiB, a third of what the limit leaves beside the system and the records; lower \
+             the cutoff (--modes-up-to) or raise --max-memory",
+            bytes as f64 / (1u64 << 30) as f64
+        )),
+        e => e.into(),
+    })?;
     let m_mul = |x: &[f64]| {
         let mut y = vec![0.0; ns];
         s_sys.m_mul(x, &mut y);
@@ -269,14 +306,32 @@ pub fn reduce(model: &Model, sys: &System, params: &ModalParams) -> Result<Reduc
         .as_ref()
         .and_then(|c| c.loads.iter().map(|l| l.dof).find(|&j| target[j]))
         .and_then(|j| local[j]);
-    let mut residual: Vec<Vec<f64>> = Vec::new();
+    // Truncation: effective mass along the impact direction, flexibility at the
+    // contact by the modes.
+    let w = model.momentum_weights();
+    let ws: Vec<f64> = structure.iter().map(|&i| w[i]).collect();
+    let mw = m_mul(&ws);
+    let total_mass = dot(&ws, &mw);
+    let captured: f64 = pairs.vectors.iter().map(|phi| dot(phi, &mw).powi(2)).sum();
+    let by_modes = contact_dof.map_or(f64::NAN, |c| {
+        pairs
+            .values
+            .iter()
+            .zip(&pairs.vectors)
+            .filter(|(&l, _)| l >= rigid_below)
+            .map(|(l, phi)| phi[c] * phi[c] / l)
+            .sum::<f64>()
+    });
+    let mut residual_count = 0;
     let mut residual_flexibility = f64::NAN;
+    // The basis, modes then residual vectors, as one matrix (the modes moved in).
+    let mut kept = Columns::new(ns);
+    for phi in std::mem::take(&mut pairs.vectors) {
+        kept.push(&phi);
+    }
+    let modes = kept.len();
     {
         let (mut factor, _) = factorise(&s_sys, &labels)?;
-        // The basis so far, modes then residual vectors, as one matrix.
-        let mut kept = Columns::new(ns);
-        pairs.vectors.iter().for_each(|phi| kept.push(phi));
-        let modes = kept.len();
         for &b in &boundary {
             let bl = local[b].expect("boundary DOFs are the structure's");
             // (I − MΦΦᵀ) e_b: the modes' share of the load taken out.
@@ -312,36 +367,37 @@ pub fn reduce(model: &Model, sys: &System, params: &ModalParams) -> Result<Reduc
                 // The next of the chain: the structure's response to this shape's inertia.
                 load = m_mul(&psi);
                 kept.push(&psi);
-                residual.push(psi);
+                residual_count += 1;
             }
         }
     }
     // V = [Φ Ψ], then T: boundary rows [I 0].
-    let mut columns: Vec<Vec<f64>> = pairs.vectors.iter().cloned().chain(residual.iter().cloned()).collect();
+    let mut columns = kept;
     let p = columns.len();
     let mut pivots: Vec<usize> = Vec::with_capacity(boundary.len());
     for &b in &boundary {
         let bl = local[b].expect("boundary DOFs are the structure's");
         let pick = (0..p)
             .filter(|j| !pivots.contains(j))
-            .max_by(|&x, &y| columns[x][bl].abs().total_cmp(&columns[y][bl].abs()));
+            .max_by(|&x, &y| columns.col(x)[bl].abs().total_cmp(&columns.col(y)[bl].abs()));
         // A pivot small against its own column's motion where there is mass (a
         // massless rotation held by little stiffness may move far more): the basis
         // hardly moves this DOF.
         let moved = |j: &usize| {
-            let size = columns[*j]
+            let size = columns
+                .col(*j)
                 .iter()
                 .zip(&md)
                 .filter(|(_, &m)| m > 0.0)
                 .fold(0.0f64, |a, (x, _)| a.max(x.abs()));
-            columns[*j][bl].abs() > 1e-10 * size
+            columns.col(*j)[bl].abs() > 1e-10 * size
         };
         let Some(j) = pick.filter(moved) else {
             return Err(RunError::Input(format!(
                 "the modal basis ({} modes, {} residual vectors) does not move {} (the contact or a dynamic load \
                  acts there): raise the cutoff frequency{}",
-                pairs.values.len(),
-                residual.len(),
+                modes,
+                residual_count,
                 model.dofs[b],
                 if params.residual_vectors {
                     ""
@@ -350,11 +406,12 @@ pub fn reduce(model: &Model, sys: &System, params: &ModalParams) -> Result<Reduc
                 }
             )));
         };
-        let d = columns[j][bl];
-        columns[j].iter_mut().for_each(|x| *x /= d);
-        let pivot = columns[j].clone();
-        for (c, col) in columns.iter_mut().enumerate() {
-            if c != j {
+        let d = columns.col(j)[bl];
+        columns.col_mut(j).iter_mut().for_each(|x| *x /= d);
+        let pivot = columns.col(j).to_vec();
+        for c in (0..p).filter(|&c| c != j) {
+            let col = columns.col_mut(c);
+            {
                 let f = col[bl];
                 if f != 0.0 {
                     col.iter_mut().zip(&pivot).for_each(|(x, y)| *x -= f * y);
@@ -369,7 +426,11 @@ pub fn reduce(model: &Model, sys: &System, params: &ModalParams) -> Result<Reduc
         .copied()
         .chain((0..p).filter(|j| !pivots.contains(j)))
         .collect();
-    let columns: Vec<Vec<f64>> = order.iter().map(|&j| std::mem::take(&mut columns[j])).collect();
+    let columns = {
+        let mut t = Columns::new(ns);
+        order.iter().for_each(|&j| t.push(columns.col(j)));
+        t
+    };
     // The reduced coordinates: the impactor's DOFs, then T's columns.
     let nr = own.len() + p;
     let mut own_index: Vec<Option<usize>> = vec![None; n];
@@ -379,21 +440,6 @@ pub fn reduce(model: &Model, sys: &System, params: &ModalParams) -> Result<Reduc
     let mut map = own_index.clone();
     for (k, &b) in boundary.iter().enumerate() {
         map[b] = Some(own.len() + k);
-    }
-    let mut basis: Vec<Vec<f64>> = own
-        .iter()
-        .map(|&i| {
-            let mut e = vec![0.0; n];
-            e[i] = 1.0;
-            e
-        })
-        .collect();
-    for col in &columns {
-        let mut e = vec![0.0; n];
-        for (k, &i) in structure.iter().enumerate() {
-            e[i] = col[k];
-        }
-        basis.push(e);
     }
     // K_r and M_r: the impactor's block as assembled, the structure's TᵀKT, TᵀMT.
     let own_block = |entries: &[faer::sparse::Triplet<usize, usize, f64>]| {
@@ -406,28 +452,32 @@ pub fn reduce(model: &Model, sys: &System, params: &ModalParams) -> Result<Reduc
         x
     };
     let (mut k_r, mut m_r) = (own_block(&sys.k), own_block(&sys.m));
-    // TᵀKT and TᵀMT: the sparse products column by column, then one matrix product
-    // each (symmetrised: the two triangles of a product differ by round-off).
-    let mut t = Columns::new(ns);
-    let (mut kt, mut mt) = (Columns::new(ns), Columns::new(ns));
-    for c in &columns {
-        let mut k = vec![0.0; ns];
-        s_sys.k_mul(c, &mut k);
-        t.push(c);
-        kt.push(&k);
-        mt.push(&m_mul(c));
-    }
+    // TᵀKT and TᵀMT: the sparse products of a block of columns, then a matrix product
+    // each (symmetrised: the two triangles of a product differ by round-off). Blocks
+    // of 32 columns keep the products' storage small beside T's.
     let o = own.len();
-    for (x_r, xt) in [(&mut k_r, &kt), (&mut m_r, &mt)] {
-        let mut x = faer::Mat::<f64>::zeros(p, p);
-        matmul(
-            x.as_mut(),
-            faer::Accum::Replace,
-            t.mat().transpose(),
-            xt.mat(),
-            1.0,
-            faer::Par::Seq,
-        );
+    let (mut kt_t, mut mt_t) = (faer::Mat::<f64>::zeros(p, p), faer::Mat::<f64>::zeros(p, p));
+    for first in (0..p).step_by(32) {
+        let width = 32.min(p - first);
+        let (mut kt, mut mt) = (Columns::new(ns), Columns::new(ns));
+        for c in first..first + width {
+            let mut k = vec![0.0; ns];
+            s_sys.k_mul(columns.col(c), &mut k);
+            kt.push(&k);
+            mt.push(&m_mul(columns.col(c)));
+        }
+        for (x, xt) in [(&mut kt_t, &kt), (&mut mt_t, &mt)] {
+            matmul(
+                x.as_mut().subcols_mut(first, width),
+                faer::Accum::Replace,
+                columns.mat().transpose(),
+                xt.mat(),
+                1.0,
+                faer::Par::Seq,
+            );
+        }
+    }
+    for (x_r, x) in [(&mut k_r, &kt_t), (&mut m_r, &mt_t)] {
         for a in 0..p {
             for b in 0..=a {
                 let v = 0.5 * (x[(a, b)] + x[(b, a)]);
@@ -462,7 +512,6 @@ pub fn reduce(model: &Model, sys: &System, params: &ModalParams) -> Result<Reduc
         }
         q
     };
-    let w = model.momentum_weights();
     let momentum = project(&w);
     let (u0, v0) = (project(&model.u0), project(&model.v0));
     // The reduced model: coordinates labelled by the DOF they are, or as points.
@@ -495,24 +544,20 @@ pub fn reduce(model: &Model, sys: &System, params: &ModalParams) -> Result<Reduc
     if let Some(x) = &mut reduced.excitation {
         x.terms.iter_mut().for_each(|t| t.dof = remap(t.dof));
     }
-    // The outputs of each coordinate.
+    // The outputs of each coordinate, from its vector over the full model's DOFs.
     let zero = vec![0.0; n];
-    let outputs_u = basis.iter().map(|b| linear_outputs(model, b, &zero)).collect();
-    let outputs_v = basis.iter().map(|b| linear_outputs(model, &zero, b)).collect();
-    // Truncation: effective mass along the impact direction, flexibility at the contact.
-    let ws: Vec<f64> = structure.iter().map(|&i| w[i]).collect();
-    let mw = m_mul(&ws);
-    let total_mass = dot(&ws, &mw);
-    let captured: f64 = pairs.vectors.iter().map(|phi| dot(phi, &mw).powi(2)).sum();
-    let by_modes = contact_dof.map_or(f64::NAN, |c| {
-        pairs
-            .values
-            .iter()
-            .zip(&pairs.vectors)
-            .filter(|(&l, _)| l >= rigid_below)
-            .map(|(l, phi)| phi[c] * phi[c] / l)
-            .sum::<f64>()
-    });
+    let mut e = vec![0.0; n];
+    let (mut outputs_u, mut outputs_v) = (Vec::with_capacity(nr), Vec::with_capacity(nr));
+    for c in 0..nr {
+        e.fill(0.0);
+        if c < o {
+            e[own[c]] = 1.0;
+        } else {
+            structure.iter().zip(columns.col(c - o)).for_each(|(&i, &x)| e[i] = x);
+        }
+        outputs_u.push(linear_outputs(model, &e, &zero));
+        outputs_v.push(linear_outputs(model, &zero, &e));
+    }
     let whole = by_modes + residual_flexibility;
     let reduced_flexibility = contact_dof.map_or(f64::NAN, |c| {
         let k = boundary
@@ -527,7 +572,7 @@ pub fn reduce(model: &Model, sys: &System, params: &ModalParams) -> Result<Reduc
         modes: pairs.values.len(),
         rigid_modes,
         highest_mode_frequency: pairs.values.last().map_or(0.0, |l| l.max(0.0).sqrt()) / (2.0 * std::f64::consts::PI),
-        residual_vectors: residual.len(),
+        residual_vectors: residual_count,
         coordinates: nr,
         structure_dofs: ns,
         effective_mass_fraction: if total_mass > 0.0 {
@@ -545,7 +590,10 @@ pub fn reduce(model: &Model, sys: &System, params: &ModalParams) -> Result<Reduc
         model: reduced,
         system,
         momentum,
-        basis,
+        n,
+        own,
+        structure,
+        columns,
         outputs_u,
         outputs_v,
         truncation,
