@@ -251,20 +251,25 @@ pub fn lanczos(
         solve_time: factor.solve_time,
         time: Default::default(),
     };
-    // The Ritz vectors Q S, one matrix product.
+    // The Ritz vectors Q S: a matrix product for each block of 32 roots (beside the
+    // Lanczos vectors and the roots' own, only a block's is stored twice).
     let j = q.len();
     let s = faer::Mat::<f64>::from_fn(j, pairs.len(), |r, c| pairs[c].1[r]);
-    let mut ritz_vectors = faer::Mat::<f64>::zeros(n, pairs.len());
-    faer::linalg::matmul::matmul(
-        ritz_vectors.as_mut(),
-        faer::Accum::Replace,
-        q.mat(),
-        s.as_ref(),
-        1.0,
-        faer::Par::Seq,
-    );
+    let mut block = faer::Mat::<f64>::zeros(n, 0);
     for (c, (lambda, _)) in pairs.into_iter().enumerate() {
-        let mut x: Vec<f64> = ritz_vectors.col(c).iter().copied().collect();
+        if c % 32 == 0 {
+            let width = 32.min(s.ncols() - c);
+            block = faer::Mat::<f64>::zeros(n, width);
+            faer::linalg::matmul::matmul(
+                block.as_mut(),
+                faer::Accum::Replace,
+                q.mat(),
+                s.as_ref().subcols(c, width),
+                1.0,
+                faer::Par::Seq,
+            );
+        }
+        let mut x: Vec<f64> = block.col(c % 32).iter().copied().collect();
         let mx = m_mul(&x);
         let g = dot(&x, &mx).sqrt();
         x.iter_mut().for_each(|v| *v /= g);

@@ -240,9 +240,9 @@ fn cutoff(model: &Model, params: &ModalParams) -> Result<(f64, String), RunError
 
 /// Reduces a prepared model (see the module's text), in at most `budget` bytes
 /// besides the run's system and records. Its storage is vectors over the structure's
-/// DOFs: j Lanczos vectors, with the m modes twice over as they are formed (j + 2m),
-/// then T and its reordered copy (2p, p = m + residual vectors); so the extraction
-/// may store a third of the budget in Lanczos vectors.
+/// DOFs: j Lanczos vectors, with the m modes as they are formed (j + m), then T and
+/// its reordered copy (2p, p = m + residual vectors, m ≤ j); so the extraction may
+/// store half the budget in Lanczos vectors.
 pub fn reduce(model: &Model, sys: &System, params: &ModalParams, budget: Option<u64>) -> Result<Reduction, RunError> {
     let t0 = std::time::Instant::now();
     let n = model.n();
@@ -278,13 +278,13 @@ pub fn reduce(model: &Model, sys: &System, params: &ModalParams, budget: Option<
         count: None,
     };
     let lanczos_params = LanczosParams {
-        max_vectors: budget.map(|b| (b / 3 / (8 * ns.max(1) as u64)) as usize),
+        max_vectors: budget.map(|b| (b / 2 / (8 * ns.max(1) as u64)) as usize),
         ..Default::default()
     };
     let mut pairs = lanczos(&s_sys, &labels, &roots, &lanczos_params).map_err(|e| match e {
         crate::integrate::SolveError::Memory { what, bytes } => RunError::Input(format!(
             "the modal reduction (modes up to {cut:.4e} cycles per the deck's time unit) is over the memory \
-             limit: {what}, {:.2} GiB, a third of what the limit leaves beside the system and the records; lower \
+             limit: {what}, {:.2} GiB, half of what the limit leaves beside the system and the records; lower \
              the cutoff (--modes-up-to) or raise --max-memory",
             bytes as f64 / (1u64 << 30) as f64
         )),
