@@ -199,6 +199,50 @@ fn case_control_as_pre_processors_and_nastran_95_write_it() {
     assert!(d.warnings.iter().any(|w| w.message.contains("plotting section")));
 }
 
+/// Goal: what a transient deck asks for and impactlab does not write is named in the
+/// run's summary (`model.not_written` in summary.json and a printed line), never
+/// dropped in silence: the paper's rod with SPCFORCES, OLOAD (twice) and ACCEL asked
+/// for; without such requests the key is absent.
+#[test]
+fn requests_impactlab_does_not_write_are_named_in_the_summary() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(common::deck("rod.bdf")).unwrap();
+    let asked = text.replacen(
+        "CEND\n",
+        "CEND\nSPCFORCES = ALL\nOLOAD(PRINT) = ALL\nACCEL = ALL\nOLOAD = ALL\n",
+        1,
+    );
+    assert_ne!(asked, text, "the rod deck has a CEND line");
+    let deck = dir.path().join("rod.bdf");
+    std::fs::write(&deck, asked).unwrap();
+    let summary = |deck: &std::path::Path, out: &str| {
+        let out = dir.path().join(out);
+        let o = common::impactlab(&[
+            "run",
+            deck.to_str().unwrap(),
+            "--steps",
+            "10",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let s: serde_json::Value = serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
+        (s, String::from_utf8_lossy(&o.stdout).into_owned())
+    };
+    let (s, printed) = summary(&deck, "asked");
+    assert_eq!(
+        s["model"]["not_written"],
+        serde_json::json!(["SPCFORCES", "OLOAD", "ACCEL"])
+    );
+    assert!(
+        printed.contains("  not written: SPCFORCES, OLOAD, ACCEL (asked for in case control)"),
+        "{printed}"
+    );
+    let (s, printed) = summary(&common::deck("rod.bdf"), "plain");
+    assert!(s["model"].get("not_written").is_none(), "{}", s["model"]);
+    assert!(!printed.contains("not written"), "{printed}");
+}
+
 /// PARAM WTMASS: "the terms of the structural mass matrix are multiplied by the value
 /// of this parameter": a deck in weight units with WTMASS builds the mass of the same
 /// deck with its densities and masses multiplied out.

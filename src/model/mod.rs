@@ -219,6 +219,9 @@ pub struct OutputPlan {
     /// Every laminate element whose plies have failure criteria (PCOMP FT), with its
     /// plies: the field output gives each its largest index.
     pub failure_fields: Vec<(usize, PlyStack)>,
+    /// What case control asked for that impactlab does not write (SPCFORCES, OLOAD,
+    /// ACCEL, …), in the order asked: each named once.
+    pub not_written: Vec<String>,
 }
 
 impl OutputPlan {

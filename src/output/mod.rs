@@ -297,6 +297,12 @@ pub fn human_summary(model: &Model, run: &RunResult) -> String {
             t.flexibility_reduced
         );
     }
+    if !s.model.not_written.is_empty() {
+        out += &format!(
+            "  not written: {} (asked for in case control)\n",
+            s.model.not_written.join(", ")
+        );
+    }
     if let Some(why) = &s.run.stopped_by {
         out += &format!(
             "  INCOMPLETE: stopped after {} of {} steps: {why}\n",

@@ -831,6 +831,7 @@ fn summarize(
                     .count(),
             )
             .filter(|&n| n > 0),
+            not_written: model.outputs.not_written.clone(),
         },
         contact: ContactSummary {
             duration: intervals.first().map(|i| i[1] - i[0]),

@@ -160,6 +160,10 @@ pub struct ModelSummary {
     /// (every shell thin, Kirchhoff).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub transverse_shear_elements: Option<usize>,
+    /// Output requests of the deck's case control that impactlab does not write
+    /// (SPCFORCES, OLOAD, ACCEL, …); absent when there are none.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub not_written: Vec<String>,
 }
 
 /// When the impactor touched the target and how hard.

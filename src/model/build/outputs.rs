@@ -108,6 +108,12 @@ pub(super) fn output_plan(
             "ACCEL output is not written (accelerations are not part of every scheme's state); ignored",
         ));
     }
+    let accel = case.outputs.contains_key("ACCEL").then(|| "ACCEL".to_string());
+    for name in case.not_written.iter().map(|(k, _)| k.clone()).chain(accel) {
+        if !outputs.not_written.contains(&name) {
+            outputs.not_written.push(name);
+        }
+    }
 
     outputs
 }
