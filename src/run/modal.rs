@@ -411,12 +411,10 @@ pub fn reduce(model: &Model, sys: &System, params: &ModalParams, budget: Option<
         let pivot = columns.col(j).to_vec();
         for c in (0..p).filter(|&c| c != j) {
             let col = columns.col_mut(c);
-            {
-                let f = col[bl];
-                if f != 0.0 {
-                    col.iter_mut().zip(&pivot).for_each(|(x, y)| *x -= f * y);
-                    col[bl] = 0.0;
-                }
+            let f = col[bl];
+            if f != 0.0 {
+                col.iter_mut().zip(&pivot).for_each(|(x, y)| *x -= f * y);
+                col[bl] = 0.0;
             }
         }
         pivots.push(j);
