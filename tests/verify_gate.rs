@@ -393,6 +393,38 @@ tol = { rel = 1e-3 }
     );
 }
 
+/// Goal: the modal_engine check can fail and says why: on the paper's rod (2500 steps,
+/// the contact over) a bound below what the default cutoff gives (measured 2.7e-4)
+/// fails with each cutoff's modes and differences in the detail; fractions that do
+/// not rise are refused, naming the case and the check.
+#[test]
+fn modal_engine_check_fails_below_its_truncation_and_refuses_falling_fractions() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = |check: &str| {
+        let p = temp_case(
+            dir.path(),
+            &format!("name = \"modal\"\ndeck = \"DECK\"\nsteps = 2500\n[[check]]\nkind = \"modal_engine\"\n{check}\n"),
+        );
+        verify::read_case(&p).unwrap()
+    };
+    let r = impactlab::study::cases::evaluate(&case("max = 1e-4\nfractions = [0.5, 1.0]"))
+        .unwrap()
+        .checks
+        .remove(0);
+    assert!(!r.passed, "{}", r.detail);
+    assert!(r.value > 1e-4 && r.value < 1e-3, "{}", r.value);
+    assert!(
+        r.detail.contains("0.5 of ") && r.detail.contains("1 of ") && r.detail.contains(" modes, duration "),
+        "{}",
+        r.detail
+    );
+    let e = impactlab::study::cases::evaluate(&case("max = 1e-3\nfractions = [1.0, 0.5]")).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "case modal: modal_engine: fractions [1.0, 0.5]: give positive fractions of the default cutoff, ascending"
+    );
+}
+
 /// Goal: the comparison with NASTRAN-95's history catches a change the size of the
 /// reference's printed digits: the impact velocity moved by 1e-5 fails the rod's
 /// 1e-6-of-peak check, and the detail names the worst column. Reference:
