@@ -28,9 +28,8 @@ fn on(model: &Model, scheme: Scheme, steps: usize, modal: Option<ModalParams>) -
 
 /// Relative differences of the contact duration and the peak force from `reference`.
 fn errors(run: &RunResult, reference: &RunResult) -> (f64, f64) {
-    let d = |r: &RunResult| r.summary.contact.duration.unwrap();
-    let f = |r: &RunResult| r.summary.contact.peak_force;
-    ((d(run) / d(reference) - 1.0).abs(), (f(run) / f(reference) - 1.0).abs())
+    let (d, f) = run.summary.contact.relative_difference(&reference.summary.contact);
+    (d.expect("both contacts end"), f)
 }
 
 /// The default cutoff over the impactor's Hertz time on a rigid target.

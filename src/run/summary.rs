@@ -181,6 +181,15 @@ pub struct ContactSummary {
     pub peak_force_time: Option<f64>,
 }
 
+impl ContactSummary {
+    /// The relative differences |x / x_ref − 1| of the contact duration (`None` when
+    /// either contact has none) and of the peak force from `reference`'s.
+    pub fn relative_difference(&self, reference: &ContactSummary) -> (Option<f64>, f64) {
+        let duration = self.duration.zip(reference.duration).map(|(a, b)| (a / b - 1.0).abs());
+        (duration, (self.peak_force / reference.peak_force - 1.0).abs())
+    }
+}
+
 /// The impactor's mass and motion.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct ImpactorSummary {

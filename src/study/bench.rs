@@ -148,14 +148,10 @@ fn plate_repeats(repeats: usize, steps: usize) -> Result<PlateRepeats, StudyErro
         )?;
         let modal_wall = modal_start.elapsed().as_secs_f64();
         if modal_error.is_none() {
-            let (m, d) = (&modal.summary.contact, &run.summary.contact);
-            let duration = match (m.duration, d.duration) {
-                (Some(a), Some(b)) => (a / b - 1.0).abs(),
-                _ => f64::NAN,
-            };
+            let (duration, peak) = modal.summary.contact.relative_difference(&run.summary.contact);
             modal_error = Some((
-                duration,
-                (m.peak_force / d.peak_force - 1.0).abs(),
+                duration.unwrap_or(f64::NAN),
+                peak,
                 modal
                     .summary
                     .run
