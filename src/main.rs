@@ -126,6 +126,16 @@ pub struct SweepArgs {
     /// Also check every N-th point (0, N, 2N, ...) on the direct engine.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
     pub check_every: Option<u64>,
+    /// Where the kernels come from: `convolution` (the deck's own system, checked on
+    /// the direct engine) or `modal` (its reduction to the modes up to --modes-up-to
+    /// and residual vectors, computed once and not cached; the checked points are
+    /// stepped on the modal engine at the same cutoff).
+    #[arg(long, default_value = "convolution", value_parser = sweep_engine_parser(), conflicts_with = "find")]
+    pub engine: Engine,
+    /// The modal engine's cutoff, in cycles per the deck's time unit [default: 4 cycles
+    /// over the shortest Hertz contact time on a rigid target of the sweep's points].
+    #[arg(long, value_name = "FREQUENCY")]
+    pub modes_up_to: Option<f64>,
 }
 
 #[derive(clap::Args)]
@@ -275,7 +285,7 @@ pub struct RunArgs {
     #[arg(long, default_value = "direct", value_parser = engine_parser())]
     pub engine: Engine,
     /// The modal engine's cutoff: keep the modes up to this frequency, in cycles per
-    /// the deck's time unit [default: 40 cycles over the impactor's Hertz contact time
+    /// the deck's time unit [default: 4 cycles over the impactor's Hertz contact time
     /// on a rigid target].
     #[arg(long, value_name = "FREQUENCY")]
     pub modes_up_to: Option<f64>,
@@ -491,6 +501,15 @@ fn engine_parser() -> impl clap::builder::TypedValueParser<Value = Engine> {
         "convolution" => Engine::Convolution,
         "modal" => Engine::Modal,
         _ => Engine::Direct,
+    })
+}
+
+/// `--engine` of a sweep: where its kernels come from, `convolution` or `modal`.
+fn sweep_engine_parser() -> impl clap::builder::TypedValueParser<Value = Engine> {
+    use clap::builder::TypedValueParser;
+    clap::builder::PossibleValuesParser::new(["convolution", "modal"]).map(|name| match name.as_str() {
+        "modal" => Engine::Modal,
+        _ => Engine::Convolution,
     })
 }
 

@@ -958,6 +958,11 @@ pub fn sweep(a: SweepArgs) -> Result<u8, Error> {
         dt: a.dt,
         steps: a.steps,
         kernel_cache: kernel_cache(a.cache.clone(), a.no_cache),
+        engine: a.engine,
+        modal: impactlab::run::modal::ModalParams {
+            cutoff: a.modes_up_to,
+            ..Default::default()
+        },
         ..Default::default()
     };
     let opts = SweepOptions {
@@ -1015,6 +1020,23 @@ fn sweep_arguments(a: &SweepArgs) -> Result<SweepArguments, Error> {
         spread: a.checks,
         every: a.check_every.map(|n| n as usize),
     };
+    if let Some(f) = a.modes_up_to {
+        if a.engine != Engine::Modal {
+            return Err(Error::Usage(
+                "--modes-up-to is the modal engine's cutoff: add --engine modal".into(),
+            ));
+        }
+        if !(f > 0.0 && f.is_finite()) {
+            return Err(Error::Usage(format!(
+                "--modes-up-to must be a positive frequency, not {f}"
+            )));
+        }
+    }
+    if a.engine == Engine::Modal && a.cache.is_some() {
+        return Err(Error::Usage(
+            "--cache: a modal sweep's kernels come with its reduction, computed afresh and not cached".into(),
+        ));
+    }
     if a.checks == 0 && a.check_every.is_some() {
         return Err(Error::Usage(
             "--checks 0 turns the self-check off; --check-every needs it on".into(),
@@ -1037,7 +1059,7 @@ fn write_sweep(
     let points = sweep::points(varies).len();
     let units = impactlab::run::UnitSystem::of(&model.units);
     let mass = model.contact.as_ref().map_or(f64::NAN, |c| c.impactor.mass);
-    let summary = serde_json::json!({
+    let mut summary = serde_json::json!({
         "deck": model.name,
         "units": units,
         "impactor_mass": mass,
@@ -1067,6 +1089,12 @@ fn write_sweep(
         "points_s": out.points_s,
         "wall_s": out.wall_s,
     });
+    // A modal sweep: its kernels' reduction, and the engine its checks ran on.
+    if let Some(t) = &out.modal {
+        summary["kernels"] = "modal".into();
+        summary["check_engine"] = "modal".into();
+        summary["modal"] = serde_json::to_value(t).expect("plain data");
+    }
     let files = [
         ("sweep.csv", sweep::csv_bytes(&out.header, &out.rows)),
         (
@@ -1081,8 +1109,9 @@ fn write_sweep(
         units,
     };
     let figures = sweep::figures(&out.header, &out.rows, &cx, dir)?;
+    let checks = if out.modal.is_some() { "modal" } else { "direct" };
     sayln(&format!(
-        "{}: {} of {points} points ({} jobs) in {:.2} s: kernel pass {:.2} s, direct checks {:.2} s, points {:.2} s (each summed over its tasks); {} direct checks, worst {:.2e} (max {:.0e})",
+        "{}: {} of {points} points ({} jobs) in {:.2} s: kernel pass {:.2} s, {checks} checks {:.2} s, points {:.2} s (each summed over its tasks); {} {checks} checks, worst {:.2e} (max {:.0e})",
         model.name,
         out.rows.len(),
         jobs,
@@ -1094,6 +1123,13 @@ fn write_sweep(
         out.worst_direct_check,
         sweep::DIRECT_CHECK_MAX
     ));
+    if let Some(t) = &out.modal {
+        sayln(&format!(
+            "  kernels:  the modal reduction, {} modes up to {:.4e} ({}) and {} residual vectors, in {:.2} s; \
+             contact flexibility captured {:.6}",
+            t.modes, t.cutoff_frequency, t.cutoff_from, t.residual_vectors, t.reduction_s, t.flexibility_reduced
+        ));
+    }
     sayln(&format!(
         "  outputs:  {} (sweep.csv, summary.json, {} figures)",
         dir.display(),

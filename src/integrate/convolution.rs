@@ -111,7 +111,8 @@ fn ball(model: &Model) -> Result<Ball, NotConvolvable> {
 /// The kernel pass: the trapezoidal rule on the target alone, from rest, with the
 /// contact load g_T·p and p = (1, 0, 0, …), for `steps` steps of `dt`. `record` sees
 /// the target's state (u, v over all solved DOFs, the impactor's at zero) after
-/// every step, so that the caller keeps the kernels of its own outputs.
+/// every step, so that the caller keeps the kernels of its own outputs. The target's
+/// mass may be coupled (a modal reduction's M_r is dense); the impactor's may not.
 pub fn unit_response(
     model: &Model,
     sys: &System,
@@ -121,9 +122,6 @@ pub fn unit_response(
 ) -> Result<UnitResponse, RunFailure> {
     let b = ball(model)?;
     let no = |why: &str| RunFailure::Model(NotConvolvable(why.to_string()));
-    if sys.m_lumped.is_none() {
-        return Err(no("its mass matrix is not lumped"));
-    }
     let kd = sys.k_diag();
     let imp = &model
         .contact
@@ -133,6 +131,13 @@ pub fn unit_response(
         .dofs;
     if imp.iter().any(|&i| kd[i] != 0.0) {
         return Err(no("the impactor is attached to an element"));
+    }
+    if sys
+        .m
+        .iter()
+        .any(|t| t.row != t.col && t.val != 0.0 && (imp.contains(&t.row) || imp.contains(&t.col)))
+    {
+        return Err(no("the impactor's mass is coupled to the target's"));
     }
     let (mut g, c) = contact_vectors(model);
     for &i in imp {

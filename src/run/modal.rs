@@ -121,7 +121,7 @@ pub struct Reduction {
     /// The reduced system K_r, M_r.
     pub system: System,
     /// The momentum's weights on M_r q̇.
-    momentum: Vec<f64>,
+    pub(super) momentum: Vec<f64>,
     /// The full model's solved DOFs.
     n: usize,
     /// The impactor's DOFs (the first coordinates, one each).
@@ -203,8 +203,9 @@ pub fn run(model: &Model, sys: &System, opts: &RunOptions) -> Result<RunResult, 
     super::amended(result, |run| run.summary.run.modal = Some(r.truncation.clone()))
 }
 
-/// The cutoff frequency and where it came from.
-fn cutoff(model: &Model, params: &ModalParams) -> Result<(f64, String), RunError> {
+/// The cutoff frequency of a model's reduction and where it came from: as asked, or
+/// [`CYCLES_PER_CONTACT`] cycles over the Hertz contact time of its impactor.
+pub fn cutoff(model: &Model, params: &ModalParams) -> Result<(f64, String), RunError> {
     if let Some(f) = params.cutoff {
         if !(f > 0.0 && f.is_finite()) {
             return Err(RunError::Input(format!(
@@ -244,9 +245,20 @@ fn cutoff(model: &Model, params: &ModalParams) -> Result<(f64, String), RunError
 /// its reordered copy (2p, p = m + residual vectors, m ≤ j); so the extraction may
 /// store half the budget in Lanczos vectors.
 pub fn reduce(model: &Model, sys: &System, params: &ModalParams, budget: Option<u64>) -> Result<Reduction, RunError> {
+    reduce_at(model, sys, params, cutoff(model, params)?, budget)
+}
+
+/// [`reduce`] with the cutoff frequency and where it came from given: the cutoff of a
+/// family of runs (a sweep's, from its shortest contact).
+pub fn reduce_at(
+    model: &Model,
+    sys: &System,
+    params: &ModalParams,
+    (cut, cutoff_from): (f64, String),
+    budget: Option<u64>,
+) -> Result<Reduction, RunError> {
     let t0 = std::time::Instant::now();
     let n = model.n();
-    let (cut, cutoff_from) = cutoff(model, params)?;
     // The impactor's DOFs stay physical; the rest is the structure.
     let target = model.target_mask();
     let structure: Vec<usize> = (0..n).filter(|&i| target[i]).collect();

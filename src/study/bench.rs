@@ -4,7 +4,7 @@
 use super::{sweep, StudyError};
 use crate::model::Model;
 use crate::numerics::median;
-use crate::run::{run_model, RunOptions};
+use crate::run::{run_model, Engine, RunOptions};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -134,7 +134,7 @@ fn plate_repeats(repeats: usize, steps: usize) -> Result<PlateRepeats, StudyErro
         let conv = run_model(
             &model,
             &RunOptions {
-                engine: crate::run::Engine::Convolution,
+                engine: Engine::Convolution,
                 ..opts.clone()
             },
         )?;
@@ -142,7 +142,7 @@ fn plate_repeats(repeats: usize, steps: usize) -> Result<PlateRepeats, StudyErro
         let modal = run_model(
             &model,
             &RunOptions {
-                engine: crate::run::Engine::Modal,
+                engine: Engine::Modal,
                 ..opts
             },
         )?;
@@ -220,7 +220,7 @@ fn engine_ratios(ratios: &[[f64; 8]]) -> String {
 fn cache_ratios(model: &Model, steps: usize, cache: &Path, direct: f64) -> Result<String, StudyError> {
     let cached = RunOptions {
         steps: Some(steps),
-        engine: crate::run::Engine::Convolution,
+        engine: Engine::Convolution,
         kernel_cache: Some(cache.join("kernels")),
         ..Default::default()
     };
@@ -243,12 +243,13 @@ fn cache_ratios(model: &Model, steps: usize, cache: &Path, direct: f64) -> Resul
 /// core, against the direct run.
 fn sweep_ratios(model: &Model, steps: usize, cache_dir: &Path, direct: f64) -> Result<String, StudyError> {
     let jobs = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let sweep_of = |varies: &[&str], cache: &str| -> Result<sweep::SweepOutcome, StudyError> {
+    let sweep_of = |varies: &[&str], cache: &str, engine: Engine| -> Result<sweep::SweepOutcome, StudyError> {
         sweep::sweep(
             model,
             &RunOptions {
                 steps: Some(steps),
                 kernel_cache: Some(cache_dir.join(cache)),
+                engine,
                 ..Default::default()
             },
             &sweep::SweepOptions {
@@ -265,7 +266,8 @@ fn sweep_ratios(model: &Model, steps: usize, cache_dir: &Path, direct: f64) -> R
             },
         )
     };
-    let line = sweep_of(&["velocity=100:2000:100"], "line")?;
+    let line = sweep_of(&["velocity=100:2000:100"], "line", Engine::Convolution)?;
+    let modal = sweep_of(&["velocity=100:2000:100"], "modal", Engine::Modal)?;
     let mass = model.contact.as_ref().map_or(1.0, |c| c.impactor.mass);
     let grid = sweep_of(
         &[
@@ -273,6 +275,7 @@ fn sweep_ratios(model: &Model, steps: usize, cache_dir: &Path, direct: f64) -> R
             &format!("mass={}:{}:100", mass / 4.0, mass * 4.0),
         ],
         "grid",
+        Engine::Convolution,
     )?;
     let mut out = String::new();
     for (name, value) in [
@@ -291,6 +294,28 @@ fn sweep_ratios(model: &Model, steps: usize, cache_dir: &Path, direct: f64) -> R
         (
             format!("  its {} direct checks, summed / direct", line.direct_checks),
             line.checks_s,
+        ),
+        (
+            format!(
+                "the same sweep's kernels from the modal engine, {} modal checks, {jobs} jobs / direct (goal 0.5)",
+                modal.direct_checks
+            ),
+            modal.wall_s,
+        ),
+        (
+            format!(
+                "  its reduction ({} modes + {} residual vectors) and kernel pass / direct",
+                modal.modal.as_ref().map_or(0, |t| t.modes),
+                modal.modal.as_ref().map_or(0, |t| t.residual_vectors)
+            ),
+            modal.kernel_pass_s,
+        ),
+        (
+            format!(
+                "  its {} modal checks, each with its reduction, summed / direct",
+                modal.direct_checks
+            ),
+            modal.checks_s,
         ),
         (
             format!(

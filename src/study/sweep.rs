@@ -11,12 +11,21 @@
 //! largest difference ([`engine_difference`]) is the row's `direct_check`, and one over
 //! [`DIRECT_CHECK_MAX`] fails the sweep. A shard `I/N` runs the points whose number is
 //! I−1 modulo N; [`collect`] merges shards into the `sweep.csv` an unsharded run writes.
+//!
+//! On the modal engine (`--engine modal`) the kernels are the modal reduction's
+//! ([`Kernels::compute_modal`]), at one cutoff for every point ([`modal_cutoff`]: by
+//! default the hardest point's), and the checked points are stepped on the modal
+//! engine at that cutoff, each with its own reduction; the check then compares two
+//! evaluations of the same reduced model, every column against its family's peak
+//! ([`Scale::Family`]). What the truncation costs against the direct engine is the
+//! `modal_engine` verification check's to show.
 
 use super::in_parallel;
 use super::StudyError;
 use crate::integrate::Scheme;
 use crate::model::{Model, Modify};
-use crate::run::convolution::{engine_difference, CacheUse, Kernels};
+use crate::run::convolution::{engine_difference, CacheUse, Kernels, Scale};
+use crate::run::modal::{self, ModalParams, Truncation};
 use crate::run::{prepare, run_model, Column, Engine, RunError, RunOptions, RunResult};
 use indicatif::ProgressBar;
 use std::collections::HashMap;
@@ -295,6 +304,28 @@ pub struct SweepOptions {
     pub checks: SelfCheck,
 }
 
+/// The cutoff of a sweep's modal reduction: as asked, or the largest of its points'
+/// defaults ([`modal::cutoff`]): the modes over its shortest contact, so that the
+/// hardest impact is reduced as finely as a modal run of that point alone would be.
+pub fn modal_cutoff(base: &Model, varies: &[Vary], params: &ModalParams) -> Result<(f64, String), StudyError> {
+    if params.cutoff.is_some() {
+        return Ok(modal::cutoff(base, params)?);
+    }
+    let all = points(varies);
+    let mut worst: Option<(f64, String, usize)> = None;
+    for (i, values) in all.iter().enumerate() {
+        let (f, from) = modal::cutoff(&point_model(base, varies, values)?, params)?;
+        if worst.as_ref().is_none_or(|w| f > w.0) {
+            worst = Some((f, from, i));
+        }
+    }
+    let (f, from, i) = worst.ok_or_else(|| StudyError::Input("a sweep of no points".into()))?;
+    Ok((
+        f,
+        format!("{from}, at point {i}: the shortest of the sweep's {} points", all.len()),
+    ))
+}
+
 /// The fixed columns of `sweep.csv` after the point number and the varied values.
 pub const RESULT_COLUMNS: [&str; 7] = [
     "peak_force",
@@ -330,6 +361,8 @@ pub struct SweepOutcome {
     pub points_s: f64,
     /// Wall seconds of the whole sweep.
     pub wall_s: f64,
+    /// With `--engine modal`: the reduction the kernels and the checks ran on.
+    pub modal: Option<Truncation>,
 }
 
 impl SweepOutcome {
@@ -433,11 +466,27 @@ pub fn sweep(base: &Model, run: &RunOptions, opts: &SweepOptions) -> Result<Swee
         progress: None,
         ..run.clone()
     };
-    let (opts_conv, opts_direct) = (on(Engine::Convolution), on(Engine::Direct));
+    let opts_conv = on(Engine::Convolution);
     let prepared = prepare(base, &opts_conv)?;
     let (model, sys) = (prepared.model.as_ref(), &prepared.system);
     let dt = run.dt.unwrap_or(model.time.dt);
     let steps = run.steps.unwrap_or(model.time.steps);
+    // The modal engine's sweep: one reduction at the sweep's cutoff for the kernels,
+    // the checked points stepped on the modal engine at the same cutoff.
+    let modal = match run.engine {
+        Engine::Modal => Some(modal_cutoff(model, &opts.varies, &run.modal)?),
+        _ => None,
+    };
+    let opts_check = match &modal {
+        Some((f, _)) => RunOptions {
+            modal: ModalParams {
+                cutoff: Some(*f),
+                ..run.modal
+            },
+            ..on(Engine::Modal)
+        },
+        None => on(Engine::Direct),
+    };
     bar.set_length((mine.len() + checked.len()) as u64);
 
     enum Done {
@@ -447,8 +496,12 @@ pub fn sweep(base: &Model, run: &RunOptions, opts: &SweepOptions) -> Result<Swee
     }
     let kernels = std::sync::OnceLock::new();
     let pass = || {
-        kernels.get_or_init(|| {
-            Kernels::for_run(
+        kernels.get_or_init(|| match &modal {
+            Some(cut) => {
+                Kernels::compute_modal(model, sys, &run.modal, cut.clone(), (dt, steps), &ProgressBar::hidden())
+                    .map(|(k, t)| (k, CacheUse::Off, Some(t)))
+            }
+            None => Kernels::for_run(
                 model,
                 sys,
                 dt,
@@ -456,6 +509,7 @@ pub fn sweep(base: &Model, run: &RunOptions, opts: &SweepOptions) -> Result<Swee
                 run.kernel_cache.as_deref(),
                 &ProgressBar::hidden(),
             )
+            .map(|(k, c)| (k, c, None)),
         })
     };
     let c = checked.len();
@@ -467,12 +521,12 @@ pub fn sweep(base: &Model, run: &RunOptions, opts: &SweepOptions) -> Result<Swee
         }
         if k <= c {
             let i = checked[k - 1];
-            let r = point_model(model, &opts.varies, &all[i]).and_then(|m| outputs(run_model(&m, &opts_direct)));
+            let r = point_model(model, &opts.varies, &all[i]).and_then(|m| outputs(run_model(&m, &opts_check)));
             bar.inc(1);
             return r.map(|r| Done::Direct(i, r, t.elapsed().as_secs_f64()));
         }
         let i = mine[k - 1 - c];
-        let Ok((kernels, _)) = pass() else {
+        let Ok((kernels, _, _)) = pass() else {
             return Ok(Done::Kernels); // the pass's own error is reported below
         };
         let t = std::time::Instant::now();
@@ -486,7 +540,7 @@ pub fn sweep(base: &Model, run: &RunOptions, opts: &SweepOptions) -> Result<Swee
         })
     });
     bar.finish_and_clear();
-    let (kernels, cache) = kernels.into_inner().expect("task 0 is the kernel pass")?;
+    let (kernels, cache, truncation) = kernels.into_inner().expect("task 0 is the kernel pass")?;
     let (mut direct, mut checks_s, mut points_s) = (HashMap::new(), 0.0, 0.0);
     let mut rows = Vec::with_capacity(mine.len());
     let mut conv_checked = HashMap::new();
@@ -506,11 +560,17 @@ pub fn sweep(base: &Model, run: &RunOptions, opts: &SweepOptions) -> Result<Swee
             }
         }
     }
+    // The modal kernels' round-off is the field's ([`Scale::Family`]).
+    let scale = if truncation.is_some() {
+        Scale::Family
+    } else {
+        Scale::Column
+    };
     for r in &mut rows {
         let i = r[0] as usize;
         if let (Some(d), Some(c)) = (direct.get(&i), conv_checked.get(&i)) {
             *r.last_mut().expect("a row ends with direct_check") =
-                engine_difference(d, c).map_or(f64::INFINITY, |w| w.0);
+                engine_difference(d, c, scale).map_or(f64::INFINITY, |w| w.0);
         }
     }
     let (direct_checks, worst_direct_check) = direct_checks(&rows);
@@ -525,6 +585,7 @@ pub fn sweep(base: &Model, run: &RunOptions, opts: &SweepOptions) -> Result<Swee
         checks_s,
         points_s,
         wall_s: t0.elapsed().as_secs_f64(),
+        modal: truncation,
     })
 }
 

@@ -24,7 +24,7 @@
 use super::sweep::{point_model, Param, Vary, DIRECT_CHECK_MAX};
 use super::StudyError;
 use crate::model::Model;
-use crate::run::convolution::{engine_difference, Kernels};
+use crate::run::convolution::{engine_difference, Kernels, Scale};
 use crate::run::{prepare, run_model, Engine, RunError, RunOptions, RunResult};
 use indicatif::ProgressBar;
 
@@ -248,7 +248,8 @@ pub fn find_velocity(base: &Model, run: &RunOptions, until: Until, bar: &Progres
         let direct = guarded(run_model(&m, &direct_opts))?;
         if let Some(kernels) = &kernels {
             let conv = guarded(kernels.run(&m, &conv_opts, &ProgressBar::hidden()))?;
-            direct_check = direct_check.max(engine_difference(&direct, &conv).map_or(f64::INFINITY, |w| w.0));
+            direct_check =
+                direct_check.max(engine_difference(&direct, &conv, Scale::Column).map_or(f64::INFINITY, |w| w.0));
         }
         direct_values[k] = until.measure(&direct)?;
     }

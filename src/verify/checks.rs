@@ -11,7 +11,7 @@ use crate::physics::analytic;
 use crate::physics::references::{
     infinite_plate, rod_critical_step, rod_params, semi_infinite, two_rigid_bodies, ReferenceError,
 };
-use crate::run::convolution::engine_difference;
+use crate::run::convolution::{engine_difference, Scale};
 use crate::run::{run_model, Column, Engine, RunOptions, RunResult};
 
 /// A check that cannot be evaluated on its run.
@@ -373,7 +373,7 @@ fn superposition(cx: &Cx, max: f64) -> Result<CheckResult, CheckError> {
     })?;
     let direct = cx.run;
     let units = &direct.summary.units;
-    let worst = engine_difference(direct, &conv).ok_or_else(|| CheckError::Failed {
+    let worst = engine_difference(direct, &conv, Scale::Column).ok_or_else(|| CheckError::Failed {
         case: cx.case.name.clone(),
         check: CHECK,
         message: format!(
