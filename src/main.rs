@@ -129,7 +129,7 @@ pub struct SweepArgs {
     /// Where the kernels come from: `convolution` (the deck's own system, checked on
     /// the direct engine) or `modal` (its reduction to the modes up to --modes-up-to
     /// and residual vectors, computed once and not cached; the checked points are
-    /// stepped on the modal engine at the same cutoff).
+    /// stepped on the modal engine on the same reduction).
     #[arg(long, default_value = "convolution", value_parser = sweep_engine_parser(), conflicts_with = "find")]
     pub engine: Engine,
     /// The modal engine's cutoff, in cycles per the deck's time unit [default: 4 cycles

@@ -9,7 +9,7 @@ use common::{deck, rod_model};
 use impactlab::integrate::Scheme;
 use impactlab::model::Model;
 use impactlab::run::convolution::{engine_difference, Kernels, Scale};
-use impactlab::run::modal::ModalParams;
+use impactlab::run::modal::{self, ModalParams};
 use impactlab::run::{run_model, Engine, RunOptions, RunResult};
 use impactlab::study::sweep::DIRECT_CHECK_MAX;
 
@@ -243,10 +243,17 @@ fn with_every_mode_the_modal_engine_is_the_direct_engine() {
     }
 }
 
-/// The kernels of a model's modal reduction, and a run on them of `point` (the model
-/// with another impactor or Hertz law), beside the modal engine's run of `point` at the
-/// same cutoff.
-fn modal_kernel_run(model: &Model, point: &Model, scheme: Scheme, steps: usize, cutoff: f64) -> (RunResult, RunResult) {
+/// The kernels of a model's modal reduction and a run on them of `point` (the model
+/// with another impactor or Hertz law); the modal engine's run of `point` on the
+/// model's reduction ([`Reduction::for_point`]); and its own modal run at the same
+/// cutoff.
+fn modal_kernel_run(
+    model: &Model,
+    point: &Model,
+    scheme: Scheme,
+    steps: usize,
+    cutoff: f64,
+) -> (RunResult, RunResult, RunResult) {
     let params = ModalParams {
         cutoff: Some(cutoff),
         ..Default::default()
@@ -259,15 +266,25 @@ fn modal_kernel_run(model: &Model, point: &Model, scheme: Scheme, steps: usize, 
     };
     let prepared = impactlab::run::prepare(model, &opts).unwrap();
     let (m, sys) = (prepared.model.as_ref(), &prepared.system);
-    let dt = m.time.dt;
     let bar = indicatif::ProgressBar::hidden();
-    let (kernels, _) = Kernels::compute_modal(m, sys, &params, (cutoff, "as asked".into()), (dt, steps), &bar).unwrap();
+    let r = modal::reduce(m, sys, &params, None).unwrap();
+    let kernels = Kernels::compute_modal(&r, m.time.dt, steps, &bar).unwrap();
     let on_kernels = kernels.run(point, &opts, &bar).unwrap_or_else(|e| panic!("{e}"));
-    (on_kernels, on(point, scheme, steps, Some(params)))
+    let modal_opts = RunOptions {
+        engine: Engine::Modal,
+        modal: params,
+        ..opts
+    };
+    let p = impactlab::run::prepare(point, &modal_opts).unwrap();
+    let shared = r.for_point(&p.model, &p.system).unwrap();
+    let on_shared = modal::run_reduced(&p.model, &shared, &modal_opts).unwrap();
+    (on_kernels, on_shared, on(point, scheme, steps, Some(params)))
 }
 
-/// Goal: the convolution engine's kernels taken from the modal reduction reproduce the
-/// modal engine's run to round-off (the same reduced model, its contact solved from a
+/// Goal: a model's modal reduction serves another impactor speed and mass
+/// (`Reduction::for_point`, as a modal sweep's checks use it): the modal run on it is
+/// the point's own modal run at the same cutoff, bit for bit. The convolution engine's
+/// kernels taken from the modal reduction reproduce the modal engine's run to round-off (the same reduced model, its contact solved from a
 /// history sum instead of a dense solve), for another impactor speed and mass than
 /// the reduction's model (the kernels depend on neither): the force and every history
 /// column to the sweep's bound, 1e-9 of their family's peak (measured 8.1e-13 on the
@@ -292,7 +309,10 @@ fn kernels_from_the_modal_reduction_are_the_modal_run() {
         let cutoff = default_cutoff(&model);
         for scheme in [Scheme::Newmark, Scheme::Energy] {
             let point = vary(&model, speed, 1.3);
-            let (conv, modal) = modal_kernel_run(&model, &point, scheme, steps, cutoff);
+            let (conv, shared, modal) = modal_kernel_run(&model, &point, scheme, steps, cutoff);
+            // The model's reduction serves the point: the very run of its own.
+            assert_eq!(shared.series.force, modal.series.force, "{} {scheme}", model.name);
+            assert_eq!(shared.history, modal.history, "{} {scheme}", model.name);
             let (d, what, t) = engine_difference(&modal, &conv, Scale::Family).expect("same steps");
             println!("{} {scheme}: {d:.2e} ({what} at {t:e})", model.name);
             assert!(

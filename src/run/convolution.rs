@@ -13,7 +13,7 @@
 //!
 //! Field snapshots need the whole field too: this engine refuses them.
 
-use super::modal::{self, ModalParams, Truncation};
+use super::modal::Reduction;
 use super::{
     history_columns, history_row, linear_outputs, summarize, Engine, GuardTrip, RowHead, RunError, RunOptions,
     RunResult, Series,
@@ -181,30 +181,19 @@ impl Kernels {
         )
     }
 
-    /// The kernel pass of a model's modal reduction ([`modal::reduce`], with the
-    /// cutoff `cutoff` and where it came from): the same kernels of the reduced model,
-    /// the outputs read from its coordinates. With them every run is the modal engine's
-    /// run of the same point to round-off, at the cost of one reduction and a pass on
-    /// the reduced system; what the reduction kept is returned beside.
-    pub fn compute_modal(
-        model: &Model,
-        sys: &System,
-        params: &ModalParams,
-        cutoff: (f64, String),
-        (dt, steps): (f64, usize),
-        bar: &ProgressBar,
-    ) -> Result<(Kernels, Truncation), RunError> {
-        let t0 = std::time::Instant::now();
-        let r = modal::reduce_at(model, sys, params, cutoff, None)?;
-        let k = Kernels::pass(
+    /// The kernel pass of a model's modal reduction ([`modal::reduce`]): the same
+    /// kernels of the reduced model, the outputs read from its coordinates. With them
+    /// every run is the modal engine's run of the same point to round-off, at the cost
+    /// of one reduction and a pass on the reduced system.
+    pub fn compute_modal(r: &Reduction, dt: f64, steps: usize, bar: &ProgressBar) -> Result<Kernels, RunError> {
+        Kernels::pass(
             &r.model,
             &r.system,
             &r.momentum,
             &|q, qd| r.outputs(q, qd),
-            (dt, steps, t0),
+            (dt, steps, std::time::Instant::now()),
             bar,
-        )?;
-        Ok((k, r.truncation))
+        )
     }
 
     /// The kernel pass on a linear system (a model's own or its reduction's), the

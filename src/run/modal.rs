@@ -122,27 +122,38 @@ pub struct Reduction {
     pub system: System,
     /// The momentum's weights on M_r q̇.
     pub(super) momentum: Vec<f64>,
+    /// The structure's part, shared by the reductions of every model of the same
+    /// structure ([`Reduction::for_point`]).
+    basis: std::sync::Arc<Basis>,
+    /// What the reduction kept.
+    pub truncation: Truncation,
+}
+
+/// The structure's part of a reduction: its basis and what it maps.
+struct Basis {
     /// The full model's solved DOFs.
     n: usize,
     /// The impactor's DOFs (the first coordinates, one each).
     own: Vec<usize>,
     /// The structure's DOFs, in the order of T's rows.
     structure: Vec<usize>,
+    /// The coordinate of each of the full model's DOFs that is one: the impactor's and
+    /// the boundary DOFs.
+    map: Vec<Option<usize>>,
     /// T: the structure's basis vector of each coordinate after the impactor's.
     columns: Columns,
     /// The history's linear outputs of each coordinate's displacement and velocity:
     /// `outputs_u[c]` is the output vector of u = coordinate c's basis vector.
     outputs_u: Vec<Vec<f64>>,
     outputs_v: Vec<Vec<f64>>,
-    /// What the reduction kept.
-    pub truncation: Truncation,
 }
 
 impl Reduction {
     /// The history's linear outputs at the reduced state (q, q̇).
     pub(super) fn outputs(&self, q: &[f64], qd: &[f64]) -> Vec<f64> {
-        let mut out = vec![0.0; self.outputs_u.first().map_or(0, Vec::len)];
-        for (c, (ou, ov)) in self.outputs_u.iter().zip(&self.outputs_v).enumerate() {
+        let b = &self.basis;
+        let mut out = vec![0.0; b.outputs_u.first().map_or(0, Vec::len)];
+        for (c, (ou, ov)) in b.outputs_u.iter().zip(&b.outputs_v).enumerate() {
             for (o, (a, b)) in out.iter_mut().zip(ou.iter().zip(ov)) {
                 *o += a * q[c] + b * qd[c];
             }
@@ -153,24 +164,102 @@ impl Reduction {
     /// The full model's field of reduced coordinates q: the impactor's DOFs as they
     /// are, the structure's T q.
     pub(super) fn expand(&self, q: &[f64]) -> Vec<f64> {
-        let mut u = vec![0.0; self.n];
-        let o = self.own.len();
-        for (&i, &x) in self.own.iter().zip(q) {
+        let b = &self.basis;
+        let mut u = vec![0.0; b.n];
+        let o = b.own.len();
+        for (&i, &x) in b.own.iter().zip(q) {
             u[i] = x;
         }
-        let mut ts = vec![0.0; self.structure.len()];
+        let mut ts = vec![0.0; b.structure.len()];
         matmul(
-            faer::MatMut::from_column_major_slice_mut(&mut ts, self.structure.len(), 1),
+            faer::MatMut::from_column_major_slice_mut(&mut ts, b.structure.len(), 1),
             faer::Accum::Replace,
-            self.columns.mat(),
+            b.columns.mat(),
             faer::MatRef::from_column_major_slice(&q[o..], q.len() - o, 1),
             1.0,
             faer::Par::Seq,
         );
-        for (&i, x) in self.structure.iter().zip(ts) {
+        for (&i, x) in b.structure.iter().zip(ts) {
             u[i] = x;
         }
         u
+    }
+
+    /// The reduction of `point` (prepared, with its system `sys`): a model of the same
+    /// structure, contact DOFs and outputs as this reduction's, whose impactor, contact
+    /// law or impactor's initial state differ (a sweep's point). The structure's basis,
+    /// K_r and M_r are this reduction's; the impactor's block of the system, the
+    /// contact and the initial state are the point's. The same as reducing `point`
+    /// at this reduction's cutoff, without the extraction.
+    pub fn for_point(&self, point: &Model, sys: &System) -> Result<Reduction, RunError> {
+        let b = &self.basis;
+        let o = b.own.len();
+        let differs = |what: &str| {
+            RunError::Engine(format!(
+                "the modal reduction of one model serves another only with the same structure: {what} differs"
+            ))
+        };
+        if point.n() != b.n || point.target_mask().iter().filter(|&&t| !t).count() != o {
+            return Err(differs("the solved DOFs"));
+        }
+        // The structure starts at rest in both (as in a sweep).
+        let moving = |u: &[f64], v: &[f64], dofs: &[usize]| dofs.iter().any(|&i| u[i] != 0.0 || v[i] != 0.0);
+        let coordinates: Vec<usize> = (o..self.model.n()).collect();
+        if moving(&point.u0, &point.v0, &b.structure) || moving(&self.model.u0, &self.model.v0, &coordinates) {
+            return Err(differs("the structure's initial state (a point's must be at rest)"));
+        }
+        let own_index = |i: usize| b.own.iter().position(|&j| j == i);
+        let block = |entries: &[faer::sparse::Triplet<usize, usize, f64>]| -> Vec<(usize, usize, f64)> {
+            entries
+                .iter()
+                .filter_map(|t| Some((own_index(t.row)?, own_index(t.col)?, t.val)))
+                .collect()
+        };
+        let structure_part = |entries: &[faer::sparse::Triplet<usize, usize, f64>]| {
+            entries
+                .iter()
+                .filter(|t| t.row >= o && t.col >= o)
+                .map(|t| (t.row, t.col, t.val))
+                .collect::<Vec<_>>()
+        };
+        let entries = |own: Vec<(usize, usize, f64)>, structure: Vec<(usize, usize, f64)>| {
+            own.into_iter().chain(structure).collect::<Vec<_>>()
+        };
+        let system = System::from_entries(
+            self.system.n,
+            entries(block(&sys.k), structure_part(&self.system.k)),
+            entries(block(&sys.m), structure_part(&self.system.m)),
+        );
+        let mut model = self.model.clone();
+        for (k, &i) in b.own.iter().enumerate() {
+            model.u0[k] = point.u0[i];
+            model.v0[k] = point.v0[i];
+        }
+        let remap = |j: usize| b.map[j].ok_or_else(|| differs("the DOFs the contact acts on"));
+        model.contact = match &point.contact {
+            Some(c) => {
+                let mut c = c.clone();
+                for t in c.driver.iter_mut().chain(c.nonconservative.iter_mut()) {
+                    t.0 = remap(t.0)?;
+                }
+                for l in &mut c.loads {
+                    l.dof = remap(l.dof)?;
+                }
+                c.impactor.dof = remap(c.impactor.dof)?;
+                for d in &mut c.impactor.dofs {
+                    *d = remap(*d)?;
+                }
+                Some(c)
+            }
+            None => None,
+        };
+        Ok(Reduction {
+            model,
+            system,
+            momentum: self.momentum.clone(),
+            basis: self.basis.clone(),
+            truncation: self.truncation.clone(),
+        })
     }
 }
 
@@ -188,6 +277,12 @@ pub fn run(model: &Model, sys: &System, opts: &RunOptions) -> Result<RunResult, 
         limit.saturating_sub(super::memory_estimate(model, steps, Engine::Modal))
     });
     let r = reduce(model, sys, &opts.modal, budget)?;
+    run_reduced(model, &r, opts)
+}
+
+/// Runs a prepared model on the modal engine with its reduction `r` ([`reduce`], or
+/// [`Reduction::for_point`] of another model's).
+pub fn run_reduced(model: &Model, r: &Reduction, opts: &RunOptions) -> Result<RunResult, RunError> {
     let ledger = opts
         .ledger
         .then(|| Ledger::reduced(&r.model, &r.system, r.momentum.clone()));
@@ -196,7 +291,7 @@ pub fn run(model: &Model, sys: &System, opts: &RunOptions) -> Result<RunResult, 
         &r.model,
         &r.system,
         ledger,
-        Fields::Reduced(&r),
+        Fields::Reduced(r),
         opts,
         Engine::Modal,
     );
@@ -600,12 +695,15 @@ pub fn reduce_at(
         model: reduced,
         system,
         momentum,
-        n,
-        own,
-        structure,
-        columns,
-        outputs_u,
-        outputs_v,
+        basis: std::sync::Arc::new(Basis {
+            n,
+            own,
+            structure,
+            map,
+            columns,
+            outputs_u,
+            outputs_v,
+        }),
         truncation,
     })
 }

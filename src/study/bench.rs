@@ -312,7 +312,7 @@ fn sweep_ratios(model: &Model, steps: usize, cache_dir: &Path, direct: f64) -> R
         ),
         (
             format!(
-                "  its {} modal checks, each with its reduction, summed / direct",
+                "  its {} modal checks (on its reduction), summed / direct",
                 modal.direct_checks
             ),
             modal.checks_s,

@@ -15,7 +15,8 @@
 //! On the modal engine (`--engine modal`) the kernels are the modal reduction's
 //! ([`Kernels::compute_modal`]), at one cutoff for every point ([`modal_cutoff`]: by
 //! default the hardest point's), and the checked points are stepped on the modal
-//! engine at that cutoff, each with its own reduction; the check then compares two
+//! engine on the same reduction ([`crate::run::modal::Reduction::for_point`]: the
+//! point's own modal run at that cutoff, bit for bit); the check then compares two
 //! evaluations of the same reduced model, every column against its family's peak
 //! ([`Scale::Family`]). What the truncation costs against the direct engine is the
 //! `modal_engine` verification check's to show.
@@ -494,12 +495,22 @@ pub fn sweep(base: &Model, run: &RunOptions, opts: &SweepOptions) -> Result<Swee
         Direct(usize, RunResult, f64),
         Point(Vec<f64>, Option<RunResult>, f64),
     }
+    // A modal sweep's reduction: made by the kernel pass, waited for by the checks.
+    let reduction = std::sync::OnceLock::new();
+    let reduced = |cut: &(f64, String)| {
+        reduction
+            .get_or_init(|| modal::reduce_at(model, sys, &run.modal, cut.clone(), None))
+            .as_ref()
+            .map_err(RunError::clone)
+    };
     let kernels = std::sync::OnceLock::new();
     let pass = || {
         kernels.get_or_init(|| match &modal {
             Some(cut) => {
-                Kernels::compute_modal(model, sys, &run.modal, cut.clone(), (dt, steps), &ProgressBar::hidden())
-                    .map(|(k, t)| (k, CacheUse::Off, Some(t)))
+                let r = reduced(cut)?;
+                let mut k = Kernels::compute_modal(r, dt, steps, &ProgressBar::hidden())?;
+                k.pass_s += r.truncation.reduction_s;
+                Ok((k, CacheUse::Off, Some(r.truncation.clone())))
             }
             None => Kernels::for_run(
                 model,
@@ -514,14 +525,26 @@ pub fn sweep(base: &Model, run: &RunOptions, opts: &SweepOptions) -> Result<Swee
     };
     let c = checked.len();
     let done = in_parallel(opts.jobs, 1 + c + mine.len(), |k| -> Result<Done, StudyError> {
-        let t = std::time::Instant::now();
         if k == 0 {
             pass();
             return Ok(Done::Kernels);
         }
         if k <= c {
+            // A modal check waits for the reduction, untimed (the kernel pass's).
+            if let Some(cut) = &modal {
+                let _ = reduced(cut);
+            }
+            let t = std::time::Instant::now();
             let i = checked[k - 1];
-            let r = point_model(model, &opts.varies, &all[i]).and_then(|m| outputs(run_model(&m, &opts_check)));
+            let r = point_model(model, &opts.varies, &all[i]).and_then(|m| match &modal {
+                // Stepped on the modal engine with the sweep's reduction.
+                Some(cut) => {
+                    let prepared = prepare(&m, &opts_check)?;
+                    let r = reduced(cut)?.for_point(&prepared.model, &prepared.system)?;
+                    outputs(modal::run_reduced(&prepared.model, &r, &opts_check))
+                }
+                None => outputs(run_model(&m, &opts_check)),
+            });
             bar.inc(1);
             return r.map(|r| Done::Direct(i, r, t.elapsed().as_secs_f64()));
         }
