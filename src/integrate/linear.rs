@@ -116,6 +116,21 @@ impl Factor {
         self.solves += 1;
         self.solve_time += t0.elapsed();
     }
+
+    /// X ← A⁻¹ X for the columns of X at once: the factor is read once for them all.
+    pub fn solve_columns_in_place(&mut self, x: MatMut<'_, f64>) {
+        let t0 = Instant::now();
+        let k = x.ncols();
+        let mut work = MemBuffer::new(self.symbolic.solve_in_place_scratch::<f64>(k, Par::Seq));
+        LltRef::new(&self.symbolic, &self.values).solve_in_place_with_conj(
+            Conj::No,
+            x,
+            Par::Seq,
+            MemStack::new(&mut work),
+        );
+        self.solves += k;
+        self.solve_time += t0.elapsed();
+    }
 }
 
 #[cfg(test)]

@@ -276,8 +276,13 @@ pub fn run(model: &Model, sys: &System, opts: &RunOptions) -> Result<RunResult, 
         let steps = opts.steps.unwrap_or(model.time.steps);
         limit.saturating_sub(super::memory_estimate(model, steps, Engine::Modal))
     });
+    let t0 = std::time::Instant::now();
     let r = reduce(model, sys, &opts.modal, budget)?;
-    run_reduced(model, &r, opts)
+    // The run's wall time includes its reduction.
+    super::amended(run_reduced(model, &r, opts), |run| {
+        run.stats.total_time = t0.elapsed();
+        run.summary.run.wall_s = run.stats.total_time.as_secs_f64();
+    })
 }
 
 /// Runs a prepared model on the modal engine with its reduction `r` ([`reduce`], or
