@@ -54,7 +54,7 @@ fn rod_report_regenerates_and_matches_its_run() {
     };
     let text: String = md
         .lines()
-        .filter(|l| !l.starts_with("| wall time") && !l.starts_with("| momentum |"))
+        .filter(|l| !l.starts_with("| momentum |"))
         .map(|l| {
             if l.starts_with("| gold ") || l.starts_with("| superposition ") {
                 redact_round_off(l)

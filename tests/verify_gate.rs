@@ -609,18 +609,10 @@ fn written_files_catch_what_the_in_memory_checks_cannot() {
     );
 }
 
-/// The text of a generated file with the measured wall times masked.
-fn masked(text: &str) -> String {
-    text.lines()
-        .map(|l| if l.contains("wall time") { "(wall time)" } else { l })
-        .collect::<Vec<_>>()
-        .join("\n")
-}
-
 /// Goal: every committed case report (`reports/<case>/`: index.md, index.html and
 /// every figure's SVG) and the index `reports/README.md` are what `impactlab report`
-/// makes now, apart from measured wall times; a case report that is missing, or a
-/// file the code no longer makes, fails.
+/// makes now, byte for byte (a page holds no wall time, date or path); a case report
+/// that is missing, or a file the code no longer makes, fails.
 #[test]
 fn case_reports_are_current() {
     use impactlab::report;
@@ -653,7 +645,7 @@ fn case_reports_are_current() {
         for f in files.iter().filter(|f| !f.ends_with(".png")) {
             let a = std::fs::read_to_string(fresh.join(f)).unwrap();
             let b = std::fs::read_to_string(committed.join(f)).unwrap();
-            if masked(&a) != masked(&b) {
+            if a != b {
                 stale.push(format!("{name}/{f}"));
             }
         }

@@ -89,12 +89,7 @@ fn io(path: &Path) -> impl Fn(std::io::Error) -> ReportError + '_ {
 /// Writes the report of a case's outcome into `dir` (created; files replaced). Nothing
 /// is run: the figures and tables come from the outcome.
 pub fn report_case(outcome: &CaseOutcome, dir: &Path) -> Result<CaseReport, ReportError> {
-    let CaseOutcome {
-        case,
-        checks,
-        wall_s: wall,
-        ..
-    } = outcome;
+    let CaseOutcome { case, checks, .. } = outcome;
     let Some((model, run)) = outcome.transient() else {
         return Err(ReportError::Static(case.name.clone()));
     };
@@ -121,7 +116,7 @@ pub fn report_case(outcome: &CaseOutcome, dir: &Path) -> Result<CaseReport, Repo
     } else {
         contact_force_figure(&fig)
     }?;
-    let markdown = markdown(case, model, run, checks, &figures, *wall);
+    let markdown = markdown(case, model, run, checks, &figures);
     std::fs::write(dir.join("index.md"), &markdown).map_err(io(dir))?;
     std::fs::write(dir.join("index.html"), html(&case.name, &markdown)).map_err(io(dir))?;
     let failed = checks.iter().filter(|c| !c.passed).count();
@@ -815,17 +810,10 @@ fn key_instants(run: &RunResult) -> Vec<(&'static str, usize)> {
     v
 }
 
-fn markdown(
-    case: &Case,
-    model: &Model,
-    run: &RunResult,
-    checks: &[CheckResult],
-    figures: &[PathBuf],
-    wall: f64,
-) -> String {
+fn markdown(case: &Case, model: &Model, run: &RunResult, checks: &[CheckResult], figures: &[PathBuf]) -> String {
     let mut m = String::new();
     let _ = writeln!(m, "# {} — {}\n", case.name, case.description);
-    what_was_run(&mut m, model, run, wall);
+    what_was_run(&mut m, model, run);
     summary_table(&mut m, model, run);
     ledger_table(&mut m, model, run);
     checks_table(&mut m, case, checks);
@@ -833,7 +821,9 @@ fn markdown(
     m
 }
 
-fn what_was_run(m: &mut String, model: &Model, run: &RunResult, wall: f64) {
+/// What was run. No wall time, date or path: a committed page is made byte for byte
+/// again on any machine (the run's wall time is in its `summary.json`).
+fn what_was_run(m: &mut String, model: &Model, run: &RunResult) {
     let (s, u) = (&run.summary, &model.units);
     let _ = writeln!(m, "## What was run\n");
     let _ = writeln!(m, "| | |\n|---|---|");
@@ -845,7 +835,6 @@ fn what_was_run(m: &mut String, model: &Model, run: &RunResult, wall: f64) {
         "| DOF | {} active, {} solved, {} inert skipped |",
         s.model.active_dofs, s.model.solved_dofs, s.model.inert_dofs_skipped
     );
-    let _ = writeln!(m, "| wall time | {wall:.2} s (this machine) |");
     let _ = writeln!(m, "| units | {}, {}, {} |\n", u.length, u.force, u.time);
 }
 
