@@ -175,18 +175,7 @@ pub fn run(a: RunArgs) -> Result<u8, Error> {
     if a.steps == Some(0) {
         return Err(Error::Usage("--steps must be positive".into()));
     }
-    if let Some(f) = a.modes_up_to {
-        if a.engine != Engine::Modal {
-            return Err(Error::Usage(
-                "--modes-up-to is the modal engine's cutoff: add --engine modal".into(),
-            ));
-        }
-        if !(f > 0.0 && f.is_finite()) {
-            return Err(Error::Usage(format!(
-                "--modes-up-to must be a positive frequency, not {f}"
-            )));
-        }
-    }
+    modes_up_to(a.modes_up_to, a.engine)?;
     let is_scene = a.deck.extension().is_some_and(|e| e == "toml");
     let (model, opts, scene) = if is_scene {
         if a.all_dofs || a.allow_unknown {
@@ -478,6 +467,22 @@ fn interlaminar_toughness(giic: Option<f64>, model: &impactlab::model::Model) ->
         ))
     })?;
     Ok(Some(g))
+}
+
+/// Checks `--modes-up-to`: the modal engine's cutoff, a positive frequency.
+fn modes_up_to(cutoff: Option<f64>, engine: Engine) -> Result<(), Error> {
+    let Some(f) = cutoff else { return Ok(()) };
+    if engine != Engine::Modal {
+        return Err(Error::Usage(
+            "--modes-up-to is the modal engine's cutoff: add --engine modal".into(),
+        ));
+    }
+    if !(f > 0.0 && f.is_finite()) {
+        return Err(Error::Usage(format!(
+            "--modes-up-to must be a positive frequency, not {f}"
+        )));
+    }
+    Ok(())
 }
 
 /// `impactlab scene`: its K, its deck, what its effects cost.
@@ -1020,18 +1025,7 @@ fn sweep_arguments(a: &SweepArgs) -> Result<SweepArguments, Error> {
         spread: a.checks,
         every: a.check_every.map(|n| n as usize),
     };
-    if let Some(f) = a.modes_up_to {
-        if a.engine != Engine::Modal {
-            return Err(Error::Usage(
-                "--modes-up-to is the modal engine's cutoff: add --engine modal".into(),
-            ));
-        }
-        if !(f > 0.0 && f.is_finite()) {
-            return Err(Error::Usage(format!(
-                "--modes-up-to must be a positive frequency, not {f}"
-            )));
-        }
-    }
+    modes_up_to(a.modes_up_to, a.engine)?;
     if a.engine == Engine::Modal && a.cache.is_some() {
         return Err(Error::Usage(
             "--cache: a modal sweep's kernels come with its reduction, computed afresh and not cached".into(),

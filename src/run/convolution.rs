@@ -181,7 +181,7 @@ impl Kernels {
         )
     }
 
-    /// The kernel pass of a model's modal reduction ([`modal::reduce`]): the same
+    /// The kernel pass of a model's modal reduction ([`super::modal::reduce`]): the same
     /// kernels of the reduced model, the outputs read from its coordinates. With them
     /// every run is the modal engine's run of the same point to round-off, at the cost
     /// of one reduction and a pass on the reduced system.

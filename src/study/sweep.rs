@@ -473,21 +473,12 @@ pub fn sweep(base: &Model, run: &RunOptions, opts: &SweepOptions) -> Result<Swee
     let dt = run.dt.unwrap_or(model.time.dt);
     let steps = run.steps.unwrap_or(model.time.steps);
     // The modal engine's sweep: one reduction at the sweep's cutoff for the kernels,
-    // the checked points stepped on the modal engine at the same cutoff.
+    // the checked points stepped on the modal engine on that reduction.
     let modal = match run.engine {
         Engine::Modal => Some(modal_cutoff(model, &opts.varies, &run.modal)?),
         _ => None,
     };
-    let opts_check = match &modal {
-        Some((f, _)) => RunOptions {
-            modal: ModalParams {
-                cutoff: Some(*f),
-                ..run.modal
-            },
-            ..on(Engine::Modal)
-        },
-        None => on(Engine::Direct),
-    };
+    let opts_check = on(if modal.is_some() { Engine::Modal } else { Engine::Direct });
     bar.set_length((mine.len() + checked.len()) as u64);
 
     enum Done {
