@@ -284,19 +284,19 @@ pub fn lanczos(
                 1.0,
                 faer::Par::Seq,
             );
-            // Purification (below): A = (K − σM)⁻¹M on the block's columns at once.
+            // Purification: Q s carries a component along M's null space, which the
+            // M-inner product does not see: the recurrence's round-off there grows by
+            // about α/β a step (on a curved panel's massless rotations, to 1e240 of
+            // the vector in 550 steps). A = (K − σM)⁻¹M maps it to zero, so each Ritz
+            // vector is A Q s/θ, solved for the block's roots at once (Nour-Omid,
+            // Parlett, Ericsson and Jensen, Math. Comp. 48, 1987); θ goes with the
+            // M-normalisation below.
             for k in 0..width {
                 let mx = m_mul(block.col(k).try_as_col_major().expect("a column of a Mat").as_slice());
                 block.col_mut(k).iter_mut().zip(mx).for_each(|(b, m)| *b = m);
             }
             factor.solve_columns_in_place(block.as_mut());
         }
-        // Purification: Q s carries a component along M's null space, which the
-        // M-inner product does not see: the recurrence's round-off there grows by
-        // about α/β a step (on a curved panel's massless rotations, to 1e240 of the
-        // vector in 550 steps). A maps it to zero, so the Ritz vector is A Q s/θ,
-        // solved for the block's 32 roots at once (Nour-Omid, Parlett, Ericsson and
-        // Jensen, Math. Comp. 48, 1987).
         let mut x: Vec<f64> = block.col(c % 32).iter().copied().collect();
         let mx = m_mul(&x);
         let g = dot(&x, &mx).sqrt();

@@ -145,7 +145,7 @@ fn the_modal_ledger_closes_and_the_rod_is_the_direct_rod() {
 fn run_engine_modal_reports_its_truncation() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("rod");
-    let deck = common::root().join("reference-data/decks/rod.bdf");
+    let deck = common::deck("rod.bdf");
     let run = |flags: &[&str]| {
         let args = [
             &["run", deck.to_str().unwrap(), "--out", out.to_str().unwrap()][..],
@@ -179,7 +179,7 @@ fn run_engine_modal_reports_its_truncation() {
 fn max_memory_holds_the_modal_reduction() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("plate");
-    let deck = common::root().join("reference-data/decks/plate.bdf");
+    let deck = common::deck("plate.bdf");
     let run = |limit: &str, flags: &[&str]| {
         let args = [
             &[
@@ -352,7 +352,7 @@ fn kernels_from_the_modal_reduction_are_the_modal_run() {
 #[test]
 fn sweep_engine_modal_takes_its_kernels_from_the_reduction() {
     let dir = tempfile::tempdir().unwrap();
-    let rod = common::root().join("reference-data/decks/rod.bdf");
+    let rod = deck("rod.bdf");
     let sweep = |out: &str, flags: &[&str]| {
         let out = dir.path().join(out);
         let args = [

@@ -37,7 +37,7 @@ use crate::assembly::System;
 use crate::eigen::{factorise, highest_root_scale, lanczos, orthogonalise, Columns, LanczosParams, Roots};
 use crate::integrate::Scheme;
 use crate::ledger::Ledger;
-use crate::model::{DofLabel, Model};
+use crate::model::{Contact, DofLabel, Model};
 use crate::numerics::dot;
 use faer::linalg::matmul::matmul;
 use nalgebra::{DMatrix, DVector};
@@ -203,56 +203,40 @@ impl Reduction {
             return Err(differs("the solved DOFs"));
         }
         // The structure starts at rest in both (as in a sweep).
-        let moving = |u: &[f64], v: &[f64], dofs: &[usize]| dofs.iter().any(|&i| u[i] != 0.0 || v[i] != 0.0);
-        let coordinates: Vec<usize> = (o..self.model.n()).collect();
-        if moving(&point.u0, &point.v0, &b.structure) || moving(&self.model.u0, &self.model.v0, &coordinates) {
+        let point_moves = b.structure.iter().any(|&i| point.u0[i] != 0.0 || point.v0[i] != 0.0);
+        let own_moves = self.model.u0[o..].iter().chain(&self.model.v0[o..]).any(|&x| x != 0.0);
+        if point_moves || own_moves {
             return Err(differs("the structure's initial state (a point's must be at rest)"));
         }
+        // The point's impactor block (its entries on the impactor's DOFs), then this
+        // reduction's structure block (its coordinates from `o` on).
+        type Entries = [faer::sparse::Triplet<usize, usize, f64>];
         let own_index = |i: usize| b.own.iter().position(|&j| j == i);
-        let block = |entries: &[faer::sparse::Triplet<usize, usize, f64>]| -> Vec<(usize, usize, f64)> {
-            entries
+        let entries = |point: &Entries, reduced: &Entries| -> Vec<(usize, usize, f64)> {
+            let own = point
                 .iter()
-                .filter_map(|t| Some((own_index(t.row)?, own_index(t.col)?, t.val)))
-                .collect()
-        };
-        let structure_part = |entries: &[faer::sparse::Triplet<usize, usize, f64>]| {
-            entries
+                .filter_map(|t| Some((own_index(t.row)?, own_index(t.col)?, t.val)));
+            let structure = reduced
                 .iter()
                 .filter(|t| t.row >= o && t.col >= o)
-                .map(|t| (t.row, t.col, t.val))
-                .collect::<Vec<_>>()
-        };
-        let entries = |own: Vec<(usize, usize, f64)>, structure: Vec<(usize, usize, f64)>| {
-            own.into_iter().chain(structure).collect::<Vec<_>>()
+                .map(|t| (t.row, t.col, t.val));
+            own.chain(structure).collect()
         };
         let system = System::from_entries(
             self.system.n,
-            entries(block(&sys.k), structure_part(&self.system.k)),
-            entries(block(&sys.m), structure_part(&self.system.m)),
+            entries(&sys.k, &self.system.k),
+            entries(&sys.m, &self.system.m),
         );
         let mut model = self.model.clone();
         for (k, &i) in b.own.iter().enumerate() {
             model.u0[k] = point.u0[i];
             model.v0[k] = point.v0[i];
         }
-        let remap = |j: usize| b.map[j].ok_or_else(|| differs("the DOFs the contact acts on"));
-        model.contact = match &point.contact {
-            Some(c) => {
-                let mut c = c.clone();
-                for t in c.driver.iter_mut().chain(c.nonconservative.iter_mut()) {
-                    t.0 = remap(t.0)?;
-                }
-                for l in &mut c.loads {
-                    l.dof = remap(l.dof)?;
-                }
-                c.impactor.dof = remap(c.impactor.dof)?;
-                for d in &mut c.impactor.dofs {
-                    *d = remap(*d)?;
-                }
-                Some(c)
-            }
-            None => None,
-        };
+        model.contact = point
+            .contact
+            .as_ref()
+            .map(|c| on_coordinates(c, &b.map).map_err(|_| differs("the DOFs the contact acts on")))
+            .transpose()?;
         Ok(Reduction {
             model,
             system,
@@ -644,13 +628,9 @@ pub fn reduce_at(
     reduced.rod = None;
     reduced.inert_dofs = 0;
     reduced.frames = Default::default();
-    if let Some(c) = &mut reduced.contact {
-        c.driver.iter_mut().for_each(|t| t.0 = remap(t.0));
-        c.nonconservative.iter_mut().for_each(|t| t.0 = remap(t.0));
-        c.loads.iter_mut().for_each(|l| l.dof = remap(l.dof));
-        c.impactor.dof = remap(c.impactor.dof);
-        c.impactor.dofs.iter_mut().for_each(|d| *d = remap(*d));
-    }
+    reduced.contact = model.contact.as_ref().map(|c| {
+        on_coordinates(c, &map).unwrap_or_else(|j| panic!("the contact acts on coordinates, not on {}", model.dofs[j]))
+    });
     if let Some(x) = &mut reduced.excitation {
         x.terms.iter_mut().for_each(|t| t.dof = remap(t.dof));
     }
@@ -711,6 +691,24 @@ pub fn reduce_at(
         }),
         truncation,
     })
+}
+
+/// `c` with the DOFs it acts on renumbered to the coordinates `map` gives them, or the
+/// first DOF that is no coordinate.
+fn on_coordinates(c: &Contact, map: &[Option<usize>]) -> Result<Contact, usize> {
+    let to = |j: usize| map[j].ok_or(j);
+    let mut c = c.clone();
+    for t in c.driver.iter_mut().chain(c.nonconservative.iter_mut()) {
+        t.0 = to(t.0)?;
+    }
+    for l in &mut c.loads {
+        l.dof = to(l.dof)?;
+    }
+    c.impactor.dof = to(c.impactor.dof)?;
+    for d in &mut c.impactor.dofs {
+        *d = to(*d)?;
+    }
+    Ok(c)
 }
 
 /// The reduced model's static flexibility at coordinate `c` (its structure's block
