@@ -346,9 +346,9 @@ fn kernels_from_the_modal_reduction_are_the_modal_run() {
 /// truncation), checks the first, the deck's and the last point stepped on the modal
 /// engine (within the sweep's 1e-9; the deck's 62.1 in/s is nearest point 1, at
 /// 48 in/s), and its peak forces are the convolution sweep's within the modal
-/// engine's 1e-3 at the default cutoff. Refused: `--modes-up-to`
-/// without `--engine modal`, a kernel cache, a threshold search (exit 2). Model: the
-/// paper's rod, 6 velocities.
+/// engine's 1e-3 at the default cutoff; its figures' footer names the engines. Refused:
+/// `--modes-up-to` without `--engine modal`, a kernel cache, a threshold search (exit
+/// 2). Model: the paper's rod, 6 velocities.
 #[test]
 fn sweep_engine_modal_takes_its_kernels_from_the_reduction() {
     let dir = tempfile::tempdir().unwrap();
@@ -387,6 +387,11 @@ fn sweep_engine_modal_takes_its_kernels_from_the_reduction() {
         "{from}"
     );
     assert!(s["modal"]["modes"].as_u64().unwrap() > 10);
+    let svg = std::fs::read_to_string(modal.join("peak-force.svg")).unwrap();
+    assert!(
+        svg.contains("modal kernels; ringed: also run on the modal engine"),
+        "the figures' footer"
+    );
     let (header, rows) = impactlab::study::sweep::read_csv(&modal.join("sweep.csv")).unwrap();
     let col = |name: &str| header.iter().position(|h| h == name).unwrap();
     let checked: Vec<usize> = rows

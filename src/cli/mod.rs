@@ -1101,6 +1101,7 @@ fn write_sweep(
         deck: model.name.clone(),
         mass,
         units,
+        modal: out.modal.is_some(),
     };
     let figures = sweep::figures(&out.header, &out.rows, &cx, dir)?;
     let checks = if out.modal.is_some() { "modal" } else { "direct" };
@@ -1154,6 +1155,15 @@ pub fn collect(a: CollectArgs) -> Result<u8, Error> {
                 d.display()
             )));
         }
+        if summaries
+            .first()
+            .is_some_and(|f: &serde_json::Value| f["kernels"] != s["kernels"])
+        {
+            return Err(Error::Usage(format!(
+                "{}: another sweep (its kernels come from another engine)",
+                d.display()
+            )));
+        }
         total = n;
         summaries.push(s);
     }
@@ -1192,6 +1202,7 @@ pub fn collect(a: CollectArgs) -> Result<u8, Error> {
         deck: summary["deck"].as_str().unwrap_or("").to_string(),
         mass: summary["impactor_mass"].as_f64().unwrap_or(f64::NAN),
         units: serde_json::from_value(summary["units"].clone()).unwrap_or_default(),
+        modal: summary["kernels"] == "modal",
     };
     sweep::figures(&header, &rows, &cx, &a.out)?;
     sayln(&format!(

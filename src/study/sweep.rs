@@ -780,12 +780,27 @@ pub struct FigureContext {
     pub mass: f64,
     /// Units of the deck: length, force, time.
     pub units: crate::run::UnitSystem,
+    /// The kernels came from the modal reduction, and the ringed points ran on the
+    /// modal engine (`--engine modal`).
+    pub modal: bool,
+}
+
+impl FigureContext {
+    /// The figures' footer: the deck, the engines, and `more`.
+    fn footer(&self, more: &str) -> String {
+        let engines = if self.modal {
+            "convolution engine, modal kernels; ringed: also run on the modal engine"
+        } else {
+            "convolution engine; ringed: also run on the direct engine"
+        };
+        format!("impactlab sweep · {} · {engines}{more}", self.deck)
+    }
 }
 
 /// The figures of a sweep, from its `sweep.csv` alone: peak force, contact duration,
 /// transferred fraction and the largest |strain| of the strain outputs against the impact
 /// energy ½mv², one line per combination of the other varied parameters, the points
-/// also run on the direct engine ringed. Written as `DIR/<name>.png` and `.svg`.
+/// also run on the direct (or modal) engine ringed. Written as `DIR/<name>.png` and `.svg`.
 pub fn figures(
     header: &[String],
     rows: &[Vec<f64>],
@@ -855,10 +870,7 @@ pub fn figures(
             .collect()
     };
     let x_label = format!("impact energy ½mv² [{}]", u.energy);
-    let footer = format!(
-        "impactlab sweep · {} · convolution engine; ringed: also run on the direct engine",
-        cx.deck
-    );
+    let footer = cx.footer("");
     let chart = |title: &str, y: String, lines: Vec<Line>| Chart {
         title: title.into(),
         x_label: x_label.clone(),
@@ -973,11 +985,7 @@ fn grid_maps(
             unit,
             values,
             rings: rings.clone(),
-            footer: format!(
-                "impactlab sweep · {} · convolution engine; ringed: also run on the direct engine; grey: no value; \
-                 white lines at 1/5 … 4/5 of the range",
-                cx.deck
-            ),
+            footer: cx.footer("; grey: no value; white lines at 1/5 … 4/5 of the range"),
         };
         out.extend(heat_map(&map, &dir.join(format!("{}-map", name.replace('_', "-"))))?);
     }
