@@ -7,9 +7,11 @@ mod common;
 
 mod bad_decks;
 mod beams;
+mod bush;
 mod card_rules;
 mod check;
 mod cli;
+mod concentrated_masses;
 mod convolution;
 mod damage;
 mod deck_reader;

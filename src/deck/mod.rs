@@ -407,19 +407,37 @@ fn check_duplicates(b: &Bulk, diags: &mut Diagnostics) {
         b.elements
             .iter()
             .map(|c| (c.eid, &c.at))
-            .chain(b.scalars.iter().map(|c| (c.eid, &c.at))),
+            .chain(b.scalars.iter().map(|c| (c.eid, &c.at)))
+            .chain(b.cbushes.iter().map(|c| (c.eid, &c.at))),
         diags,
     );
-    dup("mass element", b.conm2s.iter().map(|c| (c.eid, &c.at)), diags);
+    dup(
+        "mass element",
+        b.conm1s
+            .iter()
+            .map(|c| (c.eid, &c.at))
+            .chain(b.conm2s.iter().map(|c| (c.eid, &c.at))),
+        diags,
+    );
     // NASTRAN-95 keeps its mass elements apart from the structural ones and runs a
     // deck whose CONM2 shares an element's id (its demonstration problem D12-01-1A
     // does); MSC refuses it. Taken, with a warning.
-    let structural: HashMap<i64, &CardRef> = b.elements.iter().map(|c| (c.eid, &c.at)).collect();
-    for m in &b.conm2s {
-        if let Some(first) = structural.get(&m.eid) {
-            diags.push(m.at.warning(format!(
-                "CONM2 {} has the id of the {} at {}: NASTRAN-95 takes this, MSC does not; the two are kept apart",
-                m.eid, first.name, first.pos
+    let structural: HashMap<i64, &CardRef> = b
+        .elements
+        .iter()
+        .map(|c| (c.eid, &c.at))
+        .chain(b.cbushes.iter().map(|c| (c.eid, &c.at)))
+        .collect();
+    let masses = b
+        .conm1s
+        .iter()
+        .map(|c| (c.eid, &c.at))
+        .chain(b.conm2s.iter().map(|c| (c.eid, &c.at)));
+    for (eid, at) in masses {
+        if let Some(first) = structural.get(&eid) {
+            diags.push(at.warning(format!(
+                "{} {eid} has the id of the {} at {}: NASTRAN-95 takes this, MSC does not; the two are kept apart",
+                at.name, first.name, first.pos
             )));
         }
     }
@@ -430,7 +448,8 @@ fn check_duplicates(b: &Bulk, diags: &mut Diagnostics) {
             .map(|p| (p.pid, &p.at))
             .chain(b.pshells.iter().map(|p| (p.pid, &p.at)))
             .chain(b.pelas.iter().map(|p| (p.pid, &p.at)))
-            .chain(b.pmass.iter().map(|p| (p.pid, &p.at))),
+            .chain(b.pmass.iter().map(|p| (p.pid, &p.at)))
+            .chain(b.pbushes.iter().map(|p| (p.pid, &p.at))),
         diags,
     );
     dup(

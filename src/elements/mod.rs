@@ -15,6 +15,7 @@
 //! kind is a kernel file here and a line there.
 
 pub mod bar;
+pub mod bush;
 pub mod dkmt;
 pub mod drill;
 pub mod general;
@@ -128,6 +129,18 @@ pub enum Resultant {
     Qx,
     /// A shell's transverse shear force Qy.
     Qy,
+    /// A bushing's force along its x axis.
+    Fx,
+    /// A bushing's force along its y axis.
+    Fy,
+    /// A bushing's force along its z axis.
+    Fz,
+    /// A bushing's moment about its x axis.
+    MomentX,
+    /// A bushing's moment about its y axis.
+    MomentY,
+    /// A bushing's moment about its z axis.
+    MomentZ,
 }
 
 impl Resultant {
@@ -136,7 +149,9 @@ impl Resultant {
     pub fn unit(self, f: &str, l: &str) -> String {
         match self {
             Resultant::Axial | Resultant::Shear1 | Resultant::Shear2 => f.to_string(),
+            Resultant::Fx | Resultant::Fy | Resultant::Fz => f.to_string(),
             Resultant::Torque | Resultant::Moment1 | Resultant::Moment2 => format!("{f}*{l}"),
+            Resultant::MomentX | Resultant::MomentY | Resultant::MomentZ => format!("{f}*{l}"),
             Resultant::Nx | Resultant::Ny | Resultant::Nxy | Resultant::Qx | Resultant::Qy => format!("{f}/{l}"),
             Resultant::Mx | Resultant::My | Resultant::Mxy => format!("{f}*{l}/{l}"),
         }
@@ -159,6 +174,12 @@ impl Resultant {
             Resultant::Mxy => "mxy",
             Resultant::Qx => "qx",
             Resultant::Qy => "qy",
+            Resultant::Fx => "fx",
+            Resultant::Fy => "fy",
+            Resultant::Fz => "fz",
+            Resultant::MomentX => "momx",
+            Resultant::MomentY => "momy",
+            Resultant::MomentZ => "momz",
         }
     }
 }
@@ -482,6 +503,10 @@ pub enum Family<'a> {
     Panel(&'a shear::PanelSection),
     /// A general element (GENEL, [`general::General`]): a stiffness over listed DOFs.
     General,
+    /// A concentrated mass matrix at a grid (CONM1, [`mass::MassMatrix`]).
+    MassMatrix,
+    /// A spring of six stiffnesses between grids (CBUSH, [`bush::Bush`]).
+    Spring,
 }
 
 impl<'a> Family<'a> {

@@ -280,7 +280,11 @@ pub(super) fn deck_bulk(w: &mut String, s: &Scene, st: &Strike, tstep: &str) {
         .elements
         .iter()
         .map(|c| c.eid)
+        .chain(b.conm1s.iter().map(|c| c.eid))
         .chain(b.conm2s.iter().map(|c| c.eid))
+        .chain(b.scalars.iter().map(|c| c.eid))
+        .chain(b.genels.iter().map(|c| c.eid))
+        .chain(b.cbushes.iter().map(|c| c.eid))
         .max()
         .unwrap_or(0)
         + 1;

@@ -1,6 +1,6 @@
 //! Element connections: the cards of [`crate::elements::KINDS`] (CROD, CQUAD4, CTRIA3,
 //! CBAR, CBEAM), CONROD, COSMIC's plates read as impactlab's shells, the scalar
-//! springs and masses (CELAS1-4, CMASS1-4), and the concentrated mass CONM2.
+//! springs and masses (CELAS1-4, CMASS1-4), and the concentrated masses CONM1 and CONM2.
 
 use super::*;
 
@@ -90,6 +90,21 @@ pub struct Conm2 {
     /// Offset (X1, X2, X3) of the mass from its grid, in CID (basic when CID = −1: its
     /// location).
     pub offset: [f64; 3],
+    /// The card.
+    pub at: CardRef,
+}
+
+/// CONM1: a 6×6 symmetric mass matrix at a grid.
+#[derive(Debug, Clone)]
+pub struct Conm1 {
+    /// Element id (field 2).
+    pub eid: i64,
+    /// Grid G (field 3).
+    pub g: i64,
+    /// Coordinate system CID whose axes the matrix is written in (0: basic).
+    pub cid: i64,
+    /// The lower triangle by rows: M11; M21, M22; M31 … M33; … M61 … M66.
+    pub lower: [f64; 21],
     /// The card.
     pub at: CardRef,
 }
@@ -559,6 +574,43 @@ pub(super) fn card_conrod(r: &mut Reader, b: &mut Bulk) {
         });
     }
 }
+
+/// CONM1 (`manual/BULK.TXT`, CONM1: "Defines a 6x6 symmetric mass matrix at a
+/// geometric grid point"; CID "for the mass matrix (Integer >= 0)").
+pub(super) fn card_conm1(r: &mut Reader, b: &mut Bulk) {
+    let cid = r.int_or(2, "CID", 0);
+    if cid < 0 {
+        r.fail(2, "CID", "must be 0 (basic) or a coordinate system id");
+    }
+    let mut lower = [0.0; 21];
+    let mut k = 0;
+    for row in 1..=6 {
+        for col in 1..=row {
+            lower[k] = r.real_or(3 + k, CONM1_NAMES[k], 0.0);
+            if row == col {
+                r.non_negative(3 + k, CONM1_NAMES[k], lower[k]);
+            }
+            k += 1;
+        }
+    }
+    let c = Conm1 {
+        eid: r.id(0, "EID"),
+        g: r.id(1, "G"),
+        cid,
+        lower,
+        at: r.at(),
+    };
+    r.extra_fields(24);
+    if r.ok {
+        b.conm1s.push(c);
+    }
+}
+
+/// The names of CONM1's 21 mass fields, in card order.
+const CONM1_NAMES: [&str; 21] = [
+    "M11", "M21", "M22", "M31", "M32", "M33", "M41", "M42", "M43", "M44", "M51", "M52", "M53", "M54", "M55", "M61",
+    "M62", "M63", "M64", "M65", "M66",
+];
 
 /// CONM2.
 pub(super) fn card_conm2(r: &mut Reader, b: &mut Bulk) {

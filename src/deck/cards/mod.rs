@@ -3,6 +3,7 @@
 //! Field index `k` is the card's data field counted from 0 (NASTRAN field 2 of the
 //! first line), running on through continuation lines 8 fields a line.
 
+mod bush;
 mod constraints;
 mod dynamic;
 mod elements;
@@ -12,6 +13,7 @@ mod loads;
 mod materials;
 mod properties;
 
+pub use bush::*;
 pub use constraints::*;
 pub use dynamic::*;
 pub use elements::*;
@@ -132,6 +134,12 @@ pub struct Bulk {
     pub mat8s: Vec<Mat8>,
     /// PCOMP cards.
     pub pcomps: Vec<Pcomp>,
+    /// CONM1 cards.
+    pub conm1s: Vec<Conm1>,
+    /// CBUSH cards.
+    pub cbushes: Vec<Cbush>,
+    /// PBUSH cards.
+    pub pbushes: Vec<Pbush>,
     /// CONM2 cards.
     pub conm2s: Vec<Conm2>,
     /// CELAS1-4 and CMASS1-4 cards.
@@ -481,7 +489,7 @@ impl<'a> Reader<'a> {
 
 /// Cards the reader knows. `PARAM` is accepted and ignored with a warning.
 /// Element cards are those of [`crate::elements::KINDS`] besides these.
-pub const KNOWN_CARDS: [&str; 87] = [
+pub const KNOWN_CARDS: [&str; 90] = [
     "GRID", "GRDSET", "CORD1R", "CORD1C", "CORD1S", "CORD2R", "CORD2C", "CORD2S", "EPOINT", "SPOINT", "PROD", "PBAR",
     "PBARL", "PBEAM", "PBEAML", "PSHELL", "PCOMP", "MAT1", "MAT2", "MAT8", "CONM2", "RBE2", "RBE3", "SPC1", "SPC",
     "SPCADD", "TF", "TSTEP", "NOLIN3", "TIC", "FORCE", "MOMENT", "PLOAD4", "GRAV", "LOAD", "PARAM", "INCLUDE",
@@ -489,7 +497,7 @@ pub const KNOWN_CARDS: [&str; 87] = [
     "PELAS", "PMASS", "CQUAD1", "CQUAD2", "CQDMEM", "CQDMEM1", "CQDMEM2", "CTRIA1", "CTRIA2", "CTRMEM", "PQUAD1",
     "PTRIA1", "PQUAD2", "PTRIA2", "PQDMEM", "PQDMEM1", "PQDMEM2", "PTRMEM", "PCOMP1", "PCOMP2", "CRIGD1", "PSHEAR",
     "GENEL", "SPCD", "PLOAD2", "PLOAD", "TEMPRB", "EIGR", "EIGRL", "DAREA", "DELAY", "TLOAD1", "TLOAD2", "TABLED1",
-    "TABLED2", "TABLED3", "TABLED4", "DLOAD", "LSEQ",
+    "TABLED2", "TABLED3", "TABLED4", "DLOAD", "LSEQ", "CONM1", "CBUSH", "PBUSH",
 ];
 
 /// Every card the reader types: the element cards of [`crate::elements::KINDS`] and
@@ -613,6 +621,9 @@ impl Typer {
                 "MAT2" => card_mat2(&mut r, b),
                 "MAT8" => card_mat8(&mut r, b),
                 "PCOMP" => card_pcomp(&mut r, b),
+                "CONM1" => card_conm1(&mut r, b),
+                "CBUSH" => card_cbush(&mut r, b),
+                "PBUSH" => card_pbush(&mut r, b),
                 "CONM2" => card_conm2(&mut r, b),
                 "SPC1" => card_spc1(&mut r, b),
                 "SPC" => card_spc(&mut r, b),
@@ -811,6 +822,11 @@ impl Bulk {
         }
         for c in self.scalars.iter_mut().filter(|c| !c.spring) {
             if let ScalarValue::Value(m) = &mut c.value {
+                *m *= w;
+            }
+        }
+        for c in &mut self.conm1s {
+            for m in &mut c.lower {
                 *m *= w;
             }
         }

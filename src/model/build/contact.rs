@@ -33,6 +33,18 @@ pub(super) fn build_contact(
             _ => None,
         })
         .sum::<f64>();
+    if let Some(e) = refs
+        .elements
+        .iter()
+        .find(|e| e.grids == [imp.label.point] && matches!(e.kernel.family(), Family::MassMatrix))
+    {
+        cx.err(imp.at.error(format!(
+            "the impactor grid {} carries CONM1 {}: an impactor's mass is a CONM2's (the same along each \
+             axis, which the contact's energy partition needs)",
+            imp.label.point, e.eid
+        )));
+        return None;
+    }
     if mass <= 0.0 {
         // After other errors the mass may be missing only because its grid is (an
         // unresolved location): that error says why.

@@ -42,7 +42,7 @@ impl Elements<'_, '_> {
     }
 }
 
-/// The element cards and CONM2s with their materials and sections resolved, then
+/// The element cards, CONM1s and CONM2s with their materials and sections resolved, then
 /// the drilling supports their grids need.
 pub(super) fn build_elements<'a, 's>(
     cx: &mut Ctx,
@@ -62,6 +62,8 @@ pub(super) fn build_elements<'a, 's>(
     };
     connected(cx, deck, num, geo, &mut out);
     point_masses(cx, deck, num, geo, &mut out);
+    mass_matrices(cx, deck, num, geo, &mut out);
+    bushings(cx, deck, num, geo, &mut out);
     scalar_elements(cx, deck, num, geo, rigid, &mut out);
     general_elements(cx, deck, num, geo, rigid, &mut out);
     if out.survey.is_none() {
@@ -465,6 +467,49 @@ pub(super) fn point_masses(cx: &mut Ctx, deck: &Deck, num: &Numbering, geo: &Geo
                 turn: vec![Placement::turn_of(&axes, &geo.frame(m.g), offset.into())],
                 points: vec![x],
             })
+        };
+        out.push(
+            match placed {
+                Some(p) => e.placed(p),
+                None => e,
+            },
+            |g| num.grid_dofs(g),
+        );
+    }
+}
+
+/// CONM1s: the card's matrix at its grid, turned from system CID's axes at the grid
+/// (basic for CID 0) to the grid's displacement frame.
+pub(super) fn mass_matrices(cx: &mut Ctx, deck: &Deck, num: &Numbering, geo: &Geometry, out: &mut Elements) {
+    use crate::elements::mass::MassMatrix;
+    for m in &deck.bulk.conm1s {
+        if !num.grids.contains_key(&m.g) {
+            cx.err(m.at.error(format!("CONM1 {} references grid {}, which does not exist", m.eid, m.g)));
+            continue;
+        }
+        let Some(&x) = geo.positions.get(&m.g) else { continue };
+        let e = Element::new(
+            m.eid,
+            vec![m.g],
+            vec![num.grid_dofs(m.g)],
+            MassMatrix::from_lower(x, &m.lower),
+        );
+        let placed = match m.cid {
+            0 => frames_only(&[m.g], geo, &[x]),
+            cid => match geo.systems.get(&cid).and_then(|s| s.frame_at(&Vector3::from(x))) {
+                Some(axes) => Some(Placement {
+                    turn: vec![Placement::turn_of(&axes, &geo.frame(m.g), [0.0; 3])],
+                    points: vec![x],
+                }),
+                None => {
+                    cx.err(m.at.error(format!(
+                        "CONM1 {}: CID = {cid} names a coordinate system that no CORD card defines (or one \
+                         undefined at its grid)",
+                        m.eid
+                    )));
+                    continue;
+                }
+            },
         };
         out.push(
             match placed {

@@ -16,6 +16,7 @@ use nalgebra::{Matrix2, Matrix3, Vector3};
 use rustc_hash::{FxHashMap, FxHashSet};
 use std::collections::{BTreeMap, HashMap};
 
+mod bush;
 mod contact;
 mod dofs;
 mod elements;
@@ -23,6 +24,7 @@ mod excitation;
 mod outputs;
 mod properties;
 
+use bush::*;
 use contact::*;
 use dofs::*;
 use elements::*;
