@@ -834,6 +834,9 @@ pub fn compare(a: CompareArgs) -> Result<u8, Error> {
     if a.run.join("history.csv").exists() {
         return compare_histories(&a);
     }
+    use impactlab::verify::element_tables::{
+        compare_elements, read_element_tables_file, read_run_elements, render_elements,
+    };
     let theirs = read_printed_file(&a.nastran)?;
     let ours = read_run(&a.run)?;
     let comparisons = compare(&ours, &theirs);
@@ -847,7 +850,22 @@ pub fn compare(a: CompareArgs) -> Result<u8, Error> {
         )));
     }
     say(&render(&comparisons, a.top));
-    let worst = comparisons.iter().map(|c| c.worst()).fold(0.0, f64::max);
+    let mut worst = comparisons.iter().map(|c| c.worst()).fold(0.0, f64::max);
+    let printed_elements = read_element_tables_file(&a.nastran)?;
+    if !printed_elements.subcases.is_empty() {
+        let run_elements = read_run_elements(&a.run)?;
+        if run_elements.subcases.is_empty() {
+            sayln(&format!(
+                "element results: {} prints some and {} holds none (elements.csv: ask for them with STRESS or FORCE)",
+                a.nastran.display(),
+                a.run.display()
+            ));
+        } else {
+            let c = compare_elements(&run_elements, &printed_elements);
+            say(&render_elements(&c, a.top));
+            worst = worst.max(c.worst());
+        }
+    }
     Ok(verdict(worst, a.tolerance))
 }
 

@@ -28,7 +28,9 @@
 //! Recovery at ends A and B: the strains and stresses (σ = Eε) at the section's
 //! points C, D, E, F; and the resultants: axial force N = EA u′, torque T = GJ θx′,
 //! bending moments M1 = E(I1 v″ + I12 w″) (plane 1) and M2 = E(I12 v″ + I2 w″)
-//! (plane 2), shears V1 = M1′, V2 = M2′.
+//! (plane 2), shears V1 = −M1′, V2 = −M2′: NASTRAN's signs, V1 = (M1A − M1B)/L (its
+//! printed bar forces: NASTRAN-95's demonstration problem D01-14-1A, a bar of unit
+//! length with M1 = 1 at A and 0 at B, prints SHEAR PLANE 1 = +1).
 
 use super::{BadShape, Cell, Kernel, LocalMatrix, Measure, Recovered};
 use nalgebra::{DMatrix, SMatrix, SVector};
@@ -263,7 +265,8 @@ impl Bar {
             d * strain_rows(self.length, 0.0) * u,
             d * strain_rows(self.length, 1.0) * u,
         );
-        let (v1, v2) = ((b[2] - a[2]) / self.length, (b[3] - a[3]) / self.length);
+        // NASTRAN's shear: V = (M_A − M_B)/L, the moment's fall from end A to B.
+        let (v1, v2) = ((a[2] - b[2]) / self.length, (a[3] - b[3]) / self.length);
         let mut out = [0.0; 12];
         for (end, r) in [a, b].iter().enumerate() {
             out[6 * end..6 * end + 6].copy_from_slice(&[r[0], r[1], v1, v2, r[2], r[3]]);

@@ -330,7 +330,8 @@ fn grid_row(first: Option<String>, d: &crate::run::statics::GridDisplacement) ->
 }
 
 /// A static solution's files: `displacements.csv` (every grid's T1..R3 in its
-/// displacement frame, the frame's system in `cd`) and `summary.json`. A deck of
+/// displacement frame, the frame's system in `cd`), `summary.json`, and
+/// `elements.csv` when case control asks for element results. A deck of
 /// several SUBCASEs writes every one's: `displacements.csv` with its `subcase` first,
 /// and `summary.json` with each one's summary under `subcases`.
 pub fn static_files(solutions: &[crate::run::statics::StaticSolution]) -> Vec<(&'static str, Vec<u8>)> {
@@ -381,10 +382,40 @@ pub fn static_files(solutions: &[crate::run::statics::StaticSolution]) -> Vec<(&
     };
     let mut summary = serde_json::to_vec_pretty(&json).expect("plain data");
     summary.push(b'\n');
-    vec![
+    let mut files = vec![
         ("displacements.csv", w.into_inner().expect("writing to memory")),
         ("summary.json", summary),
-    ]
+    ];
+    if solutions.iter().any(|s| !s.elements.is_empty()) {
+        files.push(("elements.csv", element_rows(solutions)));
+    }
+    files
+}
+
+/// `elements.csv` of a static solution: a row a recovered value (its element, card,
+/// the value's name without the element's id, as the transient histories name it,
+/// and the value), `subcase` first when the deck has several.
+fn element_rows(solutions: &[crate::run::statics::StaticSolution]) -> Vec<u8> {
+    let several = solutions.len() > 1;
+    let mut w = csv::Writer::from_writer(Vec::new());
+    let header = ["element", "card", "quantity", "value"];
+    if several {
+        w.write_record(std::iter::once("subcase").chain(header))
+    } else {
+        w.write_record(header)
+    }
+    .expect("writing to memory");
+    for s in solutions {
+        let subcase = s.subcase.filter(|_| several).map(|n| n.to_string());
+        for e in &s.elements {
+            for (name, v) in e.names.iter().zip(&e.values) {
+                let row = [e.eid.to_string(), e.card.to_string(), name.clone(), format!("{v:e}")];
+                w.write_record(subcase.iter().cloned().chain(row))
+                    .expect("writing to memory");
+            }
+        }
+    }
+    w.into_inner().expect("writing to memory")
 }
 
 /// A normal modes solution's files: `modes.csv` (each root: eigenvalue, radians and

@@ -17,6 +17,7 @@ use crate::integrate::SolveError;
 use crate::model::loads::{resultant, static_load_of};
 use crate::model::{build_structure, ModelError, Structure};
 use serde::Serialize;
+use std::collections::HashMap;
 
 /// A static (or normal modes) solution that could not be had.
 #[derive(Debug, thiserror::Error)]
@@ -77,6 +78,104 @@ pub struct StaticSolution {
     pub largest_translation: (f64, i64),
     /// Every grid, in id order.
     pub grids: Vec<GridDisplacement>,
+    /// The element results case control's STRESS, STRAIN and FORCE ask for, in the
+    /// order asked (written to `elements.csv`).
+    #[serde(skip)]
+    pub elements: Vec<ElementValues>,
+}
+
+/// One element's recovered values in a static solution (see
+/// [`crate::elements::Kernel::recover`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ElementValues {
+    /// The element.
+    pub eid: i64,
+    /// Its card.
+    pub card: &'static str,
+    /// Each value's name without the element's id: `stress_a_c`, `force_axial`.
+    pub names: Vec<String>,
+    /// The values.
+    pub values: Vec<f64>,
+}
+
+/// The elements STRESS (or ELSTRESS), STRAIN and FORCE (or ELFORCE) ask for, each with
+/// what is asked of it: STRESS first, then STRAIN, then FORCE, each in element order
+/// for ALL and in the set's order otherwise; elements that recover nothing of it (a
+/// mass) left out. A structure under a thermal load gets none, with a warning: the
+/// kernels recover from displacements alone, and a thermal strain's free expansion
+/// would be counted as stress.
+fn element_requests(
+    deck: &Deck,
+    s: &Structure,
+    warnings: &mut Vec<Diagnostic>,
+) -> Vec<(usize, crate::elements::Output)> {
+    use crate::deck::case::OutputSet;
+    use crate::elements::Output;
+    let case = &deck.case;
+    let mut out = Vec::new();
+    for (key, what) in [
+        ("STRESS", Output::Stress),
+        ("STRAIN", Output::Strain),
+        ("FORCE", Output::Force),
+    ] {
+        let req = match key {
+            "FORCE" => case.outputs.get("FORCE").or(case.outputs.get("ELFORCE")),
+            _ => case.outputs.get(key),
+        };
+        let Some(req) = req else { continue };
+        if let Some(t) = &case.temperature {
+            warnings.push(Diagnostic::warning(
+                Some(req.pos.clone()),
+                format!(
+                    "{key} output is not written under a thermal load (TEMPERATURE(LOAD) = {}): impactlab recovers \
+                     element results from displacements alone, without the free thermal expansion; ignored",
+                    t.id
+                ),
+            ));
+            continue;
+        }
+        let members = match &req.set {
+            OutputSet::None => continue,
+            OutputSet::All => None,
+            OutputSet::Set(id) => case.sets.get(id).map(|d| &d.members).filter(|m| !m.is_empty()),
+        };
+        let recovers = |i: &usize| !s.elements[*i].kernel.recovered(what).is_empty();
+        match members {
+            None => out.extend((0..s.elements.len()).filter(recovers).map(|i| (i, what))),
+            Some(m) => {
+                let at: HashMap<i64, usize> = s.elements.iter().enumerate().map(|(i, e)| (e.eid, i)).collect();
+                out.extend(
+                    m.iter()
+                        .filter_map(|e| at.get(e).copied())
+                        .filter(recovers)
+                        .map(|i| (i, what)),
+                );
+            }
+        }
+    }
+    out
+}
+
+/// The requested elements' values at the displacements `u` of the solved DOFs.
+fn element_values(s: &Structure, requests: &[(usize, crate::elements::Output)], u: &[f64]) -> Vec<ElementValues> {
+    requests
+        .iter()
+        .map(|&(i, what)| {
+            let e = &s.elements[i];
+            let id = format!("_{}", e.eid);
+            ElementValues {
+                eid: e.eid,
+                card: e.kernel.card(),
+                names: e
+                    .kernel
+                    .recovered(what)
+                    .iter()
+                    .map(|r| r.name(e.eid).replacen(&id, "", 1))
+                    .collect(),
+                values: e.recover(u, what),
+            }
+        })
+        .collect()
 }
 
 impl StaticSolution {
@@ -152,12 +251,19 @@ fn solve_loads(
     cases: &[(Option<i64>, Option<&crate::deck::case::Selection>)],
 ) -> Result<(Vec<StaticSolution>, Vec<Diagnostic>), StaticError> {
     let (s, mut warnings) = build_structure(deck)?;
-    for (key, r) in deck.case.outputs.iter().filter(|(k, _)| k.as_str() != "DISP") {
+    let requests = element_requests(deck, &s, &mut warnings);
+    let element_keys = ["DISP", "STRESS", "STRAIN", "FORCE", "ELFORCE"];
+    for (key, r) in deck
+        .case
+        .outputs
+        .iter()
+        .filter(|(k, _)| !element_keys.contains(&k.as_str()))
+    {
         warnings.push(Diagnostic::warning(
             Some(r.pos.clone()),
             format!(
                 "{key} output of a static solution is not written (displacements.csv holds every grid's \
-                 displacement); ignored"
+                 displacement, elements.csv the element results asked for); ignored"
             ),
         ));
     }
@@ -271,6 +377,7 @@ fn solve_loads(
             residual,
             largest_translation,
             grids,
+            elements: element_values(&s, &requests, &u),
         });
     }
     Ok((out, warnings))

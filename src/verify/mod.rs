@@ -1,6 +1,7 @@
 //! The verification layer: cases (`verification/*.toml`, [`case`]), the check kinds
 //! that judge one run ([`checks`]), gold files ([`gold`]), the audit of two runs
-//! ([`audit`]), and the verdicts as a table, JSON and JUnit.
+//! ([`audit`]), NASTRAN's printed output ([`printed`], [`element_tables`]), and the
+//! verdicts as a table, JSON and JUnit.
 //!
 //! A case names a model (a deck, or the generated plate on an n×n mesh), how to run
 //! it, and a list of checks. Each check yields one [`CheckResult`]: the value it
@@ -14,6 +15,7 @@ pub mod case;
 pub mod checks;
 pub mod external;
 pub mod gold;
+pub mod element_tables;
 pub mod printed;
 
 pub use case::{

@@ -126,7 +126,7 @@ pub fn read_printed(text: &str) -> Printed {
 
 /// A printed output's text (bytes that are not UTF-8 replaced: NASTRAN-95's pages are
 /// ASCII).
-fn read_text(path: &Path) -> Result<String, PrintedError> {
+pub(super) fn read_text(path: &Path) -> Result<String, PrintedError> {
     let bytes = std::fs::read(path).map_err(|source| PrintedError::Io {
         path: path.display().to_string(),
         source,
@@ -232,7 +232,7 @@ pub struct RunRoot {
 }
 
 /// A run's CSV file opened for reading, with its headers and its name for messages.
-fn open_csv(path: &Path) -> Result<(csv::Reader<std::fs::File>, csv::StringRecord, String), PrintedError> {
+pub(super) fn open_csv(path: &Path) -> Result<(csv::Reader<std::fs::File>, csv::StringRecord, String), PrintedError> {
     let name = path.display().to_string();
     let mut r = csv::Reader::from_path(path).map_err(|e| PrintedError::Io {
         path: name.clone(),
@@ -243,7 +243,7 @@ fn open_csv(path: &Path) -> Result<(csv::Reader<std::fs::File>, csv::StringRecor
 }
 
 /// What is wrong at a line of a file.
-fn format_error(path: &str, line: usize, message: String) -> PrintedError {
+pub(super) fn format_error(path: &str, line: usize, message: String) -> PrintedError {
     PrintedError::Format {
         path: path.to_string(),
         line,
