@@ -34,4 +34,5 @@ mod slurm;
 mod stability;
 mod stages;
 mod statics;
+mod thermal;
 mod verify_gate;

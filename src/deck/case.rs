@@ -115,12 +115,13 @@ pub struct CaseControl {
     /// Output requests of quantities impactlab does not write (SPCFORCES, OLOAD,
     /// ESE ...), with where each is asked for.
     pub not_written: Vec<(String, Pos)>,
-    /// A static deck's SUBCASEs, in deck order, each with the LOAD, SPC and LABEL it
-    /// selects (its own, or those above the first SUBCASE); empty when it has none.
-    /// The deck's `load`, `spc` and `label` are then the first one's.
+    /// A static deck's SUBCASEs, in deck order, each with the LOAD, SPC, TEMPERATURE
+    /// and LABEL it selects (its own, or those above the first SUBCASE); empty when it
+    /// has none. The deck's `load`, `spc`, `temperature` and `label` are then the
+    /// first one's.
     pub subcases: Vec<Subcase>,
     /// The temperature set of a thermal load: TEMPERATURE(LOAD) (or TEMP(LOAD),
-    /// TEMPERATURE(BOTH)) = n, above the SUBCASEs, applied in each.
+    /// TEMPERATURE(BOTH)) = n.
     pub temperature: Option<Selection>,
     /// The `SUBSTRUCTURE PHASEn` line that opens an automated substructuring run's
     /// Substructure Control Deck (to ENDSUBS), with where it is.
@@ -138,6 +139,8 @@ pub struct Subcase {
     pub load: Option<Selection>,
     /// SPC selection.
     pub spc: Option<Selection>,
+    /// TEMPERATURE(LOAD) selection (its own, or the one above the first SUBCASE).
+    pub temperature: Option<Selection>,
     /// Where its SUBCASE line is.
     pub pos: Pos,
 }
@@ -418,7 +421,7 @@ pub fn parse_case(lines: &[SrcLine], subcases: Subcases, ids_left: &mut usize, d
     let mut cc = CaseControl::default();
     // A static deck's selections above its first SUBCASE, which every SUBCASE starts
     // from, and the SUBCASE being read.
-    let mut above: Option<(String, Option<Selection>, Option<Selection>)> = None;
+    let mut above: Option<Above> = None;
     let mut open: Option<(i64, Pos)> = None;
     let mut i = 0;
     while i < lines.len() {
@@ -500,7 +503,7 @@ pub fn parse_case(lines: &[SrcLine], subcases: Subcases, ids_left: &mut usize, d
                 set_definition(&mut cc, n, &rhs, &src, pos, ids_left, diags);
             }
             [k] if SELECTORS.contains(k) => selector(&mut cc, k, &rhs, pos, &l.text, diags),
-            ["TEMPERATURE"] | ["TEMP"] => temperature(&mut cc, &key_full, &rhs, open.is_some(), pos, &l.text, diags),
+            ["TEMPERATURE"] | ["TEMP"] => temperature(&mut cc, &key_full, &rhs, pos, &l.text, diags),
             [k] if output_key(k).is_some() => {
                 let key = output_key(k).expect("matched");
                 output_request(&mut cc, key, &rhs, pos, &l.text, diags)
@@ -529,18 +532,27 @@ pub fn parse_case(lines: &[SrcLine], subcases: Subcases, ids_left: &mut usize, d
     }
     close_subcase(&mut cc, &mut open);
     if let Some(first) = cc.subcases.first() {
-        (cc.label, cc.load, cc.spc) = (first.label.clone(), first.load.clone(), first.spc.clone());
+        (cc.label, cc.load, cc.spc, cc.temperature) = (
+            first.label.clone(),
+            first.load.clone(),
+            first.spc.clone(),
+            first.temperature.clone(),
+        );
     }
     check_output_sets(&mut cc, diags);
     cc
 }
+
+/// A static deck's selections above its first SUBCASE: LABEL, LOAD, SPC and
+/// TEMPERATURE(LOAD).
+type Above = (String, Option<Selection>, Option<Selection>, Option<Selection>);
 
 /// A SUBCASE line, taken as `subcases` says: in a static deck it ends the SUBCASE
 /// being read (`open`) and starts the next from the selections `above` the first.
 fn subcase(
     subcases: Subcases,
     cc: &mut CaseControl,
-    above: &mut Option<(String, Option<Selection>, Option<Selection>)>,
+    above: &mut Option<Above>,
     open: &mut Option<(i64, Pos)>,
     pos: Pos,
     text: &str,
@@ -567,10 +579,17 @@ fn subcase(
                 diags.push(refuse(format!("SUBCASE {id} is given twice (first at {})", s.pos)));
                 return;
             }
-            let (label, load, spc) = above
-                .get_or_insert_with(|| (cc.label.clone(), cc.load.clone(), cc.spc.clone()))
+            let (label, load, spc, temperature) = above
+                .get_or_insert_with(|| {
+                    (
+                        cc.label.clone(),
+                        cc.load.clone(),
+                        cc.spc.clone(),
+                        cc.temperature.clone(),
+                    )
+                })
                 .clone();
-            (cc.label, cc.load, cc.spc) = (label, load, spc);
+            (cc.label, cc.load, cc.spc, cc.temperature) = (label, load, spc, temperature);
             *open = Some((id, pos));
         }
     }
@@ -584,6 +603,7 @@ fn close_subcase(cc: &mut CaseControl, open: &mut Option<(i64, Pos)>) {
             label: cc.label.clone(),
             load: cc.load.clone(),
             spc: cc.spc.clone(),
+            temperature: cc.temperature.clone(),
             pos,
         });
     }
@@ -659,15 +679,7 @@ fn selector(cc: &mut CaseControl, k: &str, rhs: &str, pos: Pos, text: &str, diag
 /// TEMPERATURE(MATERIAL) selects temperatures for temperature-dependent materials,
 /// which impactlab does not take (MATTi tables are refused where a deck has
 /// temperatures): it is ignored, with a warning.
-fn temperature(
-    cc: &mut CaseControl,
-    key: &str,
-    rhs: &str,
-    in_subcase: bool,
-    pos: Pos,
-    text: &str,
-    diags: &mut Diagnostics,
-) {
+fn temperature(cc: &mut CaseControl, key: &str, rhs: &str, pos: Pos, text: &str, diags: &mut Diagnostics) {
     let describer: String = key
         .split_once('(')
         .map(|(_, d)| d.trim_end_matches(')').trim().to_string())
@@ -676,15 +688,6 @@ fn temperature(
     // As NASTRAN-95 reads a describer, by its first four characters (its own
     // demonstration deck d01161a writes MATERIALS).
     match describer.get(..4).unwrap_or(&describer) {
-        "LOAD" | "BOTH" if in_subcase => diags.push(
-            Diagnostic::error(
-                Some(pos),
-                "a thermal load inside a SUBCASE: impactlab applies one temperature set in every SUBCASE; \
-                 select it above the first SUBCASE",
-            )
-            .card(card)
-            .quote(text),
-        ),
         "LOAD" | "BOTH" => match parse_int(rhs) {
             Some(id) => cc.temperature = Some(Selection { id, pos }),
             None => diags.push(

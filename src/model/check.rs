@@ -13,12 +13,12 @@ use std::collections::BTreeMap;
 /// Bulk data cards that do not change a structure's stiffness, mass or constraints:
 /// loads, temperatures, eigenvalue and solution controls, tables, design and output
 /// cards. A deck's card of these kinds is listed as ignored, not as unsupported.
-pub const NON_STRUCTURAL: [&str; 68] = [
+pub const NON_STRUCTURAL: [&str; 65] = [
     // Static and dynamic loads.
     "FORCE", "FORCE1", "FORCE2", "MOMENT", "MOMENT1", "MOMENT2", "PLOAD1", "PLOADX1", "GRAV", "LOAD", "ACCEL", "ACCEL1",
     "RFORCE", "DAREA", "DLOAD", "TLOAD1", "TLOAD2", "RLOAD1", "RLOAD2", "LSEQ", "DELAY", "DPHASE",
-    "SLOAD", // Temperatures.
-    "TEMP", "TEMPD", "TEMPP1", "TEMPAX", // Eigenvalue and solution controls.
+    "SLOAD",  // Temperatures.
+    "TEMPAX", // Eigenvalue and solution controls.
     "EIGC", "EIGB", "FREQ", "FREQ1", "FREQ2", "FREQ3", "FREQ4", "FREQ5", "TSTEPNL", "NLPARM", "NLPCI",
     "TABDMP1", // Tables.
     "TABLED1", "TABLED2", "TABLED3", "TABLED4", "TABLEM1", "TABLEM2", "TABLEM3", "TABLEM4", "TABLES1", "TABLEST",
@@ -32,8 +32,9 @@ pub const NON_STRUCTURAL: [&str; 68] = [
 /// temperature field, and are ignored where it has none.
 const TEMPERATURE_TABLES: [&str; 5] = ["MATT1", "MATT2", "MATT3", "MATT4", "MATT5"];
 
-/// The cards impactlab does not type that give a temperature field (TEMPRB it types).
-const TEMPERATURES: [&str; 4] = ["TEMP", "TEMPD", "TEMPP1", "TEMPAX"];
+/// The cards impactlab does not type that give a temperature field (TEMPRB, TEMPP1,
+/// TEMP and TEMPD it types).
+const TEMPERATURES: [&str; 1] = ["TEMPAX"];
 
 /// Cards of one name the deck holds and impactlab does not take.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -158,8 +159,10 @@ pub fn check(deck: &Deck) -> CheckReport {
     let b = &deck.bulk;
     let mut unsupported: BTreeMap<String, CardCount> = BTreeMap::new();
     let mut ignored: BTreeMap<String, CardCount> = BTreeMap::new();
-    let has_temperatures =
-        !b.temprbs.is_empty() || deck.unknown.iter().any(|u| TEMPERATURES.contains(&u.name.as_str()));
+    let has_temperatures = !b.temprbs.is_empty()
+        || !b.tempp1s.is_empty()
+        || !b.temperatures.is_empty()
+        || deck.unknown.iter().any(|u| TEMPERATURES.contains(&u.name.as_str()));
     for u in &deck.unknown {
         let name = u.name.as_str();
         let to = if NON_STRUCTURAL.contains(&name) || (TEMPERATURE_TABLES.contains(&name) && !has_temperatures) {
@@ -203,9 +206,16 @@ pub fn check(deck: &Deck) -> CheckReport {
         .chain(b.gravs.iter().map(|l| &l.at))
         .chain(b.spcds.iter().map(|l| &l.at))
         .chain(b.temprbs.iter().map(|l| &l.at))
+        .chain(b.tempp1s.iter().map(|l| &l.at))
+        .chain(b.temperatures.iter().map(|l| &l.at))
         .chain(b.load_combinations.iter().map(|l| &l.at))
         .chain(b.eigrs.iter().map(|l| &l.at));
+    // A card of several entries (SPCD, TEMP, TEMPP1's elements) counts once.
+    let mut last = None;
     for at in loads {
+        if last.replace(&at.pos) == Some(&at.pos) {
+            continue;
+        }
         ignored
             .entry(at.name.to_string())
             .or_insert_with(|| CardCount {

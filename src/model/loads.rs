@@ -18,8 +18,9 @@
 //!   acceleration a = A·(N1, N2, N3) in rectangular system CID (NASTRAN's gravity: a
 //!   mass is pushed along a).
 //! - LOAD: S·Σ Sᵢ·(set Lᵢ); a set it names may not itself be a LOAD.
-//! - TEMPERATURE(LOAD) = n: the bars' end loads for their TEMPRB temperatures of set
-//!   n, in every SUBCASE (the bar kernel's thermal load, turned to the grids).
+//! - TEMPERATURE(LOAD) = n (above the SUBCASEs or in one): the thermal load of
+//!   temperature set n: each rod, bar and shell loaded by its free thermal
+//!   deformation (see `thermal_load`).
 
 use super::{ModelError, Structure};
 use crate::deck::cards::CardRef;
@@ -35,19 +36,24 @@ pub type GridLoads = BTreeMap<i64, [f64; 6]>;
 
 /// The static load the case control's LOAD selects (see the module's doc).
 pub fn static_load(deck: &Deck, s: &Structure) -> Result<GridLoads, ModelError> {
-    static_load_of(deck, s, deck.case.load.as_ref())
+    static_load_of(deck, s, deck.case.load.as_ref(), deck.case.temperature.as_ref())
 }
 
-/// [`static_load`] of the LOAD selection `sel` (a SUBCASE's), with the thermal load
-/// of the deck's TEMPERATURE(LOAD) selection when it has one.
-pub fn static_load_of(deck: &Deck, s: &Structure, sel: Option<&Selection>) -> Result<GridLoads, ModelError> {
+/// [`static_load`] of the LOAD selection `sel` and the TEMPERATURE(LOAD) selection
+/// `temperature` (a SUBCASE's).
+pub fn static_load_of(
+    deck: &Deck,
+    s: &Structure,
+    sel: Option<&Selection>,
+    temperature: Option<&Selection>,
+) -> Result<GridLoads, ModelError> {
     let mut errors = Vec::new();
     let mut out = GridLoads::new();
-    if let Some(t) = &deck.case.temperature {
+    if let Some(t) = temperature {
         thermal_load(deck, s, t, &mut out, &mut errors);
     }
     let Some(sel) = sel else {
-        if deck.case.temperature.is_none() {
+        if temperature.is_none() {
             errors.push(Diagnostic::error(
                 deck.case.at.clone(),
                 "a static deck needs a load: LOAD = n in case control, selecting FORCE, MOMENT, PLOAD4, GRAV or \
@@ -106,20 +112,38 @@ pub fn static_load_of(deck: &Deck, s: &Structure, sel: Option<&Selection>) -> Re
     }
 }
 
-/// The thermal load of temperature set `sel`: each CBAR's and CBEAM's end loads for
-/// its TEMPRB ([`crate::elements::bar::Bar::thermal_load`]), turned to its grids'
-/// DOFs (Λᵀ f, offsets included). As NASTRAN requires (TEMPRB remark 4), every element
-/// needs a temperature in the set; impactlab takes them from TEMPRB, on bars, only (a
-/// deck's TEMP, TEMPD and TEMPP1 cards are refused as unknown), so another element
-/// kind in a thermally loaded structure is an error. The bars' thermal strains are
-/// free strains: a static solution's ½uᵀKu is then not the energy they store.
+/// The thermal load of temperature set `sel`, element by element, turned to the
+/// grids' DOFs (Λᵀ f, offsets included). Every element that expands needs a
+/// temperature in the set (`manual/BULK.TXT`, TEMP remark 3: "all elements must have a
+/// temperature field defined either directly on a TEMPP1, TEMPP2, TEMPP3, or TEMPRB
+/// card or indirectly as the average of the connected grid point temperatures
+/// defined on the TEMP or TEMPD cards"):
+/// - a bar (CBAR, CBEAM): its TEMPRB, or its grids' temperatures at its ends, no
+///   gradient; its kernel's thermal load ([`crate::elements::bar::Bar::thermal_load`]);
+/// - a shell: its TEMPP1 (T, T′), or the average of its grids' temperatures, no
+///   gradient; a rod: the average of its grids' temperatures. Their load is K uₜ, uₜ
+///   the free thermal deformation in the kernel's axes: the expansion α(T − TREF)·(x
+///   − x̄) (MID1's α and TREF) and, for a shell, the curvature κ = α₂T′ (MID2's α),
+///   w = −κ(x² + y²)/2, θx = ∂w/∂y, θy = −∂w/∂x, about its centroid x̄. Both are
+///   fields the kernels reproduce exactly (constant strain and curvature: the patch
+///   tests), so K uₜ is the consistent load ∫Bᵀ C εₜ dA, and a structure free to
+///   deform so is left stress-free;
+/// - springs, masses, general elements and bushings carry no thermal strain.
+///
+/// Refused with the reason: a shear panel, a laminate (PCOMP) or an anisotropic
+/// material (MAT2) in a thermally loaded structure; a grid's temperature given twice.
+/// The thermal strains are free strains: a static solution's ½uᵀKu is then not the
+/// energy they store.
 fn thermal_load(deck: &Deck, s: &Structure, sel: &Selection, out: &mut GridLoads, errors: &mut Vec<Diagnostic>) {
-    use crate::elements::bar::Bar;
+    use crate::elements::bar::{Bar, BarTemperature};
     let b = &deck.bulk;
-    let mut of: BTreeMap<i64, &crate::deck::cards::Temprb> = BTreeMap::new();
+    let selection = |message: String| {
+        Diagnostic::error(Some(sel.pos.clone()), format!("(LOAD) = {}: {message}", sel.id)).card("TEMPERATURE")
+    };
+    let mut bar_cards: BTreeMap<i64, &crate::deck::cards::Temprb> = BTreeMap::new();
     for t in b.temprbs.iter().filter(|t| t.sid == sel.id) {
         for &e in &t.eids {
-            if let Some(first) = of.insert(e, t) {
+            if let Some(first) = bar_cards.insert(e, t) {
                 errors.push(t.at.error(format!(
                     "TEMPRB {} gives element {e} a second temperature (the first at {})",
                     t.sid, first.at.pos
@@ -127,50 +151,206 @@ fn thermal_load(deck: &Deck, s: &Structure, sel: &Selection, out: &mut GridLoads
             }
         }
     }
-    let selection = |message: String| {
-        Diagnostic::error(Some(sel.pos.clone()), format!("(LOAD) = {}: {message}", sel.id)).card("TEMPERATURE")
-    };
-    if of.is_empty() {
+    let mut plate_cards: BTreeMap<i64, &crate::deck::cards::Tempp1> = BTreeMap::new();
+    for t in b.tempp1s.iter().filter(|t| t.sid == sel.id) {
+        if let Some(first) = plate_cards.insert(t.eid, t) {
+            errors.push(t.at.error(format!(
+                "TEMPP1 {} gives element {} a second temperature (the first at {})",
+                t.sid, t.eid, first.at.pos
+            )));
+        }
+    }
+    let mut grid_t: HashMap<i64, f64> = HashMap::new();
+    let mut default = None;
+    for t in b.temperatures.iter().filter(|t| t.sid == sel.id) {
+        let twice = match t.grid {
+            Some(g) => grid_t.insert(g, t.t).is_some(),
+            None => default.replace(t.t).is_some(),
+        };
+        if twice {
+            errors.push(t.at.error(match t.grid {
+                Some(g) => format!("{} {} gives grid {g} a second temperature", t.at.name, t.sid),
+                None => format!("{} {} is given twice", t.at.name, t.sid),
+            }));
+        }
+    }
+    if bar_cards.is_empty() && plate_cards.is_empty() && grid_t.is_empty() && default.is_none() {
         errors.push(selection(format!(
-            "set {} has no TEMPRB card (impactlab takes thermal loads on bars, from TEMPRB)",
+            "set {} has no TEMPRB, TEMPP1, TEMP or TEMPD card",
             sel.id
         )));
         return;
     }
-    if let Some(c) = b.elements.iter().find(|c| !matches!(c.kind.card, "CBAR" | "CBEAM")) {
-        errors.push(selection(format!(
-            "{} {} needs a temperature, and impactlab takes thermal loads on CBAR and CBEAM (TEMPRB) only",
-            c.kind.card, c.eid
-        )));
-        return;
-    }
-    let mut bars = std::collections::BTreeSet::new();
+    let grid_temperature = |g: &i64| grid_t.get(g).copied().or(default);
+    let connections: HashMap<i64, &crate::deck::cards::Connection> = b.elements.iter().map(|c| (c.eid, c)).collect();
+    let mut taken = std::collections::BTreeSet::new();
     for e in &s.elements {
-        let Some(bar) = e.kind::<Bar>() else { continue };
-        bars.insert(e.eid);
-        let Some(t) = of.get(&e.eid) else {
-            errors.push(selection(format!(
-                "{} {} has no TEMPRB in set {}: every element needs a temperature (TEMPRB remark 4)",
-                bar.card, e.eid, sel.id
-            )));
+        let family = e.kernel.family();
+        let expands = matches!(
+            family,
+            Family::Rod { .. } | Family::Shell(_) | Family::Beam { .. } | Family::Panel(_)
+        );
+        if !expands {
             continue;
+        }
+        let card = e.kernel.card();
+        let no_temperature = |what: &str| {
+            selection(format!(
+                "{card} {} has no temperature in set {} ({what}): every element needs one (TEMP remark 3)",
+                e.eid, sel.id
+            ))
         };
-        let f = bar.thermal_load(&t.temperature);
+        let average = || -> Option<f64> {
+            let t: Option<Vec<f64>> = e.grids.iter().map(grid_temperature).collect();
+            t.map(|t| t.iter().sum::<f64>() / t.len() as f64)
+        };
+        let local: Vec<f64> = match family {
+            Family::Beam { .. } => {
+                let bar = e.kind::<Bar>().expect("a beam's kernel is a Bar");
+                let t = match bar_cards.get(&e.eid) {
+                    Some(t) => t.temperature,
+                    None => match (grid_temperature(&e.grids[0]), grid_temperature(&e.grids[1])) {
+                        (Some(ta), Some(tb)) => BarTemperature {
+                            average: [ta, tb],
+                            gradient: [[0.0; 2]; 2],
+                        },
+                        _ => {
+                            errors.push(no_temperature("no TEMPRB, and no TEMP or TEMPD for its grids"));
+                            continue;
+                        }
+                    },
+                };
+                taken.insert(e.eid);
+                bar.thermal_load(&t).to_vec()
+            }
+            Family::Panel(_) => {
+                errors.push(selection(format!(
+                    "{card} {} is a shear panel in a thermally loaded structure: impactlab takes thermal loads on \
+                     rods, bars and shells",
+                    e.eid
+                )));
+                continue;
+            }
+            _ => {
+                let shell = matches!(family, Family::Shell(_));
+                let (t, gradient) = match plate_cards.get(&e.eid).filter(|_| shell) {
+                    Some(p) => (p.average, p.gradient),
+                    None => match average() {
+                        Some(t) => (t, 0.0),
+                        None if shell => {
+                            errors.push(no_temperature("no TEMPP1, and no TEMP or TEMPD for its grids"));
+                            continue;
+                        }
+                        None => {
+                            errors.push(no_temperature("no TEMP or TEMPD for its grids"));
+                            continue;
+                        }
+                    },
+                };
+                let Some(c) = connections.get(&e.eid) else { continue };
+                let Some((alpha, tref, alpha_bending)) = expansion(b, c, errors) else {
+                    continue;
+                };
+                taken.insert(e.eid);
+                free_deformation_load(e, alpha * (t - tref), alpha_bending * gradient)
+            }
+        };
         for (k, g) in e.grids.iter().enumerate() {
-            let at_grid = e.load_at_grid(k, nalgebra::Vector6::from_column_slice(&f[6 * k..6 * k + 6]));
+            let at_grid = e.load_at_grid(k, nalgebra::Vector6::from_column_slice(&local[6 * k..6 * k + 6]));
             let slot = out.entry(*g).or_insert([0.0; 6]);
             for (v, a) in slot.iter_mut().zip(at_grid.iter()) {
                 *v += a;
             }
         }
     }
-    for (eid, t) in of.iter().filter(|(e, _)| !bars.contains(e)) {
+    for (eid, t) in bar_cards.iter().filter(|(e, _)| !taken.contains(e)) {
         errors.push(t.at.error(format!(
-            "TEMPRB {} names element {eid}, which is not a CBAR or CBEAM of the deck (impactlab takes thermal loads \
-             on bars only)",
+            "TEMPRB {} names element {eid}, which is not a CBAR or CBEAM of the deck",
             t.sid
         )));
     }
+    for (eid, t) in plate_cards.iter().filter(|(e, _)| !taken.contains(e)) {
+        errors.push(t.at.error(format!(
+            "TEMPP1 {} names element {eid}, which is not a shell of the deck",
+            t.sid
+        )));
+    }
+}
+
+/// A rod's or shell's thermal expansion: (α, TREF) of its (membrane) MAT1 and the α of
+/// a shell's bending MAT1 (MID2); refused for a laminate or a MAT2.
+fn expansion(
+    b: &crate::deck::cards::Bulk,
+    c: &crate::deck::cards::Connection,
+    errors: &mut Vec<Diagnostic>,
+) -> Option<(f64, f64, f64)> {
+    let mat1 = |mid: i64| b.mat1s.iter().find(|m| m.mid == mid);
+    let refuse = |errors: &mut Vec<Diagnostic>, why: &str| {
+        errors.push(c.at.error(format!(
+            "{} {} {why}: impactlab takes thermal loads on isotropic materials (MAT1)",
+            c.kind.card, c.eid
+        )));
+    };
+    if matches!(c.kind.card, "CROD" | "CONROD" | "CTUBE") {
+        let p = c.rod.as_deref().or_else(|| b.prods.iter().find(|p| p.pid == c.pid))?;
+        let m = mat1(p.mid)?;
+        return Some((m.alpha, m.tref, 0.0));
+    }
+    let pshell = match c.property_card {
+        Some(card) => b
+            .cosmic_plates
+            .iter()
+            .find(|(k, p)| *k == card && p.pid == c.pid)
+            .map(|(_, p)| p),
+        None => b.pshells.iter().find(|p| p.pid == c.pid),
+    };
+    let Some(p) = pshell else {
+        refuse(errors, "is a laminate (PCOMP) in a thermally loaded structure");
+        return None;
+    };
+    let (membrane, bending) = (p.mid1.map(mat1), p.mid2.map(mat1));
+    if matches!(membrane, Some(None)) || matches!(bending, Some(None)) {
+        refuse(
+            errors,
+            "has an anisotropic material (MAT2) in a thermally loaded structure",
+        );
+        return None;
+    }
+    let (membrane, bending) = (membrane.flatten(), bending.flatten());
+    let tref = membrane.or(bending).map_or(0.0, |m| m.tref);
+    Some((
+        membrane.map_or(0.0, |m| m.alpha),
+        tref,
+        bending.map_or(0.0, |m| m.alpha),
+    ))
+}
+
+/// K uₜ in the kernel's axes, uₜ the free thermal deformation of `strain` (an
+/// isotropic expansion) and, in a shell's plane, `curvature` (see [`thermal_load`]).
+fn free_deformation_load(e: &crate::elements::Element, strain: f64, curvature: f64) -> Vec<f64> {
+    let points = e.kernel.points();
+    let n = points.len();
+    let centre: [f64; 3] = std::array::from_fn(|i| points.iter().map(|p| p[i]).sum::<f64>() / n as f64);
+    let mut u = vec![0.0; 6 * n];
+    for (k, p) in points.iter().enumerate() {
+        let d: [f64; 3] = std::array::from_fn(|i| p[i] - centre[i]);
+        for i in 0..3 {
+            u[6 * k + i] = strain * d[i];
+        }
+        let (x, y) = (d[0], d[1]);
+        u[6 * k + 2] += -curvature * (x * x + y * y) / 2.0;
+        u[6 * k + 3] = -curvature * y;
+        u[6 * k + 4] = curvature * x;
+    }
+    let mut f = vec![0.0; 6 * n];
+    for l in e.kernel.stiffness() {
+        for (a, &(ga, ca)) in l.at.iter().enumerate() {
+            for (bb, &(gb, cb)) in l.at.iter().enumerate() {
+                f[6 * ga + ca] += l.values[(a, bb)] * u[6 * gb + cb];
+            }
+        }
+    }
+    f
 }
 
 /// What applying a load set needs.

@@ -101,12 +101,13 @@ pub struct ElementValues {
 /// The elements STRESS (or ELSTRESS), STRAIN and FORCE (or ELFORCE) ask for, each with
 /// what is asked of it: STRESS first, then STRAIN, then FORCE, each in element order
 /// for ALL and in the set's order otherwise; elements that recover nothing of it (a
-/// mass) left out. A structure under a thermal load gets none, with a warning: the
-/// kernels recover from displacements alone, and a thermal strain's free expansion
-/// would be counted as stress.
+/// mass) left out. A load case with a thermal load (`thermal`, the first such) gets
+/// none, with a warning: the kernels recover from displacements alone, and a thermal
+/// strain's free expansion would be counted as stress.
 fn element_requests(
     deck: &Deck,
     s: &Structure,
+    thermal: Option<&crate::deck::case::Selection>,
     warnings: &mut Vec<Diagnostic>,
 ) -> Vec<(usize, crate::elements::Output)> {
     use crate::deck::case::OutputSet;
@@ -123,16 +124,16 @@ fn element_requests(
             _ => case.outputs.get(key),
         };
         let Some(req) = req else { continue };
-        if let Some(t) = &case.temperature {
+        if let Some(t) = thermal {
             warnings.push(Diagnostic::warning(
                 Some(req.pos.clone()),
                 format!(
                     "{key} output is not written under a thermal load (TEMPERATURE(LOAD) = {}): impactlab recovers \
-                     element results from displacements alone, without the free thermal expansion; ignored",
+                     element results from displacements alone, without the free thermal expansion; ignored where \
+                     it applies",
                     t.id
                 ),
             ));
-            continue;
         }
         let members = match &req.set {
             OutputSet::None => continue,
@@ -199,7 +200,7 @@ impl StaticSolution {
 /// LOAD selection (its first SUBCASE's): the solution and the model builder's
 /// warnings.
 pub fn solve(deck: &Deck) -> Result<(StaticSolution, Vec<Diagnostic>), StaticError> {
-    let (mut all, warnings) = solve_loads(deck, &[(None, deck.case.load.as_ref())])?;
+    let (mut all, warnings) = solve_loads(deck, &[(None, deck.case.load.as_ref(), deck.case.temperature.as_ref())])?;
     Ok((all.remove(0), warnings))
 }
 
@@ -221,7 +222,10 @@ pub fn solve_subcases(deck: &Deck) -> Result<(Vec<StaticSolution>, Vec<Diagnosti
         }
     }
     if let [_] = sets.as_slice() {
-        let cases: Vec<_> = subcases.iter().map(|s| (Some(s.id), s.load.as_ref())).collect();
+        let cases: Vec<_> = subcases
+            .iter()
+            .map(|s| (Some(s.id), s.load.as_ref(), s.temperature.as_ref()))
+            .collect();
         return solve_loads(deck, &cases);
     }
     // One structure (numbering, factorisation) a constraint set.
@@ -231,7 +235,12 @@ pub fn solve_subcases(deck: &Deck) -> Result<(Vec<StaticSolution>, Vec<Diagnosti
         let mut d = deck.clone();
         d.case.spc = group[0].spc.clone();
         d.case.subcases = group;
-        let cases: Vec<_> = d.case.subcases.iter().map(|s| (Some(s.id), s.load.as_ref())).collect();
+        let cases: Vec<_> = d
+            .case
+            .subcases
+            .iter()
+            .map(|s| (Some(s.id), s.load.as_ref(), s.temperature.as_ref()))
+            .collect();
         let (solutions, w) = solve_loads(&d, &cases)?;
         all.extend(solutions);
         for w in w {
@@ -245,13 +254,19 @@ pub fn solve_subcases(deck: &Deck) -> Result<(Vec<StaticSolution>, Vec<Diagnosti
     Ok((all, warnings))
 }
 
-/// The solutions of the structure for each (SUBCASE, LOAD selection) of `cases`.
-fn solve_loads(
-    deck: &Deck,
-    cases: &[(Option<i64>, Option<&crate::deck::case::Selection>)],
-) -> Result<(Vec<StaticSolution>, Vec<Diagnostic>), StaticError> {
+/// A load case: its SUBCASE, LOAD and TEMPERATURE(LOAD) selections.
+type Case<'a> = (
+    Option<i64>,
+    Option<&'a crate::deck::case::Selection>,
+    Option<&'a crate::deck::case::Selection>,
+);
+
+/// The solutions of the structure for each (SUBCASE, LOAD selection, TEMPERATURE(LOAD)
+/// selection) of `cases`.
+fn solve_loads(deck: &Deck, cases: &[Case]) -> Result<(Vec<StaticSolution>, Vec<Diagnostic>), StaticError> {
     let (s, mut warnings) = build_structure(deck)?;
-    let requests = element_requests(deck, &s, &mut warnings);
+    let thermal = cases.iter().find_map(|c| c.2);
+    let requests = element_requests(deck, &s, thermal, &mut warnings);
     let element_keys = ["DISP", "STRESS", "STRAIN", "FORCE", "ELFORCE"];
     for (key, r) in deck
         .case
@@ -271,8 +286,8 @@ fn solve_loads(
     let index: std::collections::HashMap<_, _> = s.dofs.iter().enumerate().map(|(i, l)| (*l, i)).collect();
     let mut loads = Vec::new();
     let mut forces = Vec::new();
-    for (_, sel) in cases {
-        let l = static_load_of(deck, &s, *sel)?;
+    for (_, sel, temperature) in cases {
+        let l = static_load_of(deck, &s, *sel, *temperature)?;
         let mut f = vec![0.0; n];
         for (g, l) in &l {
             // A load on a dependent grid is carried by the grids it follows.
@@ -298,7 +313,7 @@ fn solve_loads(
     }
     let prescribed: Vec<Vec<f64>> = cases
         .iter()
-        .map(|(_, sel)| {
+        .map(|(_, sel, _)| {
             let mut u = vec![0.0; n];
             for &(i, d) in &s.prescribed {
                 u[i] = d;
@@ -333,7 +348,7 @@ fn solve_loads(
     let labels: Vec<_> = kept.iter().map(|&i| s.dofs[i]).collect();
     let mut factor = Factor::new(&sys.k_csc, &labels)?;
     let mut out = Vec::new();
-    for ((((subcase, sel), f), loads), ue) in cases.iter().zip(&forces).zip(&loads).zip(&prescribed) {
+    for ((((subcase, sel, temperature), f), loads), ue) in cases.iter().zip(&forces).zip(&loads).zip(&prescribed) {
         // K_kk u_k = f_k − K_ke u_e, u_e the prescribed values.
         let mut kue = vec![0.0; n];
         if ue.iter().any(|&v| v != 0.0) {
@@ -377,7 +392,12 @@ fn solve_loads(
             residual,
             largest_translation,
             grids,
-            elements: element_values(&s, &requests, &u),
+            // Under a thermal load the kernels' recovery would count the free expansion
+            // as strain: nothing is written (element_requests warned).
+            elements: match temperature {
+                Some(_) => Vec::new(),
+                None => element_values(&s, &requests, &u),
+            },
         });
     }
     Ok((out, warnings))

@@ -1,4 +1,5 @@
-//! Static loads: FORCE, MOMENT, PLOAD4, GRAV and their LOAD combinations.
+//! Static loads: FORCE, MOMENT, PLOAD4, GRAV and their LOAD combinations, and the
+//! temperature fields of a thermal load (TEMPRB, TEMPP1, TEMP, TEMPD).
 
 use super::*;
 
@@ -77,6 +78,36 @@ pub struct Temprb {
     /// first continuation's point temperatures serve NASTRAN's stress recovery only,
     /// which a static run of impactlab does not write: they are read and not used.
     pub temperature: crate::elements::bar::BarTemperature,
+    /// The card.
+    pub at: CardRef,
+}
+
+/// TEMPP1: a plate's temperature, its average T over the cross-section and its
+/// effective linear gradient T′ (BULK.TXT, TEMPP1); one entry an element.
+#[derive(Debug, Clone)]
+pub struct Tempp1 {
+    /// Temperature set id (field 2).
+    pub sid: i64,
+    /// The element.
+    pub eid: i64,
+    /// T (field 4).
+    pub average: f64,
+    /// T′ (field 5; "not used for membranes").
+    pub gradient: f64,
+    /// The card.
+    pub at: CardRef,
+}
+
+/// TEMP (a grid's temperature; one entry a grid) or TEMPD (the default of every grid
+/// a TEMP does not give; `grid` is `None`).
+#[derive(Debug, Clone)]
+pub struct GridTemperature {
+    /// Temperature set id.
+    pub sid: i64,
+    /// The grid; `None` for a TEMPD default.
+    pub grid: Option<i64>,
+    /// The temperature.
+    pub t: f64,
     /// The card.
     pub at: CardRef,
 }
@@ -344,6 +375,63 @@ pub(super) fn card_temprb(r: &mut Reader, b: &mut Bulk) {
     };
     if r.ok {
         b.temprbs.push(t);
+    }
+}
+
+/// TEMPP1: `SID EID1 T T′ T1 T2`, then continuations of further EIDs (THRU allowed).
+/// T1 and T2 serve NASTRAN's stress recovery only, which impactlab does not make under
+/// a thermal load: read and not used.
+pub(super) fn card_tempp1(r: &mut Reader, b: &mut Bulk) {
+    let sid = r.id(0, "SID");
+    let mut eids = vec![r.id(1, "EID1")];
+    let average = r.real(2, "T");
+    let gradient = r.real_or(3, "T'", 0.0);
+    r.real_or(4, "T1", 0.0);
+    r.real_or(5, "T2", 0.0);
+    r.extra_fields_in(6, 8);
+    eids.extend(r.id_list(8, "EIDn"));
+    if r.ok {
+        let at = r.at();
+        b.tempp1s.extend(eids.into_iter().map(|eid| Tempp1 {
+            sid,
+            eid,
+            average,
+            gradient,
+            at: at.clone(),
+        }));
+    }
+}
+
+/// TEMP (`SID G1 T1 G2 T2 G3 T3`, "from one to three grid point temperatures") and
+/// TEMPD (`SID1 T1 … SID4 T4`, "from one to four default temperatures").
+pub(super) fn card_temp(r: &mut Reader, b: &mut Bulk) {
+    let default = r.card.name == "TEMPD";
+    let mut read = Vec::new();
+    let (pairs, last) = if default {
+        (vec![0, 2, 4, 6], 8)
+    } else {
+        (vec![1, 3, 5], 7)
+    };
+    let sid = if default { 0 } else { r.id(0, "SID") };
+    for k in pairs {
+        if r.text(k).is_empty() && r.text(k + 1).is_empty() {
+            continue;
+        }
+        read.push(match default {
+            true => (r.id(k, "SID"), None, r.real(k + 1, "T")),
+            false => (sid, Some(r.id(k, "G")), r.real(k + 1, "T")),
+        });
+    }
+    r.extra_fields(last);
+    if r.ok {
+        let at = r.at();
+        b.temperatures
+            .extend(read.into_iter().map(|(sid, grid, t)| GridTemperature {
+                sid,
+                grid,
+                t,
+                at: at.clone(),
+            }));
     }
 }
 

@@ -188,6 +188,10 @@ pub struct Bulk {
     pub gravs: Vec<Grav>,
     /// TEMPRB cards.
     pub temprbs: Vec<Temprb>,
+    /// TEMPP1 cards, one entry an element.
+    pub tempp1s: Vec<Tempp1>,
+    /// TEMP and TEMPD cards, one entry a temperature.
+    pub temperatures: Vec<GridTemperature>,
     /// LOAD cards.
     pub load_combinations: Vec<LoadCombination>,
     /// PARAM WTMASS when the deck sets it, with its card: every mass of the deck
@@ -489,7 +493,7 @@ impl<'a> Reader<'a> {
 
 /// Cards the reader knows. `PARAM` is accepted and ignored with a warning.
 /// Element cards are those of [`crate::elements::KINDS`] besides these.
-pub const KNOWN_CARDS: [&str; 90] = [
+pub const KNOWN_CARDS: [&str; 93] = [
     "GRID", "GRDSET", "CORD1R", "CORD1C", "CORD1S", "CORD2R", "CORD2C", "CORD2S", "EPOINT", "SPOINT", "PROD", "PBAR",
     "PBARL", "PBEAM", "PBEAML", "PSHELL", "PCOMP", "MAT1", "MAT2", "MAT8", "CONM2", "RBE2", "RBE3", "SPC1", "SPC",
     "SPCADD", "TF", "TSTEP", "NOLIN3", "TIC", "FORCE", "MOMENT", "PLOAD4", "GRAV", "LOAD", "PARAM", "INCLUDE",
@@ -497,7 +501,7 @@ pub const KNOWN_CARDS: [&str; 90] = [
     "PELAS", "PMASS", "CQUAD1", "CQUAD2", "CQDMEM", "CQDMEM1", "CQDMEM2", "CTRIA1", "CTRIA2", "CTRMEM", "PQUAD1",
     "PTRIA1", "PQUAD2", "PTRIA2", "PQDMEM", "PQDMEM1", "PQDMEM2", "PTRMEM", "PCOMP1", "PCOMP2", "CRIGD1", "PSHEAR",
     "GENEL", "SPCD", "PLOAD2", "PLOAD", "TEMPRB", "EIGR", "EIGRL", "DAREA", "DELAY", "TLOAD1", "TLOAD2", "TABLED1",
-    "TABLED2", "TABLED3", "TABLED4", "DLOAD", "LSEQ", "CONM1", "CBUSH", "PBUSH",
+    "TABLED2", "TABLED3", "TABLED4", "DLOAD", "LSEQ", "CONM1", "CBUSH", "PBUSH", "TEMPP1", "TEMP", "TEMPD",
 ];
 
 /// Every card the reader types: the element cards of [`crate::elements::KINDS`] and
@@ -623,6 +627,8 @@ impl Typer {
                 "PCOMP" => card_pcomp(&mut r, b),
                 "CONM1" => card_conm1(&mut r, b),
                 "CBUSH" => card_cbush(&mut r, b),
+                "TEMPP1" => card_tempp1(&mut r, b),
+                "TEMP" | "TEMPD" => card_temp(&mut r, b),
                 "PBUSH" => card_pbush(&mut r, b),
                 "CONM2" => card_conm2(&mut r, b),
                 "SPC1" => card_spc1(&mut r, b),

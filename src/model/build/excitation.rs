@@ -138,7 +138,7 @@ pub(super) fn excitation(cx: &mut Ctx, deck: &Deck, num: &Numbering) -> Option<E
                 id: l.lid,
                 pos: l.at.pos.clone(),
             };
-            let loads = match crate::model::loads::static_load_of(deck, s, Some(&sel)) {
+            let loads = match crate::model::loads::static_load_of(deck, s, Some(&sel), None) {
                 Ok(loads) => loads,
                 Err(e) => {
                     e.diagnostics.into_iter().for_each(|d| cx.err(d));
