@@ -1,6 +1,6 @@
 //! NASTRAN's printed output (the `.f06` of MSC, the `.out` of NASTRAN-95) read for
 //! its displacements, its real eigenvalues and its transient displacement histories
-//! (SORT2), and an impactlab run compared with it.
+//! (SORT1 or SORT2), and an impactlab run compared with it.
 //!
 //! The page format: every page starts with a line whose first column is `1`, then
 //! the title, the subtitle and a line (first column `0`) that ends with `SUBCASE n`;
@@ -357,27 +357,37 @@ pub fn read_run(dir: &Path) -> Result<Printed, PrintedError> {
     Ok(out)
 }
 
-/// A transient solution's displacement histories as NASTRAN prints them in SORT2:
-/// per (point, component: 1..6 for a grid, 0 for a scalar point), its (time, value)
-/// rows in the order printed.
+/// A transient solution's displacement histories as NASTRAN prints them, in SORT2
+/// or SORT1: per (point, component: 1..6 for a grid, 0 for a scalar point), its
+/// (time, value) rows in the order printed.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Histories {
     /// (point, component) → (time, value).
     pub series: BTreeMap<(i64, u8), Vec<(f64, f64)>>,
 }
 
-/// Reads the real displacement histories of a transient solution's printed output
-/// (SORT2: `POINT-ID = n` above the table's title, then `TIME TYPE T1 …` and a row a
-/// printed time, `time G` and six components or `time S` and one value). SUBCASEs
-/// are not told apart: a transient deck has one.
+/// Reads the real displacement histories of a transient solution's printed output,
+/// in either sort. SORT2: `POINT-ID = n` above the table's title, then `TIME TYPE T1
+/// …` and a row a printed time, `time G` and six components or `time S` and one
+/// value. SORT1: `TIME = t` above the table's title, then `POINT ID. TYPE T1 …` and a
+/// row a point, `id G` and six components or `id S` and the values of up to six
+/// scalar points from `id` on, as a static table's. SUBCASEs are not told apart: a
+/// transient deck has one.
 pub fn read_transient(text: &str) -> Histories {
     let mut out = Histories::default();
     let mut point = None;
+    let mut time = None;
     let mut in_table = false;
+    // The table's rows are points at one time (SORT1) rather than times of one point.
+    let mut by_point = false;
     for line in text.lines() {
         let trimmed = line.trim_end();
         if let Some((_, n)) = trimmed.split_once("POINT-ID =") {
             point = n.trim().parse::<i64>().ok();
+            continue;
+        }
+        if let Some((_, t)) = trimmed.split_once("TIME =") {
+            time = t.split_whitespace().next().and_then(|w| w.parse::<f64>().ok());
             continue;
         }
         if trimmed.contains(TITLE) {
@@ -388,28 +398,38 @@ pub fn read_transient(text: &str) -> Histories {
             continue;
         }
         let words: Vec<&str> = trimmed.split_whitespace().collect();
-        if words.starts_with(&["TIME", "TYPE"]) {
+        if words.starts_with(&["TIME", "TYPE"]) || words.starts_with(&["POINT", "ID.", "TYPE"]) {
+            by_point = words[0] == "POINT";
             continue;
         }
         let row = (|| {
-            let time = words.first()?.parse::<f64>().ok()?;
+            let key = words.first()?.parse::<f64>().ok()?;
             let values: Vec<f64> = words[2..]
                 .iter()
                 .map(|w| w.parse::<f64>().ok())
                 .collect::<Option<_>>()?;
-            Some((time, *words.get(1)?, values))
+            Some((key, *words.get(1)?, values))
         })();
-        let (Some(p), Some((time, kind, values))) = (point, row) else {
-            in_table = false;
-            continue;
+        let (p, t, kind, values) = match (by_point, row, point, time) {
+            (false, Some((t, kind, values)), Some(p), _) => (p, t, kind, values),
+            (true, Some((p, kind, values)), _, Some(t)) if p.fract() == 0.0 => (p as i64, t, kind, values),
+            _ => {
+                in_table = false;
+                continue;
+            }
         };
         match (kind, values.len()) {
             ("G", 6) => {
                 for (c, v) in values.iter().enumerate() {
-                    out.series.entry((p, c as u8 + 1)).or_default().push((time, *v));
+                    out.series.entry((p, c as u8 + 1)).or_default().push((t, *v));
                 }
             }
-            ("S", 1) => out.series.entry((p, 0)).or_default().push((time, values[0])),
+            ("S", 1) => out.series.entry((p, 0)).or_default().push((t, values[0])),
+            ("S", 2..=6) if by_point => {
+                for (k, v) in values.iter().enumerate() {
+                    out.series.entry((p + k as i64, 0)).or_default().push((t, *v));
+                }
+            }
             _ => in_table = false,
         }
     }
@@ -423,8 +443,9 @@ pub fn read_transient_file(path: &Path) -> Result<Histories, PrintedError> {
         return Err(PrintedError::Format {
             path: path.display().to_string(),
             line: 0,
-            message: "has no SORT2 displacement history (POINT-ID = n, D I S P L A C E M E N T   V E C T O R, \
-                      TIME TYPE T1 ...)"
+            message: "has no displacement history (SORT2: POINT-ID = n, D I S P L A C E M E N T   V E C T O R, \
+                      TIME TYPE T1 ...; SORT1: TIME = t, D I S P L A C E M E N T   V E C T O R, POINT ID. TYPE T1 \
+                      ...)"
                 .into(),
         });
     }
@@ -892,6 +913,62 @@ mod tests {
         assert_eq!(c.missing.len(), 11);
         assert_eq!(c.differences[0].0, 5e-5);
         assert!((c.worst() - (7.8e-5 - 7.791522e-5) / 7.243613e-4).abs() < 1e-15);
+    }
+
+    /// Goal: a transient SORT1 output (a table a time, `TIME = t` above it, as MSC
+    /// prints one; a page break inside a time's table; scalar points several a row)
+    /// is read into the same histories as the SORT2 print of the same values.
+    #[test]
+    fn a_transient_sort1_output_reads_as_its_sort2_print() {
+        let sort1 = "\
+0                                                                                                            SUBCASE 1
+      TIME =   0.000000E+00
+                                             D I S P L A C E M E N T   V E C T O R
+ 
+      POINT ID.   TYPE          T1             T2             T3             R1             R2             R3
+             1      G      0.0            0.0            0.0            0.0            0.0            0.0
+           101      S      1.0            2.0
+1     PAGE 7
+      TIME =   0.000000E+00
+                                             D I S P L A C E M E N T   V E C T O R
+      POINT ID.   TYPE          T1             T2             T3             R1             R2             R3
+             2      G      0.0            0.0            0.0            0.0            0.0            0.0
+0                                                                                                            SUBCASE 1
+      TIME =   5.000000E-05
+                                             D I S P L A C E M E N T   V E C T O R
+      POINT ID.   TYPE          T1             T2             T3             R1             R2             R3
+             1      G      0.0            7.791522E-05   0.0            0.0            0.0            0.0
+             2      G      1.0            0.0            0.0            0.0            0.0           -2.5E-01
+           101      S      3.0            4.0
+";
+        let sort2 = "\
+      POINT-ID =       1
+                                             D I S P L A C E M E N T   V E C T O R
+       TIME       TYPE          T1             T2             T3             R1             R2             R3
+   0.0              G      0.0            0.0            0.0            0.0            0.0            0.0
+   5.000000E-05     G      0.0            7.791522E-05   0.0            0.0            0.0            0.0
+      POINT-ID =       2
+                                             D I S P L A C E M E N T   V E C T O R
+       TIME       TYPE          T1             T2             T3             R1             R2             R3
+   0.0              G      0.0            0.0            0.0            0.0            0.0            0.0
+   5.000000E-05     G      1.0            0.0            0.0            0.0            0.0           -2.5E-01
+      POINT-ID =     101
+                                             D I S P L A C E M E N T   V E C T O R
+       TIME       TYPE          T1             T2             T3             R1             R2             R3
+   0.0              S      1.0
+   5.000000E-05     S      3.0
+      POINT-ID =     102
+                                             D I S P L A C E M E N T   V E C T O R
+       TIME       TYPE          T1             T2             T3             R1             R2             R3
+   0.0              S      2.0
+   5.000000E-05     S      4.0
+";
+        let (a, b) = (read_transient(sort1), read_transient(sort2));
+        assert_eq!(a, b);
+        assert_eq!(a.series.len(), 14);
+        assert_eq!(a.series[&(2, 6)], [(0.0, 0.0), (5e-5, -0.25)]);
+        // A static output (no TIME =) holds no history.
+        assert!(read_transient(PAGE).series.is_empty());
     }
 
     /// Goal: differences are read against the largest printed translation (rotation),
