@@ -336,14 +336,7 @@ fn grid_row(first: Option<String>, d: &crate::run::statics::GridDisplacement) ->
 /// and `summary.json` with each one's summary under `subcases`.
 pub fn static_files(solutions: &[crate::run::statics::StaticSolution]) -> Vec<(&'static str, Vec<u8>)> {
     let several = solutions.len() > 1;
-    let mut w = csv::Writer::from_writer(Vec::new());
-    let header = ["grid", "cd", "T1", "T2", "T3", "R1", "R2", "R3"];
-    if several {
-        w.write_record(std::iter::once("subcase").chain(header))
-    } else {
-        w.write_record(header)
-    }
-    .expect("writing to memory");
+    let mut w = subcase_table(several, &["grid", "cd", "T1", "T2", "T3", "R1", "R2", "R3"]);
     for s in solutions {
         for d in &s.grids {
             let subcase = s.subcase.filter(|_| several).map(|n| n.to_string());
@@ -392,19 +385,21 @@ pub fn static_files(solutions: &[crate::run::statics::StaticSolution]) -> Vec<(&
     files
 }
 
+/// A CSV table in memory headed by `header`, with a `subcase` column first when the
+/// deck has `several` SUBCASEs.
+fn subcase_table(several: bool, header: &[&str]) -> csv::Writer<Vec<u8>> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    let subcase = several.then_some("subcase");
+    w.write_record(subcase.iter().chain(header)).expect("writing to memory");
+    w
+}
+
 /// `elements.csv` of a static solution: a row a recovered value (its element, card,
 /// the value's name without the element's id, as the transient histories name it,
 /// and the value), `subcase` first when the deck has several.
 fn element_rows(solutions: &[crate::run::statics::StaticSolution]) -> Vec<u8> {
     let several = solutions.len() > 1;
-    let mut w = csv::Writer::from_writer(Vec::new());
-    let header = ["element", "card", "quantity", "value"];
-    if several {
-        w.write_record(std::iter::once("subcase").chain(header))
-    } else {
-        w.write_record(header)
-    }
-    .expect("writing to memory");
+    let mut w = subcase_table(several, &["element", "card", "quantity", "value"]);
     for s in solutions {
         let subcase = s.subcase.filter(|_| several).map(|n| n.to_string());
         for e in &s.elements {

@@ -435,19 +435,8 @@ pub(super) fn point_masses(cx: &mut Ctx, deck: &Deck, num: &Numbering, geo: &Geo
             continue;
         }
         let Some(&x) = geo.positions.get(&m.g) else { continue };
-        let axes = match m.cid {
-            -1 | 0 => Matrix3::identity(),
-            cid => match geo.systems.get(&cid).and_then(|s| s.frame_at(&Vector3::from(x))) {
-                Some(f) => f,
-                None => {
-                    cx.err(m.at.error(format!(
-                        "CONM2 {}: CID = {cid} names a coordinate system that no CORD card defines (or one \
-                         undefined at its grid)",
-                        m.eid
-                    )));
-                    continue;
-                }
-            },
+        let Some(axes) = mass_axes(cx, &m.at, m.eid, m.cid, x, geo) else {
+            continue;
         };
         let offset = match m.cid {
             -1 => Vector3::from(m.offset) - Vector3::from(x),
@@ -494,22 +483,15 @@ pub(super) fn mass_matrices(cx: &mut Ctx, deck: &Deck, num: &Numbering, geo: &Ge
             vec![num.grid_dofs(m.g)],
             MassMatrix::from_lower(x, &m.lower),
         );
+        let Some(axes) = mass_axes(cx, &m.at, m.eid, m.cid, x, geo) else {
+            continue;
+        };
         let placed = match m.cid {
             0 => frames_only(&[m.g], geo, &[x]),
-            cid => match geo.systems.get(&cid).and_then(|s| s.frame_at(&Vector3::from(x))) {
-                Some(axes) => Some(Placement {
-                    turn: vec![Placement::turn_of(&axes, &geo.frame(m.g), [0.0; 3])],
-                    points: vec![x],
-                }),
-                None => {
-                    cx.err(m.at.error(format!(
-                        "CONM1 {}: CID = {cid} names a coordinate system that no CORD card defines (or one \
-                         undefined at its grid)",
-                        m.eid
-                    )));
-                    continue;
-                }
-            },
+            _ => Some(Placement {
+                turn: vec![Placement::turn_of(&axes, &geo.frame(m.g), [0.0; 3])],
+                points: vec![x],
+            }),
         };
         out.push(
             match placed {
@@ -519,6 +501,22 @@ pub(super) fn mass_matrices(cx: &mut Ctx, deck: &Deck, num: &Numbering, geo: &Ge
             |g| num.grid_dofs(g),
         );
     }
+}
+
+/// The axes of a concentrated mass's system CID at its grid `x` (basic for CID 0 and
+/// −1); an error naming its card when no CORD card defines it there.
+fn mass_axes(cx: &mut Ctx, at: &CardRef, eid: i64, cid: i64, x: [f64; 3], geo: &Geometry) -> Option<Matrix3<f64>> {
+    if cid <= 0 {
+        return Some(Matrix3::identity());
+    }
+    let axes = geo.systems.get(&cid).and_then(|s| s.frame_at(&Vector3::from(x)));
+    if axes.is_none() {
+        cx.err(at.error(format!(
+            "{} {eid}: CID = {cid} names a coordinate system that no CORD card defines (or one undefined at its grid)",
+            at.name
+        )));
+    }
+    axes
 }
 
 /// The scalar springs and masses (CELAS1-4, CMASS1-4) between their terminals: a
