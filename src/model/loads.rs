@@ -183,6 +183,7 @@ fn thermal_load(deck: &Deck, s: &Structure, sel: &Selection, out: &mut GridLoads
     }
     let grid_temperature = |g: &i64| grid_t.get(g).copied().or(default);
     let connections: HashMap<i64, &crate::deck::cards::Connection> = b.elements.iter().map(|c| (c.eid, c)).collect();
+    let cards = Expansions::new(b);
     let mut taken = std::collections::BTreeSet::new();
     for e in &s.elements {
         let family = e.kernel.family();
@@ -248,7 +249,7 @@ fn thermal_load(deck: &Deck, s: &Structure, sel: &Selection, out: &mut GridLoads
                     },
                 };
                 let Some(c) = connections.get(&e.eid) else { continue };
-                let Some((alpha, tref, alpha_bending)) = expansion(b, c, errors) else {
+                let Some((alpha, tref, alpha_bending)) = expansion(&cards, c, errors) else {
                     continue;
                 };
                 taken.insert(e.eid);
@@ -277,14 +278,36 @@ fn thermal_load(deck: &Deck, s: &Structure, sel: &Selection, out: &mut GridLoads
     }
 }
 
+/// The property and material cards by id, for the elements' thermal expansion.
+struct Expansions<'b> {
+    mat1: HashMap<i64, &'b crate::deck::cards::Mat1>,
+    prod: HashMap<i64, &'b crate::deck::cards::Prod>,
+    pshell: HashMap<(Option<&'static str>, i64), &'b crate::deck::cards::Pshell>,
+}
+
+impl<'b> Expansions<'b> {
+    fn new(b: &'b crate::deck::cards::Bulk) -> Self {
+        Expansions {
+            mat1: b.mat1s.iter().map(|m| (m.mid, m)).collect(),
+            prod: b.prods.iter().map(|p| (p.pid, p)).collect(),
+            pshell: b
+                .pshells
+                .iter()
+                .map(|p| ((None, p.pid), p))
+                .chain(b.cosmic_plates.iter().map(|(card, p)| ((Some(*card), p.pid), p)))
+                .collect(),
+        }
+    }
+}
+
 /// A rod's or shell's thermal expansion: (α, TREF) of its (membrane) MAT1 and the α of
 /// a shell's bending MAT1 (MID2); refused for a laminate or a MAT2.
 fn expansion(
-    b: &crate::deck::cards::Bulk,
+    cards: &Expansions,
     c: &crate::deck::cards::Connection,
     errors: &mut Vec<Diagnostic>,
 ) -> Option<(f64, f64, f64)> {
-    let mat1 = |mid: i64| b.mat1s.iter().find(|m| m.mid == mid);
+    let mat1 = |mid: i64| cards.mat1.get(&mid).copied();
     let refuse = |errors: &mut Vec<Diagnostic>, why: &str| {
         errors.push(c.at.error(format!(
             "{} {} {why}: impactlab takes thermal loads on isotropic materials (MAT1)",
@@ -292,18 +315,11 @@ fn expansion(
         )));
     };
     if matches!(c.kind.card, "CROD" | "CONROD" | "CTUBE") {
-        let p = c.rod.as_deref().or_else(|| b.prods.iter().find(|p| p.pid == c.pid))?;
+        let p = c.rod.as_deref().or_else(|| cards.prod.get(&c.pid).copied())?;
         let m = mat1(p.mid)?;
         return Some((m.alpha, m.tref, 0.0));
     }
-    let pshell = match c.property_card {
-        Some(card) => b
-            .cosmic_plates
-            .iter()
-            .find(|(k, p)| *k == card && p.pid == c.pid)
-            .map(|(_, p)| p),
-        None => b.pshells.iter().find(|p| p.pid == c.pid),
-    };
+    let pshell = cards.pshell.get(&(c.property_card, c.pid));
     let Some(p) = pshell else {
         refuse(errors, "is a laminate (PCOMP) in a thermally loaded structure");
         return None;

@@ -14,6 +14,7 @@ mod modify;
 pub mod rigid;
 mod weight;
 
+pub(crate) use build::element_requests;
 pub use build::{build_model, build_structure, survey_structure, ModelError, Structure, Survey};
 pub use modify::{Modify, ModifyError};
 pub use weight::{mass_properties, MassProperties};

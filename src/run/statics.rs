@@ -17,7 +17,6 @@ use crate::integrate::SolveError;
 use crate::model::loads::{resultant, static_load_of};
 use crate::model::{build_structure, ModelError, Structure};
 use serde::Serialize;
-use std::collections::HashMap;
 
 /// A static (or normal modes) solution that could not be had.
 #[derive(Debug, thiserror::Error)]
@@ -98,35 +97,28 @@ pub struct ElementValues {
     pub values: Vec<f64>,
 }
 
-/// The elements STRESS (or ELSTRESS), STRAIN and FORCE (or ELFORCE) ask for, each with
-/// what is asked of it: STRESS first, then STRAIN, then FORCE, each in element order
-/// for ALL and in the set's order otherwise; elements that recover nothing of it (a
-/// mass) left out. A load case with a thermal load (`thermal`, the first such) gets
-/// none, with a warning: the kernels recover from displacements alone, and a thermal
-/// strain's free expansion would be counted as stress.
+/// What STRESS (or ELSTRESS), STRAIN and FORCE (or ELFORCE) ask of each element, as a
+/// transient run writes it ([`crate::model::OutputPlan::written`]: STRESS, then STRAIN
+/// of the elements STRESS does not already give, then FORCE), elements that recover
+/// nothing of it (a mass) left out. A load case with a thermal load (`thermal`, the
+/// first such) gets none, with a warning: the kernels recover from displacements
+/// alone, and a thermal strain's free expansion would be counted as stress.
 fn element_requests(
     deck: &Deck,
     s: &Structure,
     thermal: Option<&crate::deck::case::Selection>,
     warnings: &mut Vec<Diagnostic>,
 ) -> Vec<(usize, crate::elements::Output)> {
-    use crate::deck::case::OutputSet;
-    use crate::elements::Output;
-    let case = &deck.case;
-    let mut out = Vec::new();
-    for (key, what) in [
-        ("STRESS", Output::Stress),
-        ("STRAIN", Output::Strain),
-        ("FORCE", Output::Force),
-    ] {
-        let req = match key {
-            "FORCE" => case.outputs.get("FORCE").or(case.outputs.get("ELFORCE")),
-            _ => case.outputs.get(key),
-        };
-        let Some(req) = req else { continue };
-        if let Some(t) = thermal {
+    if let Some(t) = thermal {
+        let outputs = &deck.case.outputs;
+        let asked = [
+            ("STRESS", outputs.get("STRESS")),
+            ("STRAIN", outputs.get("STRAIN")),
+            ("FORCE", outputs.get("FORCE").or(outputs.get("ELFORCE"))),
+        ];
+        for (key, r) in asked.into_iter().filter_map(|(k, r)| Some((k, r?))) {
             warnings.push(Diagnostic::warning(
-                Some(req.pos.clone()),
+                Some(r.pos.clone()),
                 format!(
                     "{key} output is not written under a thermal load (TEMPERATURE(LOAD) = {}): impactlab recovers \
                      element results from displacements alone, without the free thermal expansion; ignored where \
@@ -135,26 +127,17 @@ fn element_requests(
                 ),
             ));
         }
-        let members = match &req.set {
-            OutputSet::None => continue,
-            OutputSet::All => None,
-            OutputSet::Set(id) => case.sets.get(id).map(|d| &d.members).filter(|m| !m.is_empty()),
-        };
-        let recovers = |i: &usize| !s.elements[*i].kernel.recovered(what).is_empty();
-        match members {
-            None => out.extend((0..s.elements.len()).filter(recovers).map(|i| (i, what))),
-            Some(m) => {
-                let at: HashMap<i64, usize> = s.elements.iter().enumerate().map(|(i, e)| (e.eid, i)).collect();
-                out.extend(
-                    m.iter()
-                        .filter_map(|e| at.get(e).copied())
-                        .filter(recovers)
-                        .map(|i| (i, what)),
-                );
-            }
-        }
     }
-    out
+    let [stress, strain, force] = crate::model::element_requests(&deck.case, &s.elements);
+    let plan = crate::model::OutputPlan {
+        stress,
+        strain,
+        force,
+        ..Default::default()
+    };
+    plan.written()
+        .filter(|&(i, what)| !s.elements[i].kernel.recovered(what).is_empty())
+        .collect()
 }
 
 /// The requested elements' values at the displacements `u` of the solved DOFs.

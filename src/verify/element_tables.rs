@@ -24,7 +24,7 @@
 //! line of another title. SUBCASE is read from each page's heading, as for the
 //! displacements.
 
-use super::printed::{format_error, open_csv, read_text, PrintedError};
+use super::printed::{format_error, open_csv, page_subcase, read_text, relative_to, PrintedError};
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -78,14 +78,9 @@ pub fn read_element_tables(text: &str) -> ElementTables {
     let mut pending: Option<(i64, Vec<f64>)> = None;
     for line in text.lines() {
         let trimmed = line.trim_end();
-        if line.starts_with('0') {
-            let words: Vec<&str> = trimmed.split_whitespace().collect();
-            if let [.., "SUBCASE", n] = words.as_slice() {
-                if let Ok(n) = n.parse() {
-                    subcase = n;
-                }
-                continue;
-            }
+        if let Some(n) = page_subcase(trimmed) {
+            subcase = n;
+            continue;
         }
         if is_title(trimmed) {
             table = Table::of(trimmed);
@@ -275,24 +270,14 @@ pub fn compare_elements(ours: &ElementTables, theirs: &ElementTables) -> Element
         }
         for ((e, name), &v) in printed {
             match run.and_then(|r| r.get(&(*e, name.clone()))) {
-                Some(&o) => {
-                    let d = (o - v).abs();
-                    let s = scale[class(name)];
-                    out.differences.push(ElementDifference {
-                        subcase: sc,
-                        element: *e,
-                        name: name.clone(),
-                        ours: o,
-                        theirs: v,
-                        relative: if d == 0.0 {
-                            0.0
-                        } else if s == 0.0 {
-                            f64::INFINITY
-                        } else {
-                            d / s
-                        },
-                    });
-                }
+                Some(&o) => out.differences.push(ElementDifference {
+                    subcase: sc,
+                    element: *e,
+                    name: name.clone(),
+                    ours: o,
+                    theirs: v,
+                    relative: relative_to(o - v, scale[class(name)]),
+                }),
                 None => out.missing.push((sc, *e, name.clone())),
             }
         }

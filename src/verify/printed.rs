@@ -62,13 +62,8 @@ pub fn read_printed(text: &str) -> Printed {
         if let Some((_, n)) = trimmed.split_once("POINT-ID =") {
             point = n.trim().parse::<i64>().ok();
         }
-        if line.starts_with('0') {
-            let words: Vec<&str> = trimmed.split_whitespace().collect();
-            if let [.., "SUBCASE", n] = words.as_slice() {
-                if let Ok(n) = n.parse() {
-                    subcase = n;
-                }
-            }
+        if let Some(n) = page_subcase(trimmed) {
+            subcase = n;
         }
         if trimmed.contains(TITLE) {
             // "C O M P L E X   D I S P L A C E M E N T   V E C T O R" and the like are
@@ -650,12 +645,29 @@ fn relative(translation_scale: f64, rotation_scale: f64, d: &Difference) -> f64 
     } else {
         translation_scale
     };
-    if d.delta() == 0.0 {
+    relative_to(d.delta(), scale)
+}
+
+/// |delta| / scale: 0 where the difference is 0, infinite where only the scale is.
+pub(super) fn relative_to(delta: f64, scale: f64) -> f64 {
+    if delta == 0.0 {
         0.0
     } else if scale == 0.0 {
         f64::INFINITY
     } else {
-        d.delta().abs() / scale
+        delta.abs() / scale
+    }
+}
+
+/// The SUBCASE a page heading names (its line starting with `0` ends `SUBCASE n`).
+pub(super) fn page_subcase(line: &str) -> Option<i64> {
+    if !line.starts_with('0') {
+        return None;
+    }
+    let words: Vec<&str> = line.split_whitespace().collect();
+    match words.as_slice() {
+        [.., "SUBCASE", n] => n.parse().ok(),
+        _ => None,
     }
 }
 

@@ -29,6 +29,7 @@ use contact::*;
 use dofs::*;
 use elements::*;
 use excitation::*;
+pub(crate) use outputs::element_requests;
 use outputs::*;
 use properties::*;
 

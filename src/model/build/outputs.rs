@@ -63,31 +63,7 @@ pub(super) fn output_plan(
             .filter(|&k| all || members.contains(&c.loads[k].label.point))
             .collect();
     }
-    let elem_pos: HashMap<i64, usize> = elements
-        .iter()
-        .enumerate()
-        .filter(|(_, e)| !matches!(e.kernel.family(), Family::Point { .. }))
-        .map(|(i, e)| (e.eid, i))
-        .collect();
-    for key in ["STRESS", "STRAIN", "FORCE"] {
-        let req = match key {
-            "FORCE" => case.outputs.get("FORCE").or(case.outputs.get("ELFORCE")),
-            _ => case.outputs.get(key),
-        };
-        let Some(members) = set_members(req) else { continue };
-        let list: Vec<usize> = if members.is_empty() {
-            let mut v: Vec<usize> = elem_pos.values().copied().collect();
-            v.sort();
-            v
-        } else {
-            members.iter().filter_map(|m| elem_pos.get(m).copied()).collect()
-        };
-        match key {
-            "STRESS" => outputs.stress = list,
-            "STRAIN" => outputs.strain = list,
-            _ => outputs.force = list,
-        }
-    }
+    [outputs.stress, outputs.strain, outputs.force] = element_requests(case, elements);
     // Ply results of every written laminate element, in the order its element's
     // results are written.
     outputs.plies = outputs
@@ -116,4 +92,37 @@ pub(super) fn output_plan(
     }
 
     outputs
+}
+
+/// The elements (indices into `elements`) case control's STRESS, STRAIN and FORCE (or
+/// ELFORCE) ask for, in that order: every element but the concentrated masses, in
+/// element order, for ALL (or a SET of ALL), the SET's members in its order otherwise.
+pub(crate) fn element_requests(case: &crate::deck::case::CaseControl, elements: &[Element]) -> [Vec<usize>; 3] {
+    let elem_pos: HashMap<i64, usize> = elements
+        .iter()
+        .enumerate()
+        .filter(|(_, e)| !matches!(e.kernel.family(), Family::Point { .. }))
+        .map(|(i, e)| (e.eid, i))
+        .collect();
+    ["STRESS", "STRAIN", "FORCE"].map(|key| {
+        let req = match key {
+            "FORCE" => case.outputs.get("FORCE").or(case.outputs.get("ELFORCE")),
+            _ => case.outputs.get(key),
+        };
+        let members = match req.map(|r| &r.set) {
+            None | Some(OutputSet::None) => return Vec::new(),
+            Some(OutputSet::All) => Vec::new(),
+            Some(OutputSet::Set(id)) => match case.sets.get(id) {
+                Some(s) => s.members.clone(),
+                None => return Vec::new(),
+            },
+        };
+        if members.is_empty() {
+            let mut v: Vec<usize> = elem_pos.values().copied().collect();
+            v.sort();
+            v
+        } else {
+            members.iter().filter_map(|m| elem_pos.get(m).copied()).collect()
+        }
+    })
 }
