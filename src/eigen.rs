@@ -359,7 +359,18 @@ pub fn factorise(sys: &System, labels: &[DofLabel]) -> Result<(Factor, f64), Sol
         Ok(f) => Ok((f, 0.0)),
         Err(SolveError::Mechanism { .. }) => {
             let shift = -1e-8 * highest_root_scale(sys).max(f64::MIN_POSITIVE);
-            Ok((Factor::effective(sys, -shift, 1.0, labels)?, shift))
+            Ok((
+                Factor::effective(
+                    sys,
+                    crate::assembly::Combination {
+                        mass: -shift,
+                        damping: 0.0,
+                        stiffness: 1.0,
+                    },
+                    labels,
+                )?,
+                shift,
+            ))
         }
         Err(e) => Err(e),
     }

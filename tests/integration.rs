@@ -13,6 +13,7 @@ mod check;
 mod cli;
 mod concentrated_masses;
 mod convolution;
+mod damping;
 mod damage;
 mod deck_reader;
 mod dynamic_loads;

@@ -27,7 +27,7 @@ fn iso() -> String {
 fn centre_deflection(n: usize, edge: &str) -> f64 {
     let m = square_plate(n, 1.0, edge, "6", &iso(), T);
     let sys = assemble(&m);
-    let k = sys.combine(0.0, 1.0);
+    let k = sys.k_csc.clone();
     let mut f = Factor::new(&k, &m.dofs).expect("restrained plate");
     let centre = DofLabel {
         point: (1000 * (n / 2 + 1) + n / 2 + 1) as i64,

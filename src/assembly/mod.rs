@@ -8,7 +8,8 @@ pub use reduce::drop_inert;
 use crate::model::Model;
 use faer::sparse::{SparseColMat, SparseRowMat, SymbolicSparseColMat, Triplet};
 
-/// Global stiffness and mass as triplet lists (duplicates summed when compressed).
+/// Global stiffness, mass and viscous damping as triplet lists (duplicates summed
+/// when compressed).
 #[derive(Debug, Clone)]
 pub struct System {
     /// Number of solved DOFs.
@@ -17,6 +18,12 @@ pub struct System {
     pub k: Vec<Triplet<usize, usize, f64>>,
     /// Mass entries (row, column, value) of every element.
     pub m: Vec<Triplet<usize, usize, f64>>,
+    /// Viscous damping entries (row, column, value): the damping elements' and the
+    /// model's proportional damping ([`crate::model::Damping`]); empty for an
+    /// undamped structure.
+    pub c: Vec<Triplet<usize, usize, f64>>,
+    /// C for products, when there is damping.
+    c_lower: Option<LowerRows>,
     /// Compressed K, exactly symmetric: its upper triangle mirrors the lower, the
     /// triangle the factorisation reads (element matrices computed in floating point
     /// are symmetric only to round-off).
@@ -29,10 +36,26 @@ pub struct System {
     pub m_lumped: Option<Vec<f64>>,
 }
 
-/// Assembles K and M of a model over its solved DOFs, element by element through
-/// [`crate::elements::Element::scatter`]: no element kind is named here.
+/// Assembles K, M and C of a model over its solved DOFs, element by element through
+/// [`crate::elements::Element::scatter`] (no element kind is named here), C with the
+/// model's proportional damping, C = Σ C_e + a₁M + a₂K ([`crate::model::Damping`]).
 pub fn assemble(model: &Model) -> System {
-    assemble_elements(&model.elements, model.n())
+    let mut sys = assemble_elements(&model.elements, model.n());
+    let d = model.damping.as_ref();
+    let (a1, a2) = d.map_or((0.0, 0.0), |d| (d.mass, d.stiffness));
+    if a1 != 0.0 || a2 != 0.0 || !sys.c.is_empty() {
+        let scaled = |v: &[Triplet<usize, usize, f64>], a: f64| -> Vec<Triplet<usize, usize, f64>> {
+            if a == 0.0 {
+                return Vec::new();
+            }
+            v.iter().map(|t| Triplet::new(t.row, t.col, a * t.val)).collect()
+        };
+        let mut c = std::mem::take(&mut sys.c);
+        c.extend(scaled(&sys.m, a1));
+        c.extend(scaled(&sys.k, a2));
+        sys.set_damping(c);
+    }
+    sys
 }
 
 /// Assembles K and M of `elements` over `n` solved DOFs (a structure built alone,
@@ -40,13 +63,28 @@ pub fn assemble(model: &Model) -> System {
 pub fn assemble_elements(elements: &[crate::elements::Element], n: usize) -> System {
     let mut k = Vec::new();
     let mut m = Vec::new();
+    let mut c = Vec::new();
     for e in elements {
         e.scatter(&mut k, &mut m);
+        e.scatter_damping(&mut c);
     }
     let triplets = |v: Vec<(usize, usize, f64)>| -> Vec<Triplet<usize, usize, f64>> {
         v.into_iter().map(|(i, j, x)| Triplet::new(i, j, x)).collect()
     };
-    System::from_triplets(n, triplets(k), triplets(m))
+    let mut sys = System::from_triplets(n, triplets(k), triplets(m));
+    sys.set_damping(triplets(c));
+    sys
+}
+
+/// The coefficients of an effective matrix a·M + b·C + c·K.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Combination {
+    /// Of M.
+    pub mass: f64,
+    /// Of C (nothing when the system is undamped).
+    pub damping: f64,
+    /// Of K.
+    pub stiffness: f64,
 }
 
 impl System {
@@ -65,6 +103,8 @@ impl System {
             n,
             k,
             m,
+            c: Vec::new(),
+            c_lower: None,
             k_csc,
             k_lower,
             m_lower,
@@ -75,14 +115,41 @@ impl System {
         sys
     }
 
-    /// The system of symmetric K and M given by their entries (row, column, value),
-    /// both triangles, as elements scatter theirs: a reduced model's, whose
-    /// coordinates are not an element's.
-    pub fn from_entries(n: usize, k: Vec<(usize, usize, f64)>, m: Vec<(usize, usize, f64)>) -> System {
+    /// The system of symmetric K, M and C given by their entries (row, column,
+    /// value), both triangles, as elements scatter theirs: a reduced model's, whose
+    /// coordinates are not an element's (C empty when undamped).
+    pub fn from_entries(
+        n: usize,
+        k: Vec<(usize, usize, f64)>,
+        m: Vec<(usize, usize, f64)>,
+        c: Vec<(usize, usize, f64)>,
+    ) -> System {
         let triplets = |v: Vec<(usize, usize, f64)>| -> Vec<Triplet<usize, usize, f64>> {
             v.into_iter().map(|(i, j, x)| Triplet::new(i, j, x)).collect()
         };
-        System::from_triplets(n, triplets(k), triplets(m))
+        let mut sys = System::from_triplets(n, triplets(k), triplets(m));
+        sys.set_damping(triplets(c));
+        sys
+    }
+
+    /// Sets C from its entries (both triangles); an empty list (or one of zeros)
+    /// leaves the system undamped.
+    fn set_damping(&mut self, c: Vec<Triplet<usize, usize, f64>>) {
+        if c.iter().all(|t| t.val == 0.0) {
+            self.c = Vec::new();
+            self.c_lower = None;
+            return;
+        }
+        let lower = lower_triangle(self.n, &c);
+        self.c_lower = Some(LowerRows::new(
+            &lower.to_row_major().expect("a transpose fits where the matrix did"),
+        ));
+        self.c = c;
+    }
+
+    /// True when the system has viscous damping.
+    pub fn damped(&self) -> bool {
+        self.c_lower.is_some()
     }
 
     /// The system over the DOFs `map` keeps (`map[i]`: DOF i's new number, `None`
@@ -95,18 +162,41 @@ impl System {
                 .filter_map(|t| Some(Triplet::new(map[t.row]?, map[t.col]?, t.val)))
                 .collect()
         };
-        System::from_triplets(n, keep(&self.k), keep(&self.m))
+        let mut sys = System::from_triplets(n, keep(&self.k), keep(&self.m));
+        sys.set_damping(keep(&self.c));
+        sys
     }
 
-    /// a·M + b·K, compressed.
-    pub fn combine(&self, a: f64, b: f64) -> SparseColMat<usize, f64> {
-        let t: Vec<_> = self
-            .m
-            .iter()
-            .map(|t| Triplet::new(t.row, t.col, a * t.val))
-            .chain(self.k.iter().map(|t| Triplet::new(t.row, t.col, b * t.val)))
-            .collect();
+    /// a·M + b·C + c·K (the coefficients of `x`), compressed.
+    pub fn combine(&self, x: Combination) -> SparseColMat<usize, f64> {
+        let scaled = |v: &[Triplet<usize, usize, f64>], a: f64| {
+            v.iter()
+                .map(move |t| Triplet::new(t.row, t.col, a * t.val))
+                .collect::<Vec<_>>()
+        };
+        let mut t = scaled(&self.m, x.mass);
+        t.extend(scaled(&self.k, x.stiffness));
+        if x.damping != 0.0 {
+            t.extend(scaled(&self.c, x.damping));
+        }
         SparseColMat::try_new_from_triplets(self.n, self.n, &t).expect("indices are in range")
+    }
+
+    /// y = C x (zero when undamped).
+    pub fn c_mul(&self, x: &[f64], y: &mut [f64]) {
+        match &self.c_lower {
+            Some(c) => c.mul(x, y),
+            None => y.fill(0.0),
+        }
+    }
+
+    /// xᵀ C x (zero when undamped), `work` a vector of n for C x.
+    pub fn c_norm(&self, x: &[f64], work: &mut [f64]) -> f64 {
+        if !self.damped() {
+            return 0.0;
+        }
+        self.c_mul(x, work);
+        crate::numerics::dot(x, work)
     }
 
     /// y = K x

@@ -8,7 +8,8 @@
 //! the forces are f = K δ (f_1..f_3 forces, f_4..f_6 moments, each K_i δ_i: MSC's
 //! CBUSH forces, positive when B moves along the axis away from A), the strain energy
 //! ½ δᵀ K δ and the stiffness [K −K; −K K] on (u_A, u_B): exact for any motion, so the
-//! ledger books the spring's energy exactly. No mass.
+//! ledger books the spring's energy exactly. No mass. Viscous damping B1..B6 acts
+//! alike on the rates: its damping matrix is [B −B; −B B].
 
 use super::{Cell, Family, Kernel, LocalMatrix, Measure, Output, Recovered, Resultant};
 use nalgebra::DMatrix;
@@ -18,11 +19,30 @@ use nalgebra::DMatrix;
 pub struct Bush {
     /// K1..K6, along and about the element's x, y, z.
     pub k: [f64; 6],
+    /// B1..B6, viscous damping along and about the same axes.
+    pub b: [f64; 6],
     /// Its grids' positions: GA's, then GB's when it has one (none: to ground).
     pub points: Vec<[f64; 3]>,
 }
 
 impl Bush {
+    /// The block [X −X; −X X] of six values along and about the axes, over its ends
+    /// (X alone for a grounded one).
+    fn block(&self, x: &[f64; 6]) -> LocalMatrix {
+        let ends = self.points.len();
+        let at: Vec<(usize, usize)> = (0..ends).flat_map(|g| (0..6).map(move |c| (g, c))).collect();
+        let n = at.len();
+        let values = DMatrix::from_fn(n, n, |a, b| {
+            let (c, d) = (a % 6, b % 6);
+            match (c == d, a / 6 == b / 6) {
+                (false, _) => 0.0,
+                (true, true) => x[c],
+                (true, false) => -x[c],
+            }
+        });
+        LocalMatrix { at, values }
+    }
+
     /// δ = u_B − u_A at the spring's point, in the element's axes.
     fn stretch(&self, ue: &[f64]) -> [f64; 6] {
         std::array::from_fn(|c| ue.get(6 + c).copied().unwrap_or(0.0) - ue[c])
@@ -47,18 +67,13 @@ impl Kernel for Bush {
         Family::Spring
     }
     fn stiffness(&self) -> Vec<LocalMatrix> {
-        let ends = self.points.len();
-        let at: Vec<(usize, usize)> = (0..ends).flat_map(|g| (0..6).map(move |c| (g, c))).collect();
-        let n = at.len();
-        let values = DMatrix::from_fn(n, n, |a, b| {
-            let (c, d) = (a % 6, b % 6);
-            match (c == d, a / 6 == b / 6) {
-                (false, _) => 0.0,
-                (true, true) => self.k[c],
-                (true, false) => -self.k[c],
-            }
-        });
-        vec![LocalMatrix { at, values }]
+        vec![self.block(&self.k)]
+    }
+    fn damping(&self) -> Vec<LocalMatrix> {
+        if self.b.iter().all(|&b| b == 0.0) {
+            return Vec::new();
+        }
+        vec![self.block(&self.b)]
     }
     fn mass(&self) -> Vec<LocalMatrix> {
         Vec::new()
@@ -116,6 +131,7 @@ mod tests {
     fn energy_is_its_blocks_quadratic_form() {
         let b = Bush {
             k: [1.0, 2.0, 3.0, 4.0, 5.0, 6.0],
+            b: [0.0; 6],
             points: vec![[0.0; 3], [1.0, 0.0, 0.0]],
         };
         let u: Vec<f64> = (0..12).map(|i| 0.1 * i as f64 - 0.4).collect();

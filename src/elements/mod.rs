@@ -16,6 +16,7 @@
 
 pub mod bar;
 pub mod bush;
+pub mod damper;
 pub mod dkmt;
 pub mod drill;
 pub mod general;
@@ -442,6 +443,10 @@ pub trait Kernel: fmt::Debug + Send + Sync + Any {
     fn stiffness(&self) -> Vec<LocalMatrix>;
     /// Local mass matrices.
     fn mass(&self) -> Vec<LocalMatrix>;
+    /// Local viscous damping matrices: a damper's (none for any other kind).
+    fn damping(&self) -> Vec<LocalMatrix> {
+        Vec::new()
+    }
     /// Strain energy ½ u_eᵀ K_e u_e of the local displacements `ue`.
     fn strain_energy(&self, ue: &[f64]) -> f64;
     /// The values [`Kernel::recover`] gives for a request, in order (see [`Output`]).
@@ -507,6 +512,8 @@ pub enum Family<'a> {
     MassMatrix,
     /// A spring of six stiffnesses between grids (CBUSH, [`bush::Bush`]).
     Spring,
+    /// A viscous damper between grids (CVISC, [`damper::Viscous`]).
+    Damper,
 }
 
 impl<'a> Family<'a> {
@@ -752,6 +759,19 @@ impl Element {
         for l in self.mass() {
             m.extend(self.expanded(&l));
         }
+    }
+
+    /// Adds the element's viscous damping to a global triplet list (solved DOFs only;
+    /// exact zeros skipped): nothing for an element that does not damp.
+    pub fn scatter_damping(&self, c: &mut Vec<(usize, usize, f64)>) {
+        for l in self.turned(self.kernel.damping()) {
+            c.extend(self.expanded(&l));
+        }
+    }
+
+    /// True when the element damps (its kernel has a damping matrix).
+    pub fn damps(&self) -> bool {
+        !self.kernel.damping().is_empty()
     }
 
     /// The element's stiffness matrices over its grids' DOFs.

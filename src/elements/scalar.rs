@@ -1,12 +1,13 @@
-//! Scalar elements (CELAS1-4, CMASS1-4): a spring or a mass between two DOFs, each a
-//! component of a grid (in its displacement frame) or a scalar point, or between one
-//! DOF and ground.
+//! Scalar elements (CELAS1-4, CMASS1-4, CDAMP1-4): a spring, a mass or a viscous
+//! damper between two DOFs, each a component of a grid (in its displacement frame)
+//! or a scalar point, or between one DOF and ground.
 //!
 //! A spring of stiffness k: K = k [1 −1; −1 1] on (u₁, u₂), strain energy
 //! ½k(u₁ − u₂)², force k(u₁ − u₂) (NASTRAN's ELFORCE of a CELAS, positive in
 //! tension). A mass m: M = m [1 −1; −1 1] on the same pair, as NASTRAN's CMASS
 //! ("a scalar mass ... between two points": its kinetic energy ½m(u̇₁ − u̇₂)²); one
-//! grounded terminal leaves the 1×1 block k or m on the other. Exact for any motion
+//! grounded terminal leaves the 1×1 block k or m on the other. A damper of
+//! coefficient b: C = b [1 −1; −1 1], its force b(u̇₁ − u̇₂). Exact for any motion
 //! (no discretisation), so the ledger books the spring's energy and the mass's
 //! kinetic energy exactly.
 
@@ -14,8 +15,9 @@ use super::{Cell, Family, Kernel, LocalMatrix, Measure, Output, Recovered, Resul
 use nalgebra::DMatrix;
 
 /// The cards of the scalar elements.
-pub const CARDS: [&str; 8] = [
-    "CELAS1", "CELAS2", "CELAS3", "CELAS4", "CMASS1", "CMASS2", "CMASS3", "CMASS4",
+pub const CARDS: [&str; 12] = [
+    "CELAS1", "CELAS2", "CELAS3", "CELAS4", "CMASS1", "CMASS2", "CMASS3", "CMASS4", "CDAMP1", "CDAMP2", "CDAMP3",
+    "CDAMP4",
 ];
 
 /// The static name of a scalar element's card (`CELAS2`), from its card's name.
@@ -23,13 +25,15 @@ pub fn card_name(card: &str) -> &'static str {
     CARDS.iter().find(|c| **c == card).copied().unwrap_or("CELAS")
 }
 
-/// Spring or mass.
+/// Spring, mass or damper.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum ScalarKind {
     /// A spring of this stiffness.
     Spring(f64),
     /// A mass.
     Mass(f64),
+    /// A viscous damper of this coefficient.
+    Damper(f64),
 }
 
 /// A scalar element over one or two terminals.
@@ -73,19 +77,25 @@ impl Kernel for Scalar {
     fn stiffness(&self) -> Vec<LocalMatrix> {
         match self.kind {
             ScalarKind::Spring(k) => vec![self.block(k)],
-            ScalarKind::Mass(_) => Vec::new(),
+            ScalarKind::Mass(_) | ScalarKind::Damper(_) => Vec::new(),
         }
     }
     fn mass(&self) -> Vec<LocalMatrix> {
         match self.kind {
             ScalarKind::Mass(m) => vec![self.block(m)],
-            ScalarKind::Spring(_) => Vec::new(),
+            ScalarKind::Spring(_) | ScalarKind::Damper(_) => Vec::new(),
+        }
+    }
+    fn damping(&self) -> Vec<LocalMatrix> {
+        match self.kind {
+            ScalarKind::Damper(b) => vec![self.block(b)],
+            ScalarKind::Spring(_) | ScalarKind::Mass(_) => Vec::new(),
         }
     }
     fn strain_energy(&self, ue: &[f64]) -> f64 {
         match self.kind {
             ScalarKind::Spring(k) => 0.5 * k * self.stretch(ue).powi(2),
-            ScalarKind::Mass(_) => 0.0,
+            ScalarKind::Mass(_) | ScalarKind::Damper(_) => 0.0,
         }
     }
     fn recovered(&self, what: Output) -> Vec<Recovered> {

@@ -15,6 +15,21 @@
 //! L_e/C (checked in `verification/rod-central.toml`). A step above it is refused
 //! before the run starts, naming the critical step. Every solved DOF
 //! needs mass: a plate without rotary inertia is an error (use an implicit scheme).
+//!
+//! Viscous damping C makes a(n+1) depend on v(n+1), which the step cannot solve for
+//! without a factorisation. It is taken at a predicted velocity instead, one
+//! correction of the half-step one:
+//!
+//!   f = g φ(α(n+1)) + P(t(n+1)) − K u(n+1),  v* = v(n+½) + Δt/2 M⁻¹(f − C v(n+½)),
+//!   a(n+1) = M⁻¹(f − C v*)
+//!
+//! v* differs from the v(n+1) of the implicit equation by O(Δt³) (the fixed-point
+//! iteration's contraction Δt/2·M⁻¹C applied twice to an O(Δt) difference), so the
+//! scheme stays second order, at two products with C a step. The damping's work is
+//! booked as the dynamic load's is, Δu·(C v*(n) + C v*(n+1))/2. The critical step
+//! becomes the root of ω²Δt²/4 + cΔt/2 = 1 (the damped oscillator's limit
+//! Δt ≤ 2/ω·(√(1 + ζ²) − ζ), c = 2ζω) with ω the Gershgorin bound above and c the
+//! Gershgorin bound of M⁻¹ᐟ² C M⁻¹ᐟ², so that damping shortens it.
 
 use super::{contact_vectors, AppliedLoad, Current, SolveError, StepCosts, Stepper};
 use crate::assembly::System;
@@ -43,11 +58,32 @@ pub fn critical_step(model: &Model, sys: &System) -> Result<f64, SolveError> {
         }
     }
     let lmax = row.iter().cloned().fold(0.0, f64::max);
-    Ok(if lmax > 0.0 { 2.0 / lmax.sqrt() } else { f64::INFINITY })
+    if !sys.damped() {
+        return Ok(if lmax > 0.0 { 2.0 / lmax.sqrt() } else { f64::INFINITY });
+    }
+    // The Gershgorin bound of M^(-1/2) C M^(-1/2) (the triplets summed per row).
+    let mut row = vec![0.0f64; sys.n];
+    let c = faer::sparse::SparseColMat::try_new_from_triplets(sys.n, sys.n, &sys.c).expect("indices are in range");
+    let (cp, ri, val) = (c.symbolic().col_ptr(), c.symbolic().row_idx(), c.val());
+    for j in 0..sys.n {
+        for p in cp[j]..cp[j + 1] {
+            let i = ri[p];
+            row[i] += val[p].abs() / (m[i] * m[j]).sqrt();
+        }
+    }
+    let cmax = row.iter().cloned().fold(0.0, f64::max);
+    // The positive root of (ω²/4)Δt² + (c/2)Δt − 1 = 0.
+    Ok(match (lmax > 0.0, cmax > 0.0) {
+        (true, _) => (-cmax / 2.0 + (cmax * cmax / 4.0 + lmax).sqrt()) * 2.0 / lmax,
+        (false, true) => 2.0 / cmax,
+        (false, false) => f64::INFINITY,
+    })
 }
 
 /// Velocity Verlet's state: u, v and the acceleration at the current step.
 pub struct Central<'a> {
+    /// False while the initial acceleration is formed (from v(0) itself).
+    started: bool,
     sys: &'a System,
     contact: Option<&'a Contact>,
     dt: f64,
@@ -58,6 +94,10 @@ pub struct Central<'a> {
     v: Vec<f64>,
     a: Vec<f64>,
     ku: Vec<f64>,
+    /// C v* at the current state and a workspace, when damped.
+    cv: Option<[Vec<f64>; 2]>,
+    /// The energy dissipated by damping so far.
+    dissipated: f64,
     alpha: f64,
     phi_n: f64,
     phi_prev: f64,
@@ -82,6 +122,7 @@ impl<'a> Central<'a> {
         let alpha = apply(&c, &model.u0);
         let phi_n = contact.map_or(0.0, |ct| ct.law(alpha));
         let mut s = Central {
+            started: false,
             sys,
             contact,
             dt,
@@ -92,16 +133,21 @@ impl<'a> Central<'a> {
             v: model.v0.clone(),
             a: vec![0.0; n],
             ku: vec![0.0; n],
+            cv: sys.damped().then(|| [vec![0.0; n], vec![0.0; n]]),
+            dissipated: 0.0,
             alpha,
             phi_n,
             phi_prev: phi_n,
             applied: AppliedLoad::new(model),
         };
         s.accelerate();
+        s.started = true;
         Ok(s)
     }
 
-    /// a = M⁻¹ (g φ + P − K u) at the current state, P the dynamic load there.
+    /// a = M⁻¹ (g φ + P − K u) at the current state, P the dynamic load there; with
+    /// damping, less M⁻¹ C v* (see the module doc; `v` holds the velocity v* is
+    /// predicted from: v(0) at the start, v(n+½) after a step).
     fn accelerate(&mut self) {
         self.sys.k_mul(&self.u, &mut self.ku);
         match self.applied.as_ref().map(|p| &p.now) {
@@ -114,6 +160,20 @@ impl<'a> Central<'a> {
                 for (i, load) in p.iter().enumerate() {
                     self.a[i] = (self.g[i] * self.phi_n + load - self.ku[i]) / self.m[i];
                 }
+            }
+        }
+        if let Some([cv, work]) = &mut self.cv {
+            // v* = v + Δt/2 M⁻¹(f − C v), then a = M⁻¹(f − C v*); at the start (v(0)
+            // known) v* is v(0) itself.
+            self.sys.c_mul(&self.v, cv);
+            if self.started {
+                for i in 0..self.u.len() {
+                    work[i] = self.v[i] + 0.5 * self.dt * (self.a[i] - cv[i] / self.m[i]);
+                }
+                self.sys.c_mul(work, cv);
+            }
+            for ((a, c), m) in self.a.iter_mut().zip(cv.iter()).zip(self.m) {
+                *a -= c / m;
             }
         }
     }
@@ -135,7 +195,12 @@ impl Stepper for Central<'_> {
             let v = &self.v;
             p.book(|i| dt * v[i]);
         }
+        // The damping's work: Δu·(C v*(n) + C v*(n+1))/2, Δu = Δt v(n+½).
+        let before = self.cv.as_ref().map(|[cv, _]| dt * crate::numerics::dot(&self.v, cv));
         self.accelerate();
+        if let (Some(before), Some([cv, _])) = (before, &self.cv) {
+            self.dissipated += 0.5 * (before + dt * crate::numerics::dot(&self.v, cv));
+        }
         for i in 0..n {
             self.v[i] += 0.5 * dt * self.a[i];
         }
@@ -151,6 +216,7 @@ impl Stepper for Central<'_> {
             load_factor: self.phi_n,
             work_factor: 0.5 * (self.phi_prev + self.phi_n),
             applied_work: self.applied.as_ref().map_or(0.0, |p| p.work),
+            dissipated: self.dissipated,
         }
     }
 

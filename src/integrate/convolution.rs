@@ -32,7 +32,7 @@
 use super::linear::Factor;
 use super::newmark::{complete, contact_load, predictor, ContactForm};
 use super::{contact_vectors, SolveError, StepCosts};
-use crate::assembly::System;
+use crate::assembly::{Combination, System};
 use crate::model::{apply, Model};
 use crate::numerics::dot;
 
@@ -165,7 +165,15 @@ pub fn linear_response(
     record: &mut dyn FnMut(&[f64], &[f64]),
 ) -> Result<StepCosts, SolveError> {
     let n = model.n();
-    let mut factor = Factor::effective(sys, 4.0 / (dt * dt), 1.0, &model.dofs)?;
+    let mut factor = Factor::effective(
+        sys,
+        Combination {
+            mass: 4.0 / (dt * dt),
+            damping: 2.0 / dt,
+            stiffness: 1.0,
+        },
+        &model.dofs,
+    )?;
     let (mut u, mut v, mut f) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
     let (mut du, mut kdu, mut mv) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
     for k in 1..=steps {

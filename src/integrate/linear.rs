@@ -2,7 +2,7 @@
 //! step without allocating (faer's supernodal LLᵀ with AMD ordering, workspace kept).
 
 use super::SolveError;
-use crate::assembly::System;
+use crate::assembly::{Combination, System};
 use crate::model::DofLabel;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::solvers::LltError;
@@ -27,11 +27,11 @@ pub struct Factor {
 }
 
 impl Factor {
-    /// Assembles the effective matrix a·M + b·K of `sys` and factorises it: a scheme's
-    /// set-up, all of it counted as factorisation time.
-    pub fn effective(sys: &System, a: f64, b: f64, labels: &[DofLabel]) -> Result<Self, SolveError> {
+    /// Assembles the effective matrix a·M + b·C + c·K of `sys` and factorises it: a
+    /// scheme's set-up, all of it counted as factorisation time.
+    pub fn effective(sys: &System, x: Combination, labels: &[DofLabel]) -> Result<Self, SolveError> {
         let t0 = Instant::now();
-        let mut factor = Factor::new(&sys.combine(a, b), labels)?;
+        let mut factor = Factor::new(&sys.combine(x), labels)?;
         factor.factor_time = t0.elapsed();
         Ok(factor)
     }

@@ -180,6 +180,9 @@ pub struct StepState<'a> {
     /// The work the deck's dynamic load ([`crate::model::excitation`]) has done from
     /// the start to this state, as the scheme applies it (0 without one).
     pub applied_work: f64,
+    /// The energy the viscous damping has dissipated from the start to this state,
+    /// as the scheme's energy identity books it (0 without damping).
+    pub dissipated: f64,
 }
 
 /// Receives each state; may stop the run (returns false) or fail it.
@@ -235,6 +238,8 @@ pub struct Current<'a> {
     pub work_factor: f64,
     /// Work of the dynamic load from the start to this state.
     pub applied_work: f64,
+    /// Energy dissipated by damping from the start to this state.
+    pub dissipated: f64,
 }
 
 /// What a scheme's step costs: linear algebra and the contact solve.
@@ -310,6 +315,7 @@ fn observe(model: &Model, step: usize, time: f64, c: Current, obs: &mut dyn Obse
         load_factor: c.load_factor,
         work_factor: c.work_factor,
         applied_work: c.applied_work,
+        dissipated: c.dissipated,
     })
 }
 

@@ -1,13 +1,13 @@
 //! COSMIC NASTRAN's direct transient scheme (three-point Newmark, β = 1/3), as
-//! documented in the NASTRAN Theoretical Manual, with no damping (B = 0):
+//! documented in the NASTRAN Theoretical Manual, with viscous damping B:
 //!
-//!   [M/Δt² + βK] u(n+1) = βP(n+1) + (1 − 2β)P(n) + βP(n−1) + N(n)
-//!                         + [2M/Δt² − (1 − 2β)K] u(n) + [−M/Δt² − βK] u(n−1)
+//!   [M/Δt² + B/(2Δt) + βK] u(n+1) = βP(n+1) + (1 − 2β)P(n) + βP(n−1) + N(n)
+//!                         + [2M/Δt² − (1 − 2β)K] u(n) + [−M/Δt² + B/(2Δt) − βK] u(n−1)
 //!
 //! The nonlinear load N(n) = g φ(α(n)) is explicit: evaluated from u(n) and acting
 //! over the step from n to n+1, so the contact force first appears at t = Δt.
 //! Start-up as NASTRAN-95 does it: the initial state is held in equilibrium by the
-//! loads K u(−1) at t = −Δt and K u(0) at t = 0 (with B v(0), B = 0 here), so that a
+//! loads K u(−1) + B v(0) at t = −Δt and K u(0) + B v(0) at t = 0, so that a
 //! structure released from a displaced shape (TIC) starts with no acceleration. Found
 //! by NASTRAN-95's own output: its demonstration problem D09-02-1A (a string released
 //! from a triangular shape) equals NASTRAN-95's printed displacements to their 7
@@ -25,6 +25,9 @@
 //! the start). Booking (u(n) − u(n−1))·(P(n−1) + P(n))/2 instead left 96 % of the
 //! tiny energy of the first step unbalanced in a bar loaded from rest (NASTRAN-95's
 //! t09071a).
+//! The damping's term, multiplied by d(n), is Δt v(n)ᵀB v(n) = D(n): the energy it
+//! dissipated is booked as the work is, Σ_(k<n) D(k) + ½D(n) − ½D(0) at state n, so
+//! that the balance closes as tightly as without damping.
 //! u(−1) = u(0) − Δt v(0); velocity v(n) = (u(n+1) − u(n−1))/(2Δt), so
 //! state n is reported once u(n+1) is known. Order 2; the linear part is
 //! unconditionally stable (β = 1/3 ≥ 1/4); the lagged contact load is only
@@ -32,7 +35,7 @@
 
 use super::linear::Factor;
 use super::{check_finite, contact_vectors, AppliedLoad, Current, SolveError, StepCosts, Stepper};
-use crate::assembly::System;
+use crate::assembly::{Combination, System};
 use crate::model::{apply, Contact, Functional, Model};
 
 /// Parameters of the three-point scheme.
@@ -69,6 +72,20 @@ pub struct ThreePoint<'a> {
     phi_prev: f64,
     /// The dynamic load and its work.
     applied: Option<ThreePointLoad<'a>>,
+    /// The damping's dissipation, when damped.
+    damping: Option<ThreePointDamping>,
+}
+
+/// The damping's terms of the three-point scheme: a workspace, and the sums of the
+/// dissipation booked at state n (see the module doc).
+struct ThreePointDamping {
+    work: [Vec<f64>; 2],
+    /// Σ_(k<n) D(k).
+    full: f64,
+    /// D(n).
+    last: f64,
+    /// D(0).
+    first: f64,
 }
 
 /// The loads of the three-point scheme: the dynamic load's P(n), P(n+1) (in
@@ -96,7 +113,15 @@ impl<'a> ThreePoint<'a> {
         // state is reported at step 0 here, not as a NaN at step 1.
         check_finite(model, 0, 0.0, &model.u0)?;
         check_finite(model, 0, 0.0, &model.v0)?;
-        let factor = Factor::effective(sys, 1.0 / (dt * dt), params.beta, &model.dofs)?;
+        let factor = Factor::effective(
+            sys,
+            Combination {
+                mass: 1.0 / (dt * dt),
+                damping: 0.5 / dt,
+                stiffness: params.beta,
+            },
+            &model.dofs,
+        )?;
         let (g, c) = contact_vectors(model);
         let contact = model.contact.as_ref();
         let u_prev: Vec<f64> = (0..n).map(|i| model.u0[i] - dt * model.v0[i]).collect();
@@ -121,10 +146,21 @@ impl<'a> ThreePoint<'a> {
             phi_n: 0.0,
             phi_prev,
             applied: None,
+            damping: sys.damped().then(|| ThreePointDamping {
+                work: [vec![0.0; n], vec![0.0; n]],
+                full: 0.0,
+                last: 0.0,
+                first: 0.0,
+            }),
         };
+        let mut bv = vec![0.0; n];
+        sys.c_mul(&model.v0, &mut bv);
         let start = [&s.u_prev, &model.u0].map(|u| {
             let mut ku = vec![0.0; n];
             sys.k_mul(u, &mut ku);
+            for (k, b) in ku.iter_mut().zip(&bv) {
+                *k += b;
+            }
             ku
         });
         let dynamic = AppliedLoad::new(model);
@@ -159,6 +195,13 @@ impl<'a> ThreePoint<'a> {
         self.sys.k_mul(&self.t2, &mut self.t1);
         for i in 0..n {
             self.u_next[i] = self.t3[i] - self.t1[i] + self.g[i] * self.phi_n;
+        }
+        if let Some(d) = &mut self.damping {
+            // + B u(n−1)/(2Δt)
+            self.sys.c_mul(&self.u_prev, &mut d.work[0]);
+            for i in 0..n {
+                self.u_next[i] += d.work[0][i] / (2.0 * dt);
+            }
         }
         if let Some(a) = &mut self.applied {
             // P̄(n) = βP(n+1) + (1 − 2β)P(n) + βP(n−1), with the start loads at n = 0, 1.
@@ -195,6 +238,18 @@ impl<'a> ThreePoint<'a> {
                 / 2.0;
             if step == 0 {
                 a.first = a.last;
+            }
+        }
+        if let Some(d) = &mut self.damping {
+            // D(n) = Δt v(n)ᵀB v(n), v(n) = (u(n+1) − u(n−1))/(2Δt).
+            let [v, work] = &mut d.work;
+            for ((v, next), prev) in v.iter_mut().zip(&self.u_next).zip(&self.u_prev) {
+                *v = (next - prev) / (2.0 * dt);
+            }
+            d.full += d.last;
+            d.last = dt * self.sys.c_norm(v, work);
+            if step == 0 {
+                d.first = d.last;
             }
         }
         check_finite(self.model, step + 1, (step + 1) as f64 * dt, &self.u_next)
@@ -235,6 +290,10 @@ impl Stepper for ThreePoint<'_> {
                 .applied
                 .as_ref()
                 .map_or(0.0, |a| a.full + 0.5 * a.last - 0.5 * a.first),
+            dissipated: self
+                .damping
+                .as_ref()
+                .map_or(0.0, |d| d.full + 0.5 * d.last - 0.5 * d.first),
         }
     }
 

@@ -5,6 +5,10 @@
 //! - [`oscillator`]: a mass on a linear spring, u = (v0/ω) sin ωt.
 //! - [`forced_oscillator`]: the same from rest under P0 sin Ωt (a TLOAD2):
 //!   u = P0/(k(1 − r²)) (sin Ωt − r sin ωt), r = Ω/ω.
+//! - [`damped_oscillator`]: the oscillator with a viscous damper to ground (ζ = 0.1)
+//!   released from u0 at rest, u = u0 e^(−ζωt)(cos ω_d t + ζω/ω_d sin ω_d t),
+//!   ω_d = ω√(1 − ζ²); or with the same damping as the model's proportional
+//!   damping, C = a₁M + a₂K.
 //! - [`hertz_wall`]: a mass striking a rigid wall through a Hertz spring F = Kα^1.5:
 //!   α_max = (5mv0²/4K)^(2/5), F_max = Kα_max^1.5, contact time
 //!   (4/5)·B(2/5, 1/2)·α_max/v0 = 2.9432752 α_max/v0, rebound at −v0 (restitution 1).
@@ -92,6 +96,7 @@ fn one_dof(mass: f64, spring: f64, v0: f64, hertz: Option<f64>) -> Model {
         elements: elements.into(),
         contact,
         excitation: None,
+        damping: None,
         u0: vec![0.0],
         v0: vec![v0],
         time: TimeControl {
@@ -139,6 +144,108 @@ impl Oscillator {
     pub fn energy(&self, u: f64, v: f64) -> f64 {
         0.5 * self.mass * v * v + 0.5 * self.stiffness * u * u
     }
+}
+
+/// The oscillator (m = 2, k = 8, ω = 2) with viscous damping c = 0.8
+/// (ζ = c/(2mω) = 0.1), released at rest from u0 = 1.5.
+pub struct DampedOscillator {
+    pub model: Model,
+    pub mass: f64,
+    pub stiffness: f64,
+    pub damping: f64,
+    pub u0: f64,
+}
+
+/// How the damped oscillator is damped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DampedBy {
+    /// A scalar damper (CDAMP) to ground.
+    Element,
+    /// The model's proportional damping, half on M and half on K.
+    Proportional,
+}
+
+pub fn damped_oscillator(by: DampedBy) -> DampedOscillator {
+    use crate::elements::scalar::{Scalar, ScalarKind};
+    let (mass, stiffness, damping, u0) = (2.0, 8.0, 0.8, 1.5);
+    let mut model = one_dof(mass, stiffness, 0.0, None);
+    model.u0 = vec![u0];
+    match by {
+        DampedBy::Element => {
+            let mut elements = model.elements.to_vec();
+            elements.push(Element::new(
+                3,
+                vec![2],
+                vec![[Some(0), None, None, None, None, None]],
+                Scalar {
+                    card: "CDAMP2",
+                    kind: ScalarKind::Damper(damping),
+                    slots: vec![(0, 0)],
+                    points: vec![Some([1.0, 0.0, 0.0])],
+                },
+            ));
+            model.elements = elements.into();
+        }
+        DampedBy::Proportional => {
+            model.damping = Some(crate::model::Damping {
+                mass: 0.5 * damping / mass,
+                stiffness: 0.5 * damping / stiffness,
+                from: vec!["the test model".into()],
+            })
+        }
+    }
+    DampedOscillator {
+        model,
+        mass,
+        stiffness,
+        damping,
+        u0,
+    }
+}
+
+impl DampedOscillator {
+    pub fn omega(&self) -> f64 {
+        (self.stiffness / self.mass).sqrt()
+    }
+    pub fn zeta(&self) -> f64 {
+        self.damping / (2.0 * self.mass * self.omega())
+    }
+    /// The damped circular frequency ω√(1 − ζ²).
+    pub fn omega_d(&self) -> f64 {
+        self.omega() * (1.0 - self.zeta().powi(2)).sqrt()
+    }
+    /// The damped period 2π/ω_d.
+    pub fn period(&self) -> f64 {
+        2.0 * std::f64::consts::PI / self.omega_d()
+    }
+    /// The exact displacement.
+    pub fn exact(&self, t: f64) -> f64 {
+        let (s, wd) = (self.zeta() * self.omega(), self.omega_d());
+        self.u0 * (-s * t).exp() * ((wd * t).cos() + s / wd * (wd * t).sin())
+    }
+    pub fn energy(&self, u: f64, v: f64) -> f64 {
+        0.5 * self.mass * v * v + 0.5 * self.stiffness * u * u
+    }
+}
+
+/// The states of a damped run: (time, u, v, D, W), D the energy dissipated so far
+/// and W the work of the scheme's own loads (the three-point scheme's start loads).
+#[derive(Default)]
+pub struct Dissipating(pub Vec<(f64, f64, f64, f64, f64)>);
+
+impl Observer for Dissipating {
+    fn observe(&mut self, s: &StepState) -> Result<bool, SolveError> {
+        self.0.push((s.time, s.u[0], s.v[0], s.dissipated, s.applied_work));
+        Ok(true)
+    }
+}
+
+/// Runs `scheme` on a damped one-DOF model.
+pub fn run_damped(model: &Model, scheme: Scheme, dt: f64, steps: usize) -> Dissipating {
+    let sys = assemble(model);
+    let mut rec = Dissipating::default();
+    integrate(model, &sys, scheme, dt, steps, &mut rec).expect("the test model runs");
+    rec
 }
 
 /// The oscillator's mass and spring (m = 2, k = 8, ω = 2) from rest under

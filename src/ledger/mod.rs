@@ -16,13 +16,16 @@
 //! - W_ext: work of the loads that derive from no potential (the non-conservative
 //!   remainder of the NOLIN3 loads), accumulated with the scheme's own step load, and
 //!   of the deck's dynamic load (DLOAD), as the scheme books it;
-//! - error = (U_t − U_0 − W_ext)/U_0; for a structure that starts at rest (U_0 = 0,
+//! - D: the energy the structure's viscous damping has dissipated, ∫ vᵀCv dt, as the
+//!   scheme books it (its own energy identity's damping term, so that the balance
+//!   closes as tightly as without damping); present only for a damped structure;
+//! - error = (U_t + D − U_0 − W_ext)/U_0; for a structure that starts at rest (U_0 = 0,
 //!   loaded by a DLOAD) the balance over the largest |W_ext| of the whole run, set
 //!   when the run ends ([`Ledger::finish`]): its energies at the first steps are
 //!   round-off of the later ones, and a balance over the work done so far is noise
 //!   there (a second-order scheme's O(Δt²) at a load's kink is 25 % of the first
 //!   step's work in NASTRAN-95's t09071a);
-//! - energy ratio = U_t/(U_0 + W_ext), as LS-DYNA's GLSTAT prints it (1 when balanced);
+//! - energy ratio = (U_t + D)/(U_0 + W_ext), as LS-DYNA's GLSTAT prints it (1 when balanced);
 //! - momentum: Σ (Mv)_i over the DOFs of the impact direction (each weighted by
 //!   the cosine of its axis with it where grids are displaced in other frames).
 
@@ -49,33 +52,41 @@ pub struct EnergyRow {
     pub total: f64,
     /// Work of the non-conservative loads so far.
     pub external_work: f64,
-    /// (U_t − U_0 − W)/U_0.
+    /// Energy dissipated by viscous damping so far (0 for an undamped structure).
+    pub dissipated_damping: f64,
+    /// (U_t + D − U_0 − W)/U_0.
     pub error: f64,
-    /// U_t/(U_0 + W).
+    /// (U_t + D)/(U_0 + W).
     pub energy_ratio: f64,
     /// Σ(Mv) over the DOFs of the impact direction.
     pub momentum: f64,
 }
 
-/// The columns of `energy.csv`, in the order of [`EnergyRow::values`].
-pub const COLUMNS: [&str; 11] = [
-    "time",
-    "ke_impactor",
-    "se_impactor",
-    "ke_target",
-    "ke_target_eq16",
-    "se_target",
-    "total",
-    "external_work",
-    "error",
-    "energy_ratio",
-    "momentum",
-];
+/// The columns of `energy.csv`, in the order of [`EnergyRow::values`], for a
+/// structure with damping (`damped`) or without: `dissipated_damping` is written
+/// only for a damped one.
+pub fn columns(damped: bool) -> Vec<&'static str> {
+    let mut c = vec![
+        "time",
+        "ke_impactor",
+        "se_impactor",
+        "ke_target",
+        "ke_target_eq16",
+        "se_target",
+        "total",
+        "external_work",
+    ];
+    if damped {
+        c.push("dissipated_damping");
+    }
+    c.extend(["error", "energy_ratio", "momentum"]);
+    c
+}
 
 impl EnergyRow {
-    /// The row's values in the order of [`COLUMNS`].
-    pub fn values(&self) -> [f64; 11] {
-        [
+    /// The row's values in the order of [`columns`].
+    pub fn values(&self, damped: bool) -> Vec<f64> {
+        let mut v = vec![
             self.time,
             self.ke_impactor,
             self.se_impactor,
@@ -84,10 +95,12 @@ impl EnergyRow {
             self.se_target,
             self.total,
             self.external_work,
-            self.error,
-            self.energy_ratio,
-            self.momentum,
-        ]
+        ];
+        if damped {
+            v.push(self.dissipated_damping);
+        }
+        v.extend([self.error, self.energy_ratio, self.momentum]);
+        v
     }
 }
 
@@ -188,6 +201,7 @@ impl<'a> Ledger<'a> {
         let total = ke_i + se_i + ke_t + se_t;
         let u0 = *self.initial.get_or_insert(total);
         let external_work = self.external_work + s.applied_work;
+        let held = total + s.dissipated;
         EnergyRow {
             time: s.time,
             ke_impactor: ke_i,
@@ -197,8 +211,9 @@ impl<'a> Ledger<'a> {
             se_target: se_t,
             total,
             external_work,
-            error: relative_error(total, u0, external_work),
-            energy_ratio: ratio(total, u0 + external_work),
+            dissipated_damping: s.dissipated,
+            error: relative_error(held, u0, external_work),
+            energy_ratio: ratio(held, u0 + external_work),
             momentum: p,
         }
     }
@@ -222,7 +237,7 @@ impl Ledger<'_> {
         let scale = rows.iter().fold(0.0f64, |m, r| m.max(r.external_work.abs()));
         if scale > 0.0 {
             for r in rows {
-                r.error = (r.total - r.external_work) / scale;
+                r.error = (r.total + r.dissipated_damping - r.external_work) / scale;
             }
         }
     }
@@ -251,6 +266,7 @@ impl EnergyRow {
             se_target: f64::NAN,
             total,
             external_work,
+            dissipated_damping: 0.0,
             error: relative_error(total, initial, external_work),
             energy_ratio: ratio(total, initial + external_work),
             momentum,

@@ -281,6 +281,9 @@ pub struct Model {
     pub contact: Option<Contact>,
     /// The dynamic load the case control's DLOAD selects, if any.
     pub excitation: Option<excitation::Excitation>,
+    /// The structure's proportional viscous damping, if the deck asks for any (the
+    /// damping elements' own is in their kernels).
+    pub damping: Option<Damping>,
     /// Initial displacements (TIC).
     pub u0: Vec<f64>,
     /// Initial velocities (TIC).
@@ -301,6 +304,22 @@ pub struct Model {
     pub frames: std::sync::Arc<std::collections::BTreeMap<i64, GridFrame>>,
 }
 
+/// Viscous damping proportional to the whole structure's matrices, as NASTRAN's
+/// direct transient solutions form it: C += a₁·M + a₂·K, a₁ = PARAM ALPHA1 and
+/// a₂ = PARAM ALPHA2 + G/W3 (structural damping G turned viscous at the frequency
+/// W3, radians per time unit: the force G·K·u̇/W3, equal to G·K·u at W3 for a
+/// harmonic motion). The modal damping ratio this gives a mode of circular frequency
+/// ω is a₁/(2ω) + a₂ω/2.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Damping {
+    /// a₁, of M.
+    pub mass: f64,
+    /// a₂, of K.
+    pub stiffness: f64,
+    /// The cards it comes from (`PARAM G 0.02 at plate.bdf:8:1`), for the summary.
+    pub from: Vec<String>,
+}
+
 /// A grid's displacement frame other than the basic system.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct GridFrame {
@@ -315,6 +334,11 @@ impl Model {
     /// Number of solved DOFs.
     pub fn n(&self) -> usize {
         self.dofs.len()
+    }
+
+    /// True when the structure is damped: proportional damping or a damping element.
+    pub fn damped(&self) -> bool {
+        self.damping.is_some() || self.elements.iter().any(|e| e.damps())
     }
 
     /// Active DOFs as NASTRAN counts them: solved DOFs plus TF-defined scalar points.

@@ -156,7 +156,7 @@ pub fn csv_bytes(header: &[String], rows: impl Iterator<Item = Vec<f64>>) -> Vec
 pub fn energy_columns(m: &Model) -> Vec<String> {
     let u = &m.units;
     let e = format!("{}*{}", u.force, u.length);
-    ledger::COLUMNS
+    ledger::columns(m.damped())
         .iter()
         .map(|c| match *c {
             "time" => format!("time [{}]", u.time),
@@ -170,7 +170,8 @@ pub fn energy_columns(m: &Model) -> Vec<String> {
 /// The three output files of a run.
 pub fn run_files(model: &Model, run: &RunResult) -> Vec<(&'static str, Vec<u8>)> {
     let history = csv_bytes(&run.history_header(), run.history.iter().cloned());
-    let energy = csv_bytes(&energy_columns(model), run.energy.iter().map(|r| r.values().to_vec()));
+    let damped = model.damped();
+    let energy = csv_bytes(&energy_columns(model), run.energy.iter().map(|r| r.values(damped)));
     let mut summary = serde_json::to_vec_pretty(&run.summary).expect("json of plain values");
     summary.push(b'\n');
     vec![

@@ -211,6 +211,15 @@ impl Kernels {
             .contact
             .as_ref()
             .ok_or_else(|| RunError::Engine("the convolution engine needs a model with a contact".into()))?;
+        if sys.damped() {
+            // Its ledger is the discrete work identity of an undamped target: the
+            // target's energy is the contact's work on it, which damping would split.
+            return Err(RunFailure::Model(NotConvolvable(
+                "its structure is damped: the engine books the target's energy as the contact's work on it, which                  damping would split; run the direct or modal engine"
+                    .into(),
+            ))
+            .into());
+        }
         // Functionals the ledger needs beyond the outputs, over the target's DOFs.
         let imp = ct.impactor.dof;
         let mut mw = vec![0.0; model.n()];

@@ -850,6 +850,13 @@ fn summarize(
             initial: e.first().map(|r| r.total),
             final_total: e.last().map(|r| r.total),
             external_work: e.last().map(|r| r.external_work),
+            damping: model.damped().then(|| summary::DampingSummary {
+                dissipated: e.last().map_or(0.0, |r| r.dissipated_damping),
+                mass_coefficient: model.damping.as_ref().map_or(0.0, |d| d.mass),
+                stiffness_coefficient: model.damping.as_ref().map_or(0.0, |d| d.stiffness),
+                elements: model.elements.iter().filter(|e| e.damps()).count(),
+                from: model.damping.as_ref().map_or_else(Vec::new, |d| d.from.clone()),
+            }),
             transferred_fraction: rebound.map(|vr| 1.0 - (vr / v0).powi(2)),
             max_relative_error: (!e.is_empty()).then(|| e.iter().map(|r| r.error.abs()).fold(0.0, f64::max)),
             final_relative_error: e.last().map(|r| r.error),

@@ -226,6 +226,7 @@ impl Reduction {
             self.system.n,
             entries(&sys.k, &self.system.k),
             entries(&sys.m, &self.system.m),
+            entries(&sys.c, &self.system.c),
         );
         let mut model = self.model.clone();
         for (k, &i) in b.own.iter().enumerate() {
@@ -545,22 +546,33 @@ pub fn reduce_at(
         }
         x
     };
-    let (mut k_r, mut m_r) = (own_block(&sys.k), own_block(&sys.m));
+    let (mut k_r, mut m_r, mut c_r) = (own_block(&sys.k), own_block(&sys.m), own_block(&sys.c));
     // TᵀKT and TᵀMT: the sparse products of a block of columns, then a matrix product
     // each (symmetrised: the two triangles of a product differ by round-off). Blocks
     // of 32 columns keep the products' storage small beside T's.
     let o = own.len();
+    // TᵀCT likewise, for a damped structure (an empty p × 0 product otherwise).
+    let damped = s_sys.damped();
     let (mut kt_t, mut mt_t) = (faer::Mat::<f64>::zeros(p, p), faer::Mat::<f64>::zeros(p, p));
+    let mut ct_t = faer::Mat::<f64>::zeros(p, if damped { p } else { 0 });
     for first in (0..p).step_by(32) {
         let width = 32.min(p - first);
-        let (mut kt, mut mt) = (Columns::new(ns), Columns::new(ns));
+        let (mut kt, mut mt, mut ct) = (Columns::new(ns), Columns::new(ns), Columns::new(ns));
         for c in first..first + width {
             let mut k = vec![0.0; ns];
             s_sys.k_mul(columns.col(c), &mut k);
             kt.push(&k);
             mt.push(&m_mul(columns.col(c)));
+            if damped {
+                s_sys.c_mul(columns.col(c), &mut k);
+                ct.push(&k);
+            }
         }
-        for (x, xt) in [(&mut kt_t, &kt), (&mut mt_t, &mt)] {
+        let mut products = vec![(&mut kt_t, &kt), (&mut mt_t, &mt)];
+        if damped {
+            products.push((&mut ct_t, &ct));
+        }
+        for (x, xt) in products {
             matmul(
                 x.as_mut().subcols_mut(first, width),
                 faer::Accum::Replace,
@@ -571,7 +583,11 @@ pub fn reduce_at(
             );
         }
     }
-    for (x_r, x) in [(&mut k_r, &kt_t), (&mut m_r, &mt_t)] {
+    let mut reduced = vec![(&mut k_r, &kt_t), (&mut m_r, &mt_t)];
+    if damped {
+        reduced.push((&mut c_r, &ct_t));
+    }
+    for (x_r, x) in reduced {
         for a in 0..p {
             for b in 0..=a {
                 let v = 0.5 * (x[(a, b)] + x[(b, a)]);
@@ -587,7 +603,7 @@ pub fn reduce_at(
             .map(|(i, j)| (i, j, x[(i, j)]))
             .collect()
     };
-    let system = System::from_entries(nr, entries(&k_r), entries(&m_r));
+    let system = System::from_entries(nr, entries(&k_r), entries(&m_r), entries(&c_r));
     // A full vector x on the coordinates: the impactor's entries as they are (its
     // block is not coupled to the structure's), the structure's projected,
     // M_r⁻¹TᵀMx; zero stays zero.

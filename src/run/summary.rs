@@ -212,12 +212,31 @@ pub struct EnergySummary {
     pub final_total: Option<f64>,
     /// External work over the run.
     pub external_work: Option<f64>,
+    /// For a damped structure only: the energy its damping dissipated over the run,
+    /// and the damping it was given (not written for an undamped one).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub damping: Option<DampingSummary>,
     /// 1 − (v_rebound/v0)²: the fraction of the impactor's energy left in the target.
     pub transferred_fraction: Option<f64>,
     /// Largest |relative energy error| over the run.
     pub max_relative_error: Option<f64>,
     /// Relative energy error at the last step.
     pub final_relative_error: Option<f64>,
+}
+
+/// What a damped structure's damping did.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct DampingSummary {
+    /// The energy dissipated over the run.
+    pub dissipated: f64,
+    /// The structure's proportional damping a₁ of M (ALPHA1), 0 when none.
+    pub mass_coefficient: f64,
+    /// a₂ of K (ALPHA2 + G/W3), 0 when none.
+    pub stiffness_coefficient: f64,
+    /// The damping elements (CDAMP1-4, CVISC, CBUSH with B).
+    pub elements: usize,
+    /// The cards the proportional damping comes from.
+    pub from: Vec<String>,
 }
 
 /// Momentum along the impact direction.

@@ -838,13 +838,13 @@ pub fn written_files(case: &Case, model: &Model, run: &RunResult) -> CheckResult
 
 /// The ledger's fields by the name and unit `energy.csv` must give each, from the
 /// deck's units and each field of [`crate::ledger::EnergyRow`] read by name (not by
-/// the writer's column order).
-fn ledger_columns(units: &crate::deck::Units, run: &RunResult) -> Vec<(String, Vec<f64>)> {
+/// the writer's column order); `dissipated_damping` for a damped structure only.
+fn ledger_columns(units: &crate::deck::Units, run: &RunResult, damped: bool) -> Vec<(String, Vec<f64>)> {
     use crate::ledger::EnergyRow;
     let energy = format!("{}*{}", units.force, units.length);
     // Name, unit, and the field itself.
     type Field = (&'static str, String, fn(&EnergyRow) -> f64);
-    let fields: [Field; 11] = [
+    let mut fields: Vec<Field> = vec![
         ("time", units.time.clone(), |r| r.time),
         ("ke_impactor", energy.clone(), |r| r.ke_impactor),
         ("se_impactor", energy.clone(), |r| r.se_impactor),
@@ -857,6 +857,9 @@ fn ledger_columns(units: &crate::deck::Units, run: &RunResult) -> Vec<(String, V
         ("energy_ratio", "-".into(), |r| r.energy_ratio),
         ("momentum", format!("{}*{}", units.force, units.time), |r| r.momentum),
     ];
+    if damped {
+        fields.push(("dissipated_damping", energy.clone(), |r| r.dissipated_damping));
+    }
     fields
         .into_iter()
         .map(|(name, unit, f)| (format!("{name} [{unit}]"), run.energy.iter().map(f).collect()))
@@ -982,7 +985,7 @@ fn file_problems(model: &Model, run: &RunResult) -> Vec<String> {
                 "energy.csv",
                 &header,
                 &rows,
-                &ledger_columns(units, run),
+                &ledger_columns(units, run, model.damped()),
             ));
         }
     }

@@ -44,6 +44,8 @@ pub struct Pbush {
     pub pid: i64,
     /// K1..K6, in the element's axes (blank: 0).
     pub k: [f64; 6],
+    /// B1..B6, viscous damping in the element's axes (blank: 0).
+    pub b: [f64; 6],
     /// The card.
     pub at: CardRef,
 }
@@ -119,12 +121,14 @@ pub(super) fn card_cbush(r: &mut Reader, b: &mut Bulk) {
 
 /// PBUSH (MSC Quick Reference Guide, PBUSH): PID, then lines each opened by a flag in
 /// its first field, "K", "B", "GE" or "RCV", with its values after it. K1..K6 are
-/// taken. B (viscous damping) and GE (structural damping) dissipate energy, which the
-/// ledger cannot yet book: refused when not zero. RCV's stress and strain recovery
+/// taken, and B1..B6 (viscous damping). GE (structural damping, which NASTRAN turns
+/// viscous at PARAM W4) is not formed: refused when not zero, rather than run less
+/// damped than asked. RCV's stress and strain recovery
 /// coefficients are read and not used (no stress or strain is recovered for a CBUSH).
 pub(super) fn card_pbush(r: &mut Reader, b: &mut Bulk) {
     let pid = r.id(0, "PID");
     let mut k = [0.0; 6];
+    let mut damping = [0.0; 6];
     let mut seen_k = false;
     // A flag opens the first line's field 3 and any continuation's field 2.
     let n = r.card.fields.len();
@@ -142,14 +146,22 @@ pub(super) fn card_pbush(r: &mut Reader, b: &mut Bulk) {
                 }
                 r.extra_fields_in(values.start + 6, values.end);
             }
-            "B" | "GE" => {
+            "B" => {
+                for (i, f) in values.clone().take(6).enumerate() {
+                    damping[i] = r.real_or(f, B_NAMES[i], 0.0);
+                    r.non_negative(f, B_NAMES[i], damping[i]);
+                }
+                r.extra_fields_in(values.start + 6, values.end);
+            }
+            "GE" => {
                 for f in values.clone() {
-                    if r.real_or(f, "B/GE", 0.0) != 0.0 {
+                    if r.real_or(f, "GE", 0.0) != 0.0 {
                         r.fail(
                             f,
-                            if flag == "B" { "B" } else { "GE" },
-                            "is damping, which dissipates energy: the ledger cannot book it yet, so a damped \
-                             PBUSH is refused rather than run undamped",
+                            "GE",
+                            "is structural damping, which impactlab does not form (NASTRAN turns it viscous at \
+                             PARAM W4): a PBUSH with GE is refused rather than run less damped; give its damping \
+                             as B",
                         );
                         break;
                     }
@@ -172,8 +184,14 @@ pub(super) fn card_pbush(r: &mut Reader, b: &mut Bulk) {
         r.fail(1, "K", "PBUSH has no K line: the bushing would have no stiffness");
     }
     if r.ok {
-        b.pbushes.push(Pbush { pid, k, at: r.at() });
+        b.pbushes.push(Pbush {
+            pid,
+            k,
+            b: damping,
+            at: r.at(),
+        });
     }
 }
 
 const K_NAMES: [&str; 6] = ["K1", "K2", "K3", "K4", "K5", "K6"];
+const B_NAMES: [&str; 6] = ["B1", "B2", "B3", "B4", "B5", "B6"];

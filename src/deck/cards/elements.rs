@@ -109,14 +109,57 @@ pub struct Conm1 {
     pub at: CardRef,
 }
 
-/// CELAS1-4 and CMASS1-4: a scalar spring or mass between two DOFs.
+/// What a scalar element is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ScalarRole {
+    /// A spring (CELASi, property PELAS).
+    Spring,
+    /// A mass (CMASSi, property PMASS).
+    Mass,
+    /// A viscous damper (CDAMPi, property PDAMP).
+    Damper,
+}
+
+impl ScalarRole {
+    /// The role of a scalar element card (`CELAS2`, `CMASS1`, `CDAMP4`).
+    pub fn of_card(name: &str) -> ScalarRole {
+        if name.starts_with("CELAS") {
+            ScalarRole::Spring
+        } else if name.starts_with("CMASS") {
+            ScalarRole::Mass
+        } else {
+            ScalarRole::Damper
+        }
+    }
+
+    /// Its value's name on the card: K, M or B.
+    pub fn value_name(self) -> &'static str {
+        match self {
+            ScalarRole::Spring => "K",
+            ScalarRole::Mass => "M",
+            ScalarRole::Damper => "B",
+        }
+    }
+
+    /// Its property card.
+    pub fn property(self) -> &'static str {
+        match self {
+            ScalarRole::Spring => "PELAS",
+            ScalarRole::Mass => "PMASS",
+            ScalarRole::Damper => "PDAMP",
+        }
+    }
+}
+
+/// CELAS1-4, CMASS1-4 and CDAMP1-4: a scalar spring, mass or damper between two
+/// DOFs.
 #[derive(Debug, Clone)]
 pub struct ScalarCard {
     /// Element id (field 2).
     pub eid: i64,
-    /// A spring (CELASi) rather than a mass (CMASSi).
-    pub spring: bool,
-    /// Its value: through its property (PELAS, PMASS) or on the card.
+    /// Spring, mass or damper.
+    pub role: ScalarRole,
+    /// Its value: through its property (PELAS, PMASS, PDAMP) or on the card.
     pub value: ScalarValue,
     /// Its two terminals (point, component 0-6): a grid's component 1-6, a scalar
     /// point's 0; point 0 is ground.
@@ -301,18 +344,20 @@ pub(super) fn card_bar(r: &mut Reader) -> BarCard {
 }
 
 /// CELAS1 (EID PID G1 C1 G2 C2), CELAS2 (EID K G1 C1 G2 C2 GE S), CELAS3 (EID PID
-/// S1 S2), CELAS4 (EID K S1 S2), and CMASS1-4 alike with M: "scalar points may be
-/// used for G1 and/or G2, in which case the corresponding C1 and/or C2 must be zero
-/// or blank. Zero or blank may be used to indicate a grounded terminal".
+/// S1 S2), CELAS4 (EID K S1 S2), and CMASS1-4 and CDAMP1-4 alike with M and B:
+/// "scalar points may be used for G1 and/or G2, in which case the corresponding C1
+/// and/or C2 must be zero or blank. Zero or blank may be used to indicate a grounded
+/// terminal".
 pub(super) fn card_scalar(r: &mut Reader, b: &mut Bulk) {
     let name = r.card.name.as_str();
-    let spring = name.starts_with("CELAS");
+    let role = ScalarRole::of_card(name);
+    let spring = role == ScalarRole::Spring;
     let n = name.as_bytes()[name.len() - 1] - b'0';
     let eid = r.id(0, "EID");
     let value = if n % 2 == 1 {
         ScalarValue::Property(r.int_or(1, "PID", eid))
     } else {
-        ScalarValue::Value(r.real(1, if spring { "K" } else { "M" }))
+        ScalarValue::Value(r.real(1, role.value_name()))
     };
     let terminals = if n <= 2 {
         [
@@ -340,7 +385,8 @@ pub(super) fn card_scalar(r: &mut Reader, b: &mut Bulk) {
             r.warn(
                 6,
                 "GE",
-                "structural damping is not applied: impactlab's structure is undamped",
+                "element damping GE is left out, as NASTRAN's transient solutions leave it out without PARAM \
+                 W4 (which impactlab refuses)",
             );
         }
         r.real_opt(7, "S");
@@ -351,7 +397,7 @@ pub(super) fn card_scalar(r: &mut Reader, b: &mut Bulk) {
     if r.ok {
         b.scalars.push(ScalarCard {
             eid,
-            spring,
+            role,
             value,
             terminals,
             first_at,

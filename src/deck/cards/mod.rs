@@ -5,6 +5,7 @@
 
 mod bush;
 mod constraints;
+mod damping;
 mod dynamic;
 mod elements;
 mod excitation;
@@ -16,6 +17,7 @@ mod reader;
 
 pub use bush::*;
 pub use constraints::*;
+pub use damping::*;
 pub use dynamic::*;
 pub use elements::*;
 pub use excitation::*;
@@ -144,7 +146,7 @@ pub struct Bulk {
     pub pbushes: Vec<Pbush>,
     /// CONM2 cards.
     pub conm2s: Vec<Conm2>,
-    /// CELAS1-4 and CMASS1-4 cards.
+    /// CELAS1-4, CMASS1-4 and CDAMP1-4 cards.
     pub scalars: Vec<ScalarCard>,
     /// GENEL cards.
     pub genels: Vec<GenelCard>,
@@ -152,6 +154,14 @@ pub struct Bulk {
     pub pelas: Vec<ScalarProperty>,
     /// PMASS cards.
     pub pmass: Vec<ScalarProperty>,
+    /// PDAMP cards, one entry a property.
+    pub pdamps: Vec<DamperProperty>,
+    /// PVISC cards, one entry a property.
+    pub pviscs: Vec<DamperProperty>,
+    /// CVISC cards, one entry an element.
+    pub cviscs: Vec<Cvisc>,
+    /// The damping PARAMs (G, W3, W4, ALPHA1, ALPHA2) the deck sets.
+    pub damping: Vec<DampingSetting>,
     /// SPC1 cards, and each grid of an SPC card as one.
     pub spc1s: Vec<Spc1>,
     /// SPCADD cards.
@@ -204,9 +214,10 @@ pub struct Bulk {
     pub readings: std::collections::BTreeMap<&'static str, usize>,
 }
 
-/// Cards the reader knows. `PARAM` is accepted and ignored with a warning.
+/// Cards the reader knows. `PARAM` is read for WTMASS and the damping parameters,
+/// any other accepted and ignored with a warning.
 /// Element cards are those of [`crate::elements::KINDS`] besides these.
-pub const KNOWN_CARDS: [&str; 93] = [
+pub const KNOWN_CARDS: [&str; 100] = [
     "GRID", "GRDSET", "CORD1R", "CORD1C", "CORD1S", "CORD2R", "CORD2C", "CORD2S", "EPOINT", "SPOINT", "PROD", "PBAR",
     "PBARL", "PBEAM", "PBEAML", "PSHELL", "PCOMP", "MAT1", "MAT2", "MAT8", "CONM2", "RBE2", "RBE3", "SPC1", "SPC",
     "SPCADD", "TF", "TSTEP", "NOLIN3", "TIC", "FORCE", "MOMENT", "PLOAD4", "GRAV", "LOAD", "PARAM", "INCLUDE",
@@ -214,7 +225,8 @@ pub const KNOWN_CARDS: [&str; 93] = [
     "PELAS", "PMASS", "CQUAD1", "CQUAD2", "CQDMEM", "CQDMEM1", "CQDMEM2", "CTRIA1", "CTRIA2", "CTRMEM", "PQUAD1",
     "PTRIA1", "PQUAD2", "PTRIA2", "PQDMEM", "PQDMEM1", "PQDMEM2", "PTRMEM", "PCOMP1", "PCOMP2", "CRIGD1", "PSHEAR",
     "GENEL", "SPCD", "PLOAD2", "PLOAD", "TEMPRB", "EIGR", "EIGRL", "DAREA", "DELAY", "TLOAD1", "TLOAD2", "TABLED1",
-    "TABLED2", "TABLED3", "TABLED4", "DLOAD", "LSEQ", "CONM1", "CBUSH", "PBUSH", "TEMPP1", "TEMP", "TEMPD",
+    "TABLED2", "TABLED3", "TABLED4", "DLOAD", "LSEQ", "CONM1", "CBUSH", "PBUSH", "TEMPP1", "TEMP", "TEMPD", "CDAMP1",
+    "CDAMP2", "CDAMP3", "CDAMP4", "PDAMP", "CVISC", "PVISC",
 ];
 
 /// Every card the reader types: the element cards of [`crate::elements::KINDS`] and
@@ -319,9 +331,11 @@ impl Typer {
                 "EPOINT" | "SPOINT" => card_points(&mut r, b, card),
                 "PROD" => card_prod(&mut r, b),
                 "PTUBE" => card_ptube(&mut r, b),
-                "CELAS1" | "CELAS2" | "CELAS3" | "CELAS4" | "CMASS1" | "CMASS2" | "CMASS3" | "CMASS4" => {
-                    card_scalar(&mut r, b)
-                }
+                "CELAS1" | "CELAS2" | "CELAS3" | "CELAS4" | "CMASS1" | "CMASS2" | "CMASS3" | "CMASS4" | "CDAMP1"
+                | "CDAMP2" | "CDAMP3" | "CDAMP4" => card_scalar(&mut r, b),
+                "PDAMP" => card_pdamp(&mut r, b),
+                "PVISC" => card_pvisc(&mut r, b),
+                "CVISC" => card_cvisc(&mut r, b),
                 "PELAS" | "PMASS" => card_scalar_property(&mut r, b),
                 "PCOMP1" | "PCOMP2" => card_pcomp_uniform(&mut r, b),
                 "CQUAD1" | "CQUAD2" | "CQDMEM" | "CQDMEM1" | "CQDMEM2" | "CTRIA1" | "CTRIA2" | "CTRMEM" => {
@@ -421,7 +435,7 @@ fn implicit_scalar_points(b: &mut Bulk) {
 fn per_card(name: &str) -> Option<usize> {
     match name {
         "CROD" | "CELAS3" | "CELAS4" | "CMASS3" | "CMASS4" | "CDAMP3" | "CDAMP4" | "PELAS" | "PQUAD2" | "PTRIA2"
-        | "PQDMEM" | "PQDMEM1" | "PQDMEM2" | "PTRMEM" | "PSHEAR" => Some(4),
+        | "PQDMEM" | "PQDMEM1" | "PQDMEM2" | "PTRMEM" | "PSHEAR" | "CVISC" | "PVISC" => Some(4),
         "PMASS" | "PDAMP" => Some(2),
         _ => None,
     }
@@ -482,10 +496,14 @@ fn pieces<'a>(card: &'a RawCard, baror: Option<&RawCard>) -> Vec<std::borrow::Co
     }
 }
 
-/// PARAM: not used by impactlab and ignored with a warning, except WTMASS other than
-/// 1.0, which scales every mass of the deck and is refused (masses are taken as
-/// written: multiply the densities and masses by it and remove the PARAM).
+/// PARAM: WTMASS, which scales every mass of the deck, and the damping parameters
+/// ([`DampingParam`]) are read; any other is not used by impactlab and ignored with
+/// a warning.
 fn card_param(r: &mut Reader, b: &mut Bulk, card: &RawCard) {
+    if let Some(p) = DampingParam::of_name(r.text(0)) {
+        card_damping_param(r, b, p);
+        return;
+    }
     if r.text(0).eq_ignore_ascii_case("WTMASS") {
         let w = r.real_or(1, "V1", 1.0);
         r.positive(1, "V1", w);
@@ -539,7 +557,7 @@ impl Bulk {
         for p in &mut self.pmass {
             p.value *= w;
         }
-        for c in self.scalars.iter_mut().filter(|c| !c.spring) {
+        for c in self.scalars.iter_mut().filter(|c| c.role == ScalarRole::Mass) {
             if let ScalarValue::Value(m) = &mut c.value {
                 *m *= w;
             }

@@ -401,7 +401,8 @@ pub(super) fn card_scalar_property(r: &mut Reader, b: &mut Bulk) {
             r.warn(
                 2,
                 "GE",
-                "structural damping is not applied: impactlab's structure is undamped",
+                "element damping GE is left out, as NASTRAN's transient solutions leave it out without PARAM \
+                 W4 (which impactlab refuses)",
             );
         }
         r.real_opt(3, "S");

@@ -65,6 +65,7 @@ pub(super) fn build_elements<'a, 's>(
     mass_matrices(cx, deck, num, geo, &mut out);
     bushings(cx, deck, num, geo, &mut out);
     scalar_elements(cx, deck, num, geo, rigid, &mut out);
+    viscous_dampers(cx, deck, num, geo, &mut out);
     general_elements(cx, deck, num, geo, rigid, &mut out);
     if out.survey.is_none() {
         drilling_supports(num, geo, &mut out);
@@ -467,6 +468,56 @@ pub(super) fn point_masses(cx: &mut Ctx, deck: &Deck, num: &Numbering, geo: &Geo
     }
 }
 
+/// The CVISC dampers along the lines of their grids (their PVISC's C1 and C2), in
+/// the basic axes, placed where a grid is displaced in another frame.
+pub(super) fn viscous_dampers(cx: &mut Ctx, deck: &Deck, num: &Numbering, geo: &Geometry, out: &mut Elements) {
+    use crate::elements::damper::Viscous;
+    let b = &deck.bulk;
+    let pvisc: HashMap<i64, (f64, f64)> = b.pviscs.iter().map(|p| (p.pid, (p.value, p.rotational))).collect();
+    for c in &b.cviscs {
+        let Some(&(extension, rotation)) = pvisc.get(&c.pid) else {
+            cx.err(c.at.error(format!(
+                "CVISC {} references PVISC {}, which does not exist",
+                c.eid, c.pid
+            )));
+            continue;
+        };
+        if let Some(g) = c.grids.iter().find(|g| !num.grids.contains_key(g)) {
+            cx.err(c.at.error(format!("CVISC {} references grid {g}, which does not exist", c.eid)));
+            continue;
+        }
+        let (Some(&xa), Some(&xb)) = (geo.positions.get(&c.grids[0]), geo.positions.get(&c.grids[1])) else {
+            continue;
+        };
+        if xa == xb {
+            cx.err(c.at.error(format!(
+                "CVISC {} has zero length (its grids coincide): it has no line to damp along",
+                c.eid
+            )));
+            continue;
+        }
+        let grids = c.grids.to_vec();
+        let dofs = grids.iter().map(|&g| num.grid_dofs(g)).collect();
+        let e = Element::new(
+            c.eid,
+            grids.clone(),
+            dofs,
+            Viscous {
+                x: [xa, xb],
+                extension,
+                rotation,
+            },
+        );
+        out.push(
+            match frames_only(&grids, geo, &[xa, xb]) {
+                Some(p) => e.placed(p),
+                None => e,
+            },
+            |g| num.grid_dofs(g),
+        );
+    }
+}
+
 /// CONM1s: the card's matrix at its grid, turned from system CID's axes at the grid
 /// (basic for CID 0) to the grid's displacement frame.
 pub(super) fn mass_matrices(cx: &mut Ctx, deck: &Deck, num: &Numbering, geo: &Geometry, out: &mut Elements) {
@@ -519,8 +570,9 @@ fn mass_axes(cx: &mut Ctx, at: &CardRef, eid: i64, cid: i64, x: [f64; 3], geo: &
     axes
 }
 
-/// The scalar springs and masses (CELAS1-4, CMASS1-4) between their terminals: a
-/// grid's component in its displacement frame, or a scalar point; ground left out.
+/// The scalar springs, masses and dampers (CELAS1-4, CMASS1-4, CDAMP1-4) between
+/// their terminals: a grid's component in its displacement frame, or a scalar point;
+/// ground left out.
 pub(super) fn scalar_elements(
     cx: &mut Ctx,
     deck: &Deck,
@@ -529,17 +581,23 @@ pub(super) fn scalar_elements(
     rigid: &crate::model::rigid::Rigid,
     out: &mut Elements,
 ) {
-    use crate::deck::cards::ScalarValue;
+    use crate::deck::cards::{ScalarRole, ScalarValue};
     use crate::elements::scalar::{Scalar, ScalarKind};
     let b = &deck.bulk;
     let pelas: HashMap<i64, f64> = b.pelas.iter().map(|p| (p.pid, p.value)).collect();
     let pmass: HashMap<i64, f64> = b.pmass.iter().map(|p| (p.pid, p.value)).collect();
+    let pdamp: HashMap<i64, f64> = b.pdamps.iter().map(|p| (p.pid, p.value)).collect();
     for c in &b.scalars {
         let card = c.at.name.as_str();
         let value = match c.value {
             ScalarValue::Value(v) => Some(v),
             ScalarValue::Property(pid) => {
-                let (props, name) = if c.spring { (&pelas, "PELAS") } else { (&pmass, "PMASS") };
+                let props = match c.role {
+                    ScalarRole::Spring => &pelas,
+                    ScalarRole::Mass => &pmass,
+                    ScalarRole::Damper => &pdamp,
+                };
+                let name = c.role.property();
                 let v = props.get(&pid).copied();
                 if v.is_none() {
                     cx.err(c.at.error(format!(
@@ -604,10 +662,10 @@ pub(super) fn scalar_elements(
             points.push(x);
         }
         let Some(v) = value.filter(|_| ok) else { continue };
-        let kind = if c.spring {
-            ScalarKind::Spring(v)
-        } else {
-            ScalarKind::Mass(v)
+        let kind = match c.role {
+            ScalarRole::Spring => ScalarKind::Spring(v),
+            ScalarRole::Mass => ScalarKind::Mass(v),
+            ScalarRole::Damper => ScalarKind::Damper(v),
         };
         let kernel = Scalar {
             card: crate::elements::scalar::card_name(card),

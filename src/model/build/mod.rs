@@ -18,6 +18,7 @@ use std::collections::{BTreeMap, HashMap};
 
 mod bush;
 mod contact;
+mod damping;
 mod dofs;
 mod elements;
 mod excitation;
@@ -26,6 +27,7 @@ mod properties;
 
 use bush::*;
 use contact::*;
+use damping::*;
 use dofs::*;
 use elements::*;
 use excitation::*;
@@ -265,6 +267,7 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
         num.lookup(cx, at, w, g, c)
     });
     let excitation = excitation(&mut cx, deck, &num);
+    let damping = proportional_damping(&mut cx, deck);
     let outputs = output_plan(&mut cx, deck, &num, (&dependent, &tied), &elements, contact.as_ref());
     let rod = rod_info(&elements.list);
     let model = Model {
@@ -277,6 +280,7 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
         elements: elements.list.into(),
         contact,
         excitation,
+        damping,
         u0,
         v0,
         time,
