@@ -30,9 +30,9 @@
 //! lagged contact would need its own kernel pass: not built) nor `central` (explicit).
 
 use super::linear::Factor;
-use super::newmark::{complete, contact_load, predictor, ContactForm};
+use super::newmark::{complete, contact_load, effective_matrix, predictor, ContactForm};
 use super::{contact_vectors, SolveError, StepCosts};
-use crate::assembly::{Combination, System};
+use crate::assembly::System;
 use crate::model::{apply, Model};
 use crate::numerics::dot;
 
@@ -165,15 +165,7 @@ pub fn linear_response(
     record: &mut dyn FnMut(&[f64], &[f64]),
 ) -> Result<StepCosts, SolveError> {
     let n = model.n();
-    let mut factor = Factor::effective(
-        sys,
-        Combination {
-            mass: 4.0 / (dt * dt),
-            damping: 2.0 / dt,
-            stiffness: 1.0,
-        },
-        &model.dofs,
-    )?;
+    let mut factor = Factor::effective(sys, effective_matrix(dt), &model.dofs)?;
     let (mut u, mut v, mut f) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
     let (mut du, mut kdu, mut mv) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
     for k in 1..=steps {

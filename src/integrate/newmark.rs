@@ -111,15 +111,7 @@ impl<'a> Newmark<'a> {
     /// Factorises A = 4M/Δt² + K and sets up the initial state.
     pub fn new(model: &'a Model, sys: &'a System, dt: f64, params: NewmarkParams) -> Result<Self, SolveError> {
         let n = model.n();
-        let mut factor = Factor::effective(
-            sys,
-            Combination {
-                mass: 4.0 / (dt * dt),
-                damping: 2.0 / dt,
-                stiffness: 1.0,
-            },
-            &model.dofs,
-        )?;
+        let mut factor = Factor::effective(sys, effective_matrix(dt), &model.dofs)?;
         let (g, c) = contact_vectors(model);
         let mut z = g.clone();
         let mut s = 0.0;
@@ -165,6 +157,15 @@ impl<'a> Newmark<'a> {
             .ok_or(SolveError::ContactSolve { step, time })?;
         self.contact_iterations += its;
         Ok(psi)
+    }
+}
+
+/// The trapezoidal rule's effective matrix A = 4M/Δt² + 2C/Δt + K.
+pub(crate) fn effective_matrix(dt: f64) -> Combination {
+    Combination {
+        mass: 4.0 / (dt * dt),
+        damping: 2.0 / dt,
+        stiffness: 1.0,
     }
 }
 
