@@ -241,7 +241,7 @@ fn verify_case_snapshots() {
             // whose deflections are the checks' values.
             continue;
         }
-        let verify::Solved::Transient { run, .. } = &outcome.solved else {
+        let verify::Solved::Transient { run, model, .. } = &outcome.solved else {
             panic!("{name}: a transient case solved no run")
         };
         let mut s = serde_json::to_value(&run.summary).unwrap();
@@ -255,10 +255,17 @@ fn verify_case_snapshots() {
         s["momentum"] = serde_json::Value::Null;
         let e = &run.energy;
         let u0 = e[0].total;
-        let mut ledger = String::from("time_s, KE_i, SE_i, KE_t, KE_t_eq16, SE_t, total, W_ext\n");
+        // The time in the deck's unit; D (the energy damping dissipated) for a damped
+        // structure only, so that undamped cases keep their snapshots.
+        let damped = model.damped();
+        let mut ledger = format!(
+            "time_{}, KE_i, SE_i, KE_t, KE_t_eq16, SE_t, total, W_ext{}\n",
+            model.units.time,
+            if damped { ", D" } else { "" }
+        );
         for i in 0..=10 {
             let r = &e[(e.len() - 1) * i / 10];
-            let v: Vec<String> = [
+            let mut values = vec![
                 r.ke_impactor,
                 r.se_impactor,
                 r.ke_target,
@@ -266,10 +273,14 @@ fn verify_case_snapshots() {
                 r.se_target,
                 r.total,
                 r.external_work,
-            ]
-            .iter()
-            .map(|x| format!("{:e}", round(*x, 6, 1e-9 * u0)))
-            .collect();
+            ];
+            if damped {
+                values.push(r.dissipated_damping);
+            }
+            let v: Vec<String> = values
+                .iter()
+                .map(|x| format!("{:e}", round(*x, 6, 1e-9 * u0)))
+                .collect();
             ledger += &format!("{:e}, {}\n", round(r.time, 9, 0.0), v.join(", "));
         }
         insta::assert_snapshot!(

@@ -100,16 +100,19 @@ pub fn report_case(outcome: &CaseOutcome, dir: &Path) -> Result<CaseReport, Repo
         .any(|e| e.kernel.family().shell().is_some_and(|s| s.g_bending.is_some()));
     std::fs::create_dir_all(dir).map_err(io(dir))?;
     let footer = format!(
-        "case {} · deck {} · scheme {} · dt {:e} s · {} steps",
+        "case {} · deck {} · scheme {} · dt {:e} {} · {} steps",
         case.name,
         model.name,
         run.scheme.name(),
         run.dt,
+        model.units.time,
         run.steps
     );
     let external = external_series(case)?;
     let fig = Fig::new(model, run, dir, &footer, &external);
-    let figures = if model.rod.is_some() {
+    let figures = if model.contact.is_none() {
+        free_response_figures(&fig)
+    } else if model.rod.is_some() {
         rod_figures(&fig)
     } else if plate {
         plate_figures(&fig)
@@ -527,6 +530,80 @@ fn contact_force_figure(f: &Fig) -> Result<Vec<PathBuf>, ReportError> {
     )?)
 }
 
+/// A structure moving without an impactor (released from a displacement or a
+/// velocity): its recorded displacements, and its energies with what damping took.
+fn free_response_figures(f: &Fig) -> Result<Vec<PathBuf>, ReportError> {
+    use crate::run::history::Column;
+    let (model, run, ax, footer, dir) = (f.model, f.run, &f.ax, f.footer, f.dir);
+    let u = &model.units;
+    let t = ax.map(&run.history.iter().map(|r| r[0]).collect::<Vec<_>>());
+    let lines: Vec<Line> = run
+        .history_columns
+        .iter()
+        .enumerate()
+        .filter(|(_, c)| matches!(c, Column::Disp(..)))
+        .enumerate()
+        .map(|(k, (j, c))| Line::new(c.name(), t.clone(), run.history.iter().map(|r| r[j]).collect(), k))
+        .collect();
+    let mut out = plot::line_chart(
+        &Chart {
+            title: format!("Displacements, {}", model.name),
+            x_label: ax.label(),
+            y_label: format!("displacement [{}]", u.length),
+            footer: footer.into(),
+            lines,
+            ..Default::default()
+        },
+        &dir.join("displacement"),
+    )?;
+    let te = ax.map(&run.energy.iter().map(|r| r.time).collect::<Vec<_>>());
+    let get = |f: fn(&EnergyRow) -> f64| run.energy.iter().map(f).collect::<Vec<f64>>();
+    let mut lines = vec![
+        Line::new("KE target (½vᵀMv)", te.clone(), get(|r| r.ke_target), 2).dashed(),
+        Line::new("SE target (Eq. 17)", te.clone(), get(|r| r.se_target), 3),
+        Line::new("total (Eq. 13)", te.clone(), get(|r| r.total), 5),
+    ];
+    lines.extend(dissipation_lines(model, run, &te));
+    out.extend(plot::line_chart(
+        &Chart {
+            title: format!("Energy, {}", model.name),
+            x_label: ax.label(),
+            y_label: format!("energy [{}·{}]", u.force, u.length),
+            footer: footer.into(),
+            lines,
+            headroom: 0.3,
+            ..Default::default()
+        },
+        &dir.join("energy"),
+    )?);
+    Ok(out)
+}
+
+/// For a damped structure: the energy its damping dissipated, and the total with it
+/// (the ledger's balance: flat when it closes); nothing for an undamped one.
+fn dissipation_lines(model: &Model, run: &RunResult, t: &[f64]) -> Vec<Line> {
+    if !model.damped() {
+        return Vec::new();
+    }
+    let e = &run.energy;
+    vec![
+        Line::new(
+            "dissipated by damping",
+            t.to_vec(),
+            e.iter().map(|r| r.dissipated_damping).collect(),
+            6,
+        )
+        .dashed(),
+        Line::new(
+            "total + dissipated",
+            t.to_vec(),
+            e.iter().map(|r| r.total + r.dissipated_damping).collect(),
+            5,
+        )
+        .dashed(),
+    ]
+}
+
 fn plate_figures(f: &Fig) -> Result<Vec<PathBuf>, ReportError> {
     let mut out = plate_force(f)?;
     out.extend(plate_displacement(f)?);
@@ -770,12 +847,14 @@ fn plate_energy(f: &Fig) -> Result<Vec<PathBuf>, ReportError> {
     let u = &model.units;
     let mut out = Vec::new();
     let mut lines = energy_lines(&run.energy, |t| t * ax.scale);
+    let te = ax.map(&run.energy.iter().map(|r| r.time).collect::<Vec<_>>());
     lines.push(Line::new(
         "external work (deck's non-conservative NOLIN3)",
-        ax.map(&run.energy.iter().map(|r| r.time).collect::<Vec<_>>()),
+        te.clone(),
         run.energy.iter().map(|r| r.external_work).collect(),
         6,
     ));
+    lines.extend(dissipation_lines(model, run, &te));
     out.extend(plot::line_chart(
         &Chart {
             title: "Energy distribution, impactor and plate".into(),
@@ -797,7 +876,7 @@ fn key_instants(run: &RunResult) -> Vec<(&'static str, usize)> {
     let nearest = |t: f64| s.time.iter().position(|&x| x >= t).unwrap_or(s.time.len() - 1);
     let sm = &run.summary;
     let mut v = vec![("start", 0)];
-    if let Some(t) = sm.contact.peak_force_time {
+    if let Some(t) = sm.contact.peak_force_time.filter(|_| sm.contact.peak_force > 0.0) {
         v.push(("peak force", nearest(t)));
     }
     if let Some(t) = sm.impactor.velocity_zero_time {
@@ -842,6 +921,19 @@ fn summary_table(m: &mut String, model: &Model, run: &RunResult) {
     let (s, u, ax) = (&run.summary, &model.units, TimeAxis::of(model));
     let _ = writeln!(m, "## Summary\n");
     let _ = writeln!(m, "| quantity | value |\n|---|---|");
+    let row = |m: &mut String, name: &str, v: Option<f64>, unit: &str| {
+        let _ = writeln!(m, "| {name} | {} {unit} |", v.map_or("—".into(), |x| sig(x, 6)));
+    };
+    let energy = format!("{}·{}", u.force, u.length);
+    if model.contact.is_none() {
+        row(m, "energy at the start", s.energy.initial, &energy);
+        row(m, "energy at the end", s.energy.final_total, &energy);
+        if let Some(d) = &s.energy.damping {
+            row(m, "energy dissipated by damping", Some(d.dissipated), &energy);
+        }
+        row(m, "max relative energy error", s.energy.max_relative_error, "");
+        return;
+    }
     let iv: Vec<String> = s
         .contact
         .intervals
@@ -849,9 +941,6 @@ fn summary_table(m: &mut String, model: &Model, run: &RunResult) {
         .map(|i| format!("{}–{} {}", sig(i[0] * ax.scale, 5), sig(i[1] * ax.scale, 5), ax.unit))
         .collect();
     let _ = writeln!(m, "| contact intervals | {} |", iv.join(", "));
-    let row = |m: &mut String, name: &str, v: Option<f64>, unit: &str| {
-        let _ = writeln!(m, "| {name} | {} {unit} |", v.map_or("—".into(), |x| sig(x, 6)));
-    };
     row(m, "peak force", Some(s.contact.peak_force), &u.force);
     row(
         m,
@@ -877,6 +966,9 @@ fn summary_table(m: &mut String, model: &Model, run: &RunResult) {
         s.energy.transferred_fraction.map(|x| 100.0 * x),
         "%",
     );
+    if let Some(d) = &s.energy.damping {
+        row(m, "energy dissipated by damping", Some(d.dissipated), &energy);
+    }
     row(m, "max relative energy error", s.energy.max_relative_error, "");
     if let Some(r) = &s.rod {
         row(m, "contact ends (tC/L)", r.contact_end_tcl, "");
@@ -886,17 +978,21 @@ fn summary_table(m: &mut String, model: &Model, run: &RunResult) {
 
 fn ledger_table(m: &mut String, model: &Model, run: &RunResult) {
     let ax = TimeAxis::of(model);
+    // The energy damping dissipated, D, for a damped structure only.
+    let damped = model.damped();
     let _ = writeln!(m, "\n## Energy ledger at key instants\n");
     let _ = writeln!(
         m,
-        "| instant | t [{}] | KE_i | SE_i | KE_t | KE_t (Eq. 16) | SE_t | total | W_ext | error |\n|---|---|---|---|---|---|---|---|---|---|",
-        ax.unit
+        "| instant | t [{}] | KE_i | SE_i | KE_t | KE_t (Eq. 16) | SE_t | total | W_ext |{} error |\n|---|---|---|---|---|---|---|---|---|{}---|",
+        ax.unit,
+        if damped { " D |" } else { "" },
+        if damped { "---|" } else { "" }
     );
     for (name, k) in key_instants(run) {
         let r = &run.energy[k];
         let _ = writeln!(
             m,
-            "| {name} | {} | {} | {} | {} | {} | {} | {} | {} | {:.2e} |",
+            "| {name} | {} | {} | {} | {} | {} | {} | {} | {} |{} {:.2e} |",
             sig(r.time * ax.scale, 5),
             sig(r.ke_impactor, 5),
             sig(r.se_impactor, 5),
@@ -905,6 +1001,11 @@ fn ledger_table(m: &mut String, model: &Model, run: &RunResult) {
             sig(r.se_target, 5),
             sig(r.total, 6),
             sig(r.external_work, 4),
+            if damped {
+                format!(" {} |", sig(r.dissipated_damping, 6))
+            } else {
+                String::new()
+            },
             r.error
         );
     }

@@ -440,6 +440,23 @@ pub enum CheckSpec {
         /// The cutoffs, as fractions of the default one.
         fractions: Vec<f64>,
     },
+    /// A structure released at rest from a displacement, damped viscously: the history
+    /// column `column` against the damped oscillator's closed form
+    /// u0 e^(−ζωt)(cos ω_d t + ζω/ω_d sin ω_d t), ω_d = ω√(1 − ζ²), u0 its first
+    /// value; max |difference| / |u0| ≤ max, and the ledger's dissipated energy never
+    /// decreasing.
+    FreeDecay {
+        /// The history column (`disp_1`, `disp_2_T1`).
+        column: String,
+        /// The undamped circular frequency ω (radians per the deck's time unit).
+        omega: f64,
+        /// The damping ratio ζ (below 1).
+        zeta: f64,
+        /// Largest difference allowed, relative to |u0|.
+        max: f64,
+        /// Where ω and ζ come from.
+        source: String,
+    },
     /// A rigid region stores no strain: the written strains of `elements` (every
     /// corner tied to one grid by an RBE2) stay below `max` of the largest written
     /// strain of any element, at every output time.

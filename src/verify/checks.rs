@@ -170,6 +170,13 @@ pub fn check(case: &Case, model: &Model, run: &RunResult, spec: &CheckSpec) -> R
         } => dalembert_strain(&cx, *element, *x, *until_tcl, *max)?,
         CheckSpec::InfinitePlate { until_s, max } => infinite_plate_force(&cx, *until_s, *max)?,
         CheckSpec::RigidTarget { tol } => rigid_target(&cx, tol)?,
+        CheckSpec::FreeDecay {
+            column,
+            omega,
+            zeta,
+            max,
+            source,
+        } => free_decay(&cx, column, (*omega, *zeta), *max, source)?,
         CheckSpec::CriticalStep { min_ratio } => critical_step(&cx, *min_ratio)?,
         CheckSpec::NavierFrequencies {
             meshes,
@@ -748,6 +755,49 @@ fn rigid_target(cx: &Cx, tol: &Tol) -> Result<CheckResult, CheckError> {
         tol.bound(),
         tol.accepts(vd, dur) && tol.accepts(vf, f),
         format!("peak force {vf:.5e} vs {f:.5e}; reduced mass {mu:.4e}"),
+    ))
+}
+
+/// A damped structure's free decay against the damped oscillator's closed form (see
+/// [`CheckSpec::FreeDecay`]), with the dissipated energy never decreasing.
+fn free_decay(
+    cx: &Cx,
+    column: &str,
+    (omega, zeta): (f64, f64),
+    max: f64,
+    source: &str,
+) -> Result<CheckResult, CheckError> {
+    let j = cx
+        .run
+        .history_names()
+        .iter()
+        .position(|x| x == column)
+        .ok_or_else(|| CheckError::NoColumn {
+            case: cx.case.name.clone(),
+            column: column.into(),
+        })?;
+    let rows = &cx.run.history;
+    let u0 = rows.first().map_or(f64::NAN, |r| r[j]);
+    let (s, wd) = (zeta * omega, omega * (1.0 - zeta * zeta).sqrt());
+    let exact = |t: f64| u0 * (-s * t).exp() * ((wd * t).cos() + s / wd * (wd * t).sin());
+    let (k, v) = argmax(rows.iter().map(|r| (r[j] - exact(r[0])).abs() / u0.abs()));
+    let monotone = cx
+        .energy()
+        .windows(2)
+        .all(|w| w[1].dissipated_damping >= w[0].dissipated_damping);
+    let dissipated = cx.energy().last().map_or(0.0, |r| r.dissipated_damping);
+    Ok(cx.result(
+        format!("free_decay {column}"),
+        v,
+        None,
+        Bound::at_most(max),
+        v <= max && monotone && dissipated > 0.0,
+        format!(
+            "largest at t = {:.4e} {}; ω = {omega:e}, ζ = {zeta:e} ({source}); dissipated {dissipated:.4e}{}",
+            rows.get(k).map_or(f64::NAN, |r| r[0]),
+            cx.run.summary.units.time,
+            if monotone { "" } else { ", decreasing somewhere" }
+        ),
     ))
 }
 
