@@ -5,7 +5,9 @@
 //!
 //! Effects are off unless asked for or needed, and the run says which were simulated
 //! and which skipped, and why. Effects the model cannot represent (rotary inertia,
-//! damping, gravity) are an error when asked for, never silently ignored.
+//! gravity) are an error when asked for, never silently ignored. Damping
+//! (`damping = { ratio, at }`) is the deck's structural damping turned viscous:
+//! PARAM G = 2·ratio at W3 = 2π·at.
 
 use crate::deck::number::format_real;
 use crate::integrate::Scheme;
@@ -173,15 +175,28 @@ pub struct Effects {
     /// Rotary inertia (not representable: an error when asked for).
     #[serde(default)]
     pub rotary_inertia: bool,
-    /// Damping (not representable: an error when asked for).
+    /// Damping: a ratio of critical damping at a frequency.
     #[serde(default)]
-    pub damping: bool,
+    pub damping: Option<SceneDamping>,
     /// Gravity (not representable: an error when asked for).
     #[serde(default)]
     pub gravity: bool,
     /// Book the energy ledger (default on).
     #[serde(default = "yes")]
     pub ledger: bool,
+}
+
+/// A scene's damping: the structure damped at `ratio` of critical at the frequency
+/// `at` (cycles per the scene's time unit), as NASTRAN's structural damping G = 2·ratio
+/// turned viscous at W3 = 2π·at: C = (G/W3)·K, so that a mode's ratio is
+/// ratio·f/at, exactly `ratio` at `at` and proportional to its frequency elsewhere.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneDamping {
+    /// The ratio of critical damping at `at` (0 < ratio < 1).
+    pub ratio: f64,
+    /// The frequency it holds at, cycles per the scene's time unit.
+    pub at: f64,
 }
 
 fn yes() -> bool {
@@ -194,7 +209,7 @@ impl Default for Effects {
         Effects {
             membrane: false,
             rotary_inertia: false,
-            damping: false,
+            damping: None,
             gravity: false,
             ledger: true,
         }
@@ -338,10 +353,19 @@ fn validate(s: &Scene) -> Result<(), SceneIssue> {
                 .into(),
         ));
     }
-    if s.effects.damping {
-        return Err(SceneIssue(
-            "effects.damping is asked for, but Rayleigh damping is not implemented".into(),
-        ));
+    if let Some(d) = s.effects.damping {
+        if !(d.ratio > 0.0 && d.ratio < 1.0) {
+            return Err(SceneIssue(format!(
+                "effects.damping.ratio = {}: a ratio of critical damping is above 0 and below 1",
+                d.ratio
+            )));
+        }
+        if !(d.at > 0.0 && d.at.is_finite()) {
+            return Err(SceneIssue(format!(
+                "effects.damping.at = {}: the frequency the ratio holds at must be positive",
+                d.at
+            )));
+        }
     }
     if s.effects.gravity {
         return Err(SceneIssue(
@@ -575,6 +599,15 @@ pub fn to_deck(s: &Scene) -> Result<String, SceneIssue> {
         Target::Plate { .. } => plate_bulk(w, s, k, &steps_line)?,
         Target::Deck { .. } => {}
     }
+    if let Some(dm) = s.effects.damping {
+        let _ = writeln!(
+            w,
+            "$ Damping: ratio {} at {} cycles per {}: G = 2 ratio turned viscous at W3 = 2 pi at",
+            dm.ratio, dm.at, s.units.time
+        );
+        let _ = writeln!(w, "PARAM,G,{}", format_real(2.0 * dm.ratio));
+        let _ = writeln!(w, "PARAM,W3,{}", format_real(2.0 * std::f64::consts::PI * dm.at));
+    }
     let _ = writeln!(w, "ENDDATA");
     Ok(d)
 }
@@ -797,7 +830,21 @@ pub fn effects(s: &Scene, inert_dofs: usize, steps_done: usize) -> EffectReport 
         skip.push(Effect::new("energy ledger", "not asked for: not computed"));
     }
     for name in ["rotary inertia", "damping", "gravity"] {
-        skip.push(Effect::new(name, "not asked for"));
+        match (name, s.effects.damping) {
+            ("damping", Some(d)) => sim.push(Effect::new(
+                name,
+                format!(
+                    "asked for: {} of critical at {} cycles per {}, proportional to frequency elsewhere (PARAM G \
+                     {} turned viscous at W3 = 2π·{}); its energy is the ledger's dissipated_damping",
+                    d.ratio,
+                    d.at,
+                    s.units.time,
+                    2.0 * d.ratio,
+                    d.at
+                ),
+            )),
+            _ => skip.push(Effect::new(name, "not asked for")),
+        }
     }
     if let Some(after) = s.run.after_separation {
         sim.push(Effect::new(
