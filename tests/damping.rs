@@ -259,3 +259,19 @@ fn rayleigh_damping_gives_the_plates_modes_their_ratios() {
         );
     }
 }
+
+/// Goal: a part moved only through a damper is not dropped as inert. Model: two
+/// scalar points, the first a mass on a spring released from a displacement, the
+/// second a mass joined to the first by a CDAMP2 alone (no spring, no coupled mass).
+/// Reference: the second point moves (its largest displacement is not zero), and the
+/// momentum the damper passes it shows in its history; the run's DOFs are both
+/// solved (none inert).
+#[test]
+fn a_part_moved_only_through_a_damper_is_solved() {
+    let deck = "SOL 9\nCEND\nDISP = ALL\nIC = 1\nTSTEP = 1\nBEGIN BULK\nSPOINT,1,2\nCELAS2,1,100.,1\n\
+                CMASS2,2,1.0,1\nCMASS2,3,1.0,2\nCDAMP2,4,0.4,1,,2\nTIC,1,1,0,0.01\nTSTEP,1,200,1.0-3,1\nENDDATA\n";
+    let (h, summary, _) = run(deck, "newmark", &[]).unwrap();
+    assert_eq!(summary["model"]["inert_dofs_skipped"], 0, "{}", summary["model"]);
+    let moved = h.series[&(2, 0)].iter().fold(0.0f64, |m, p| m.max(p.1.abs()));
+    assert!(moved > 1e-6, "point 2 moved {moved:e}");
+}

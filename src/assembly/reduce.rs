@@ -2,8 +2,8 @@
 //! contact or dynamic load ever reaches stay exactly zero for the whole run, so they
 //! need not be solved.
 //!
-//! Two DOFs are coupled when an assembled stiffness or mass entry between them is
-//! nonzero, or when both appear in the contact (its driver functional, its loads, the
+//! Two DOFs are coupled when an assembled stiffness, mass or damping entry between
+//! them is nonzero, or when both appear in the contact (its driver functional, its loads, the
 //! impactor) or in one TF. A group of coupled DOFs is *live* when any of its DOFs has a
 //! nonzero initial displacement or velocity, belongs to the contact or carries a
 //! dynamic load; every other
@@ -39,7 +39,7 @@ impl UnionFind {
 fn live_dofs(model: &Model, sys: &System) -> Vec<bool> {
     let n = model.n();
     let mut uf = UnionFind((0..n).collect());
-    for t in sys.k.iter().chain(sys.m.iter()) {
+    for t in sys.k.iter().chain(sys.m.iter()).chain(sys.c.iter()) {
         if t.val != 0.0 {
             uf.union(t.row, t.col);
         }
