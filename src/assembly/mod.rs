@@ -40,27 +40,17 @@ pub struct System {
 /// [`crate::elements::Element::scatter`] (no element kind is named here), C with the
 /// model's proportional damping, C = Σ C_e + a₁M + a₂K ([`crate::model::Damping`]).
 pub fn assemble(model: &Model) -> System {
-    let mut sys = assemble_elements(&model.elements, model.n());
-    let d = model.damping.as_ref();
-    let (a1, a2) = d.map_or((0.0, 0.0), |d| (d.mass, d.stiffness));
-    if a1 != 0.0 || a2 != 0.0 || !sys.c.is_empty() {
-        let scaled = |v: &[Triplet<usize, usize, f64>], a: f64| -> Vec<Triplet<usize, usize, f64>> {
-            if a == 0.0 {
-                return Vec::new();
-            }
-            v.iter().map(|t| Triplet::new(t.row, t.col, a * t.val)).collect()
-        };
-        let mut c = std::mem::take(&mut sys.c);
-        c.extend(scaled(&sys.m, a1));
-        c.extend(scaled(&sys.k, a2));
-        sys.set_damping(c);
-    }
-    sys
+    assembled(&model.elements, model.n(), model.damping.as_ref())
 }
 
-/// Assembles K and M of `elements` over `n` solved DOFs (a structure built alone,
-/// [`crate::model::Structure`]).
+/// Assembles K, M and C of `elements` over `n` solved DOFs (a structure built alone,
+/// [`crate::model::Structure`]): C is the damping elements' alone.
 pub fn assemble_elements(elements: &[crate::elements::Element], n: usize) -> System {
+    assembled(elements, n, None)
+}
+
+/// K, M and C of `elements`, C with the proportional damping `proportional` added.
+fn assembled(elements: &[crate::elements::Element], n: usize, proportional: Option<&crate::model::Damping>) -> System {
     let mut k = Vec::new();
     let mut m = Vec::new();
     let mut c = Vec::new();
@@ -72,8 +62,21 @@ pub fn assemble_elements(elements: &[crate::elements::Element], n: usize) -> Sys
         v.into_iter().map(|(i, j, x)| Triplet::new(i, j, x)).collect()
     };
     let mut sys = System::from_triplets(n, triplets(k), triplets(m));
-    sys.set_damping(triplets(c));
+    let mut c = triplets(c);
+    if let Some(d) = proportional {
+        for (of, a) in [(&sys.m, d.mass), (&sys.k, d.stiffness)] {
+            if a != 0.0 {
+                c.extend(scaled(of, a));
+            }
+        }
+    }
+    sys.set_damping(c);
     sys
+}
+
+/// The entries `v`, each times `a`.
+fn scaled(v: &[Triplet<usize, usize, f64>], a: f64) -> impl Iterator<Item = Triplet<usize, usize, f64>> + '_ {
+    v.iter().map(move |t| Triplet::new(t.row, t.col, a * t.val))
 }
 
 /// The coefficients of an effective matrix a·M + b·C + c·K.
@@ -169,12 +172,7 @@ impl System {
 
     /// a·M + b·C + c·K (the coefficients of `x`), compressed.
     pub fn combine(&self, x: Combination) -> SparseColMat<usize, f64> {
-        let scaled = |v: &[Triplet<usize, usize, f64>], a: f64| {
-            v.iter()
-                .map(move |t| Triplet::new(t.row, t.col, a * t.val))
-                .collect::<Vec<_>>()
-        };
-        let mut t = scaled(&self.m, x.mass);
+        let mut t: Vec<_> = scaled(&self.m, x.mass).collect();
         t.extend(scaled(&self.k, x.stiffness));
         if x.damping != 0.0 {
             t.extend(scaled(&self.c, x.damping));

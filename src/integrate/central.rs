@@ -48,30 +48,12 @@ pub fn critical_step(model: &Model, sys: &System) -> Result<f64, SolveError> {
             ),
         });
     }
-    let k = sys.k_csc.as_ref();
-    let (cp, ri, val) = (k.symbolic().col_ptr(), k.symbolic().row_idx(), k.val());
-    let mut row = vec![0.0f64; sys.n];
-    for j in 0..sys.n {
-        for p in cp[j]..cp[j + 1] {
-            let i = ri[p];
-            row[i] += val[p].abs() / (m[i] * m[j]).sqrt();
-        }
-    }
-    let lmax = row.iter().cloned().fold(0.0, f64::max);
+    let lmax = gershgorin(sys.k_csc.as_ref(), m);
     if !sys.damped() {
         return Ok(if lmax > 0.0 { 2.0 / lmax.sqrt() } else { f64::INFINITY });
     }
-    // The Gershgorin bound of M^(-1/2) C M^(-1/2) (the triplets summed per row).
-    let mut row = vec![0.0f64; sys.n];
     let c = faer::sparse::SparseColMat::try_new_from_triplets(sys.n, sys.n, &sys.c).expect("indices are in range");
-    let (cp, ri, val) = (c.symbolic().col_ptr(), c.symbolic().row_idx(), c.val());
-    for j in 0..sys.n {
-        for p in cp[j]..cp[j + 1] {
-            let i = ri[p];
-            row[i] += val[p].abs() / (m[i] * m[j]).sqrt();
-        }
-    }
-    let cmax = row.iter().cloned().fold(0.0, f64::max);
+    let cmax = gershgorin(c.as_ref(), m);
     // The positive root of (ω²/4)Δt² + (c/2)Δt − 1 = 0.
     Ok(match (lmax > 0.0, cmax > 0.0) {
         (true, _) => (-cmax / 2.0 + (cmax * cmax / 4.0 + lmax).sqrt()) * 2.0 / lmax,
@@ -80,10 +62,22 @@ pub fn critical_step(model: &Model, sys: &System) -> Result<f64, SolveError> {
     })
 }
 
+/// The Gershgorin bound of M^(-1/2) A M^(-1/2), `m` the diagonal of M: the largest
+/// row sum of |A_ij|/√(m_i m_j).
+fn gershgorin(a: faer::sparse::SparseColMatRef<'_, usize, f64>, m: &[f64]) -> f64 {
+    let (cp, ri, val) = (a.symbolic().col_ptr(), a.symbolic().row_idx(), a.val());
+    let mut row = vec![0.0f64; m.len()];
+    for j in 0..m.len() {
+        for p in cp[j]..cp[j + 1] {
+            let i = ri[p];
+            row[i] += val[p].abs() / (m[i] * m[j]).sqrt();
+        }
+    }
+    row.iter().cloned().fold(0.0, f64::max)
+}
+
 /// Velocity Verlet's state: u, v and the acceleration at the current step.
 pub struct Central<'a> {
-    /// False while the initial acceleration is formed (from v(0) itself).
-    started: bool,
     sys: &'a System,
     contact: Option<&'a Contact>,
     dt: f64,
@@ -122,7 +116,6 @@ impl<'a> Central<'a> {
         let alpha = apply(&c, &model.u0);
         let phi_n = contact.map_or(0.0, |ct| ct.law(alpha));
         let mut s = Central {
-            started: false,
             sys,
             contact,
             dt,
@@ -140,15 +133,14 @@ impl<'a> Central<'a> {
             phi_prev: phi_n,
             applied: AppliedLoad::new(model),
         };
-        s.accelerate();
-        s.started = true;
+        s.accelerate(false);
         Ok(s)
     }
 
     /// a = M⁻¹ (g φ + P − K u) at the current state, P the dynamic load there; with
-    /// damping, less M⁻¹ C v* (see the module doc; `v` holds the velocity v* is
-    /// predicted from: v(0) at the start, v(n+½) after a step).
-    fn accelerate(&mut self) {
+    /// damping, less M⁻¹ C v* (see the module doc): v* predicted from the half-step
+    /// velocity in `v` after a step (`predict`), v(0) itself at the start.
+    fn accelerate(&mut self, predict: bool) {
         self.sys.k_mul(&self.u, &mut self.ku);
         match self.applied.as_ref().map(|p| &p.now) {
             None => {
@@ -163,10 +155,9 @@ impl<'a> Central<'a> {
             }
         }
         if let Some([cv, work]) = &mut self.cv {
-            // v* = v + Δt/2 M⁻¹(f − C v), then a = M⁻¹(f − C v*); at the start (v(0)
-            // known) v* is v(0) itself.
+            // v* = v + Δt/2 M⁻¹(f − C v), then a = M⁻¹(f − C v*).
             self.sys.c_mul(&self.v, cv);
-            if self.started {
+            if predict {
                 for i in 0..self.u.len() {
                     work[i] = self.v[i] + 0.5 * self.dt * (self.a[i] - cv[i] / self.m[i]);
                 }
@@ -197,7 +188,7 @@ impl Stepper for Central<'_> {
         }
         // The damping's work: Δu·(C v*(n) + C v*(n+1))/2, Δu = Δt v(n+½).
         let before = self.cv.as_ref().map(|[cv, _]| dt * crate::numerics::dot(&self.v, cv));
-        self.accelerate();
+        self.accelerate(true);
         if let (Some(before), Some([cv, _])) = (before, &self.cv) {
             self.dissipated += 0.5 * (before + dt * crate::numerics::dot(&self.v, cv));
         }

@@ -153,12 +153,16 @@ impl<'a> ThreePoint<'a> {
                 first: 0.0,
             }),
         };
-        let mut bv = vec![0.0; n];
-        sys.c_mul(&model.v0, &mut bv);
+        // K u + B v(0), B v(0) only when damped.
+        let bv = sys.damped().then(|| {
+            let mut bv = vec![0.0; n];
+            sys.c_mul(&model.v0, &mut bv);
+            bv
+        });
         let start = [&s.u_prev, &model.u0].map(|u| {
             let mut ku = vec![0.0; n];
             sys.k_mul(u, &mut ku);
-            for (k, b) in ku.iter_mut().zip(&bv) {
+            for (k, b) in ku.iter_mut().zip(bv.iter().flatten()) {
                 *k += b;
             }
             ku

@@ -925,52 +925,49 @@ fn summary_table(m: &mut String, model: &Model, run: &RunResult) {
         let _ = writeln!(m, "| {name} | {} {unit} |", v.map_or("—".into(), |x| sig(x, 6)));
     };
     let energy = format!("{}·{}", u.force, u.length);
-    if model.contact.is_none() {
+    if model.contact.is_some() {
+        let iv: Vec<String> = s
+            .contact
+            .intervals
+            .iter()
+            .map(|i| format!("{}–{} {}", sig(i[0] * ax.scale, 5), sig(i[1] * ax.scale, 5), ax.unit))
+            .collect();
+        let _ = writeln!(m, "| contact intervals | {} |", iv.join(", "));
+        row(m, "peak force", Some(s.contact.peak_force), &u.force);
+        row(
+            m,
+            "peak force time",
+            s.contact.peak_force_time.map(|t| t * ax.scale),
+            &ax.unit,
+        );
+        row(
+            m,
+            "impactor at rest",
+            s.impactor.velocity_zero_time.map(|t| t * ax.scale),
+            &ax.unit,
+        );
+        row(
+            m,
+            "rebound velocity",
+            s.impactor.rebound_velocity,
+            &format!("{}/{}", u.length, u.time),
+        );
+        row(
+            m,
+            "energy transferred to the target",
+            s.energy.transferred_fraction.map(|x| 100.0 * x),
+            "%",
+        );
+    } else {
+        // A structure moving without an impactor: its energy at both ends.
         row(m, "energy at the start", s.energy.initial, &energy);
         row(m, "energy at the end", s.energy.final_total, &energy);
-        if let Some(d) = &s.energy.damping {
-            row(m, "energy dissipated by damping", Some(d.dissipated), &energy);
-        }
-        row(m, "max relative energy error", s.energy.max_relative_error, "");
-        return;
     }
-    let iv: Vec<String> = s
-        .contact
-        .intervals
-        .iter()
-        .map(|i| format!("{}–{} {}", sig(i[0] * ax.scale, 5), sig(i[1] * ax.scale, 5), ax.unit))
-        .collect();
-    let _ = writeln!(m, "| contact intervals | {} |", iv.join(", "));
-    row(m, "peak force", Some(s.contact.peak_force), &u.force);
-    row(
-        m,
-        "peak force time",
-        s.contact.peak_force_time.map(|t| t * ax.scale),
-        &ax.unit,
-    );
-    row(
-        m,
-        "impactor at rest",
-        s.impactor.velocity_zero_time.map(|t| t * ax.scale),
-        &ax.unit,
-    );
-    row(
-        m,
-        "rebound velocity",
-        s.impactor.rebound_velocity,
-        &format!("{}/{}", u.length, u.time),
-    );
-    row(
-        m,
-        "energy transferred to the target",
-        s.energy.transferred_fraction.map(|x| 100.0 * x),
-        "%",
-    );
     if let Some(d) = &s.energy.damping {
         row(m, "energy dissipated by damping", Some(d.dissipated), &energy);
     }
     row(m, "max relative energy error", s.energy.max_relative_error, "");
-    if let Some(r) = &s.rod {
+    if let Some(r) = s.rod.as_ref().filter(|_| model.contact.is_some()) {
         row(m, "contact ends (tC/L)", r.contact_end_tcl, "");
         row(m, "impactor at rest (tC/L)", r.velocity_zero_time_tcl, "");
     }

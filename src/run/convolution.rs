@@ -215,7 +215,7 @@ impl Kernels {
             // Its ledger is the discrete work identity of an undamped target: the
             // target's energy is the contact's work on it, which damping would split.
             return Err(RunFailure::Model(NotConvolvable(
-                "its structure is damped: the engine books the target's energy as the contact's work on it, which                  damping would split; run the direct or modal engine"
+                "its structure is damped: the engine books the target's energy as the contact's work on it, which damping would split; run the direct or modal engine"
                     .into(),
             ))
             .into());

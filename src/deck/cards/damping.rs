@@ -1,7 +1,8 @@
-//! What damps a transient response: PARAM G, W3, W4, ALPHA1 and ALPHA2, the scalar
-//! dampers' property PDAMP, and the viscous rod damper CVISC with its PVISC
+//! What damps a transient response: PARAM G, W3, W4, ALPHA1 and ALPHA2, and the
+//! viscous rod damper CVISC with its PVISC
 //! (`manual/BULK.TXT`; MSC's ALPHA1 and ALPHA2, Rayleigh damping). The scalar dampers
-//! CDAMP1-4 are read with the scalar springs and masses ([`super::card_scalar`]).
+//! CDAMP1-4 and their PDAMP are read with the scalar springs and masses
+//! ([`super::card_scalar`], [`super::card_scalar_property`]).
 
 use super::reader::Reader;
 use super::{Bulk, CardRef};
@@ -84,41 +85,26 @@ pub(super) fn card_damping_param(r: &mut Reader, b: &mut Bulk, param: DampingPar
     }
 }
 
-/// PDAMP (PID B), up to four on a card, and PVISC (PID C1 C2), up to two: a
-/// damper's property.
+/// PVISC (PID C1 C2), up to two on a card: a viscous damper's property.
 #[derive(Debug, Clone)]
-pub struct DamperProperty {
+pub struct Pvisc {
     /// Property id.
     pub pid: i64,
-    /// B (PDAMP) or C1 (PVISC): the damping coefficient along the damper.
-    pub value: f64,
-    /// C2 (PVISC): the rotational damping coefficient; 0 for a PDAMP.
-    pub rotational: f64,
+    /// C1: the damping coefficient along the damper.
+    pub extension: f64,
+    /// C2: the rotational damping coefficient about it.
+    pub rotation: f64,
     /// The card.
     pub at: CardRef,
-}
-
-/// PDAMP (PID B): one property of the card's up to four.
-pub(super) fn card_pdamp(r: &mut Reader, b: &mut Bulk) {
-    let p = DamperProperty {
-        pid: r.id(0, "PID"),
-        value: r.real(1, "B"),
-        rotational: 0.0,
-        at: r.at(),
-    };
-    r.extra_fields(2);
-    if r.ok {
-        b.pdamps.push(p);
-    }
 }
 
 /// PVISC (PID C1 C2): one property of the card's up to two, C1 extensional and
 /// C2 rotational ("viscous coefficients for extension and rotation").
 pub(super) fn card_pvisc(r: &mut Reader, b: &mut Bulk) {
-    let p = DamperProperty {
+    let p = Pvisc {
         pid: r.id(0, "PID"),
-        value: r.real_or(1, "C1", 0.0),
-        rotational: r.real_or(2, "C2", 0.0),
+        extension: r.real_or(1, "C1", 0.0),
+        rotation: r.real_or(2, "C2", 0.0),
         at: r.at(),
     };
     r.extra_fields(4);

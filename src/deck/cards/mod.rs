@@ -155,9 +155,9 @@ pub struct Bulk {
     /// PMASS cards.
     pub pmass: Vec<ScalarProperty>,
     /// PDAMP cards, one entry a property.
-    pub pdamps: Vec<DamperProperty>,
+    pub pdamps: Vec<ScalarProperty>,
     /// PVISC cards, one entry a property.
-    pub pviscs: Vec<DamperProperty>,
+    pub pviscs: Vec<Pvisc>,
     /// CVISC cards, one entry an element.
     pub cviscs: Vec<Cvisc>,
     /// The damping PARAMs (G, W3, W4, ALPHA1, ALPHA2) the deck sets.
@@ -333,10 +333,9 @@ impl Typer {
                 "PTUBE" => card_ptube(&mut r, b),
                 "CELAS1" | "CELAS2" | "CELAS3" | "CELAS4" | "CMASS1" | "CMASS2" | "CMASS3" | "CMASS4" | "CDAMP1"
                 | "CDAMP2" | "CDAMP3" | "CDAMP4" => card_scalar(&mut r, b),
-                "PDAMP" => card_pdamp(&mut r, b),
                 "PVISC" => card_pvisc(&mut r, b),
                 "CVISC" => card_cvisc(&mut r, b),
-                "PELAS" | "PMASS" => card_scalar_property(&mut r, b),
+                "PELAS" | "PMASS" | "PDAMP" => card_scalar_property(&mut r, b),
                 "PCOMP1" | "PCOMP2" => card_pcomp_uniform(&mut r, b),
                 "CQUAD1" | "CQUAD2" | "CQDMEM" | "CQDMEM1" | "CQDMEM2" | "CTRIA1" | "CTRIA2" | "CTRMEM" => {
                     card_cosmic_plate(&mut r, b)

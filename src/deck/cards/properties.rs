@@ -388,15 +388,20 @@ pub(super) fn card_ptube(r: &mut Reader, b: &mut Bulk) {
     }
 }
 
-/// PELAS (PID K GE S) and PMASS (PID M).
+/// PELAS (PID K GE S), PMASS (PID M) and PDAMP (PID B): a scalar element's
+/// property, PMASS and PDAMP up to four on a card.
 pub(super) fn card_scalar_property(r: &mut Reader, b: &mut Bulk) {
-    let spring = r.card.name == "PELAS";
+    let role = match r.card.name.as_str() {
+        "PELAS" => ScalarRole::Spring,
+        "PMASS" => ScalarRole::Mass,
+        _ => ScalarRole::Damper,
+    };
     let p = ScalarProperty {
         pid: r.id(0, "PID"),
-        value: r.real(1, if spring { "K" } else { "M" }),
+        value: r.real(1, role.value_name()),
         at: r.at(),
     };
-    if spring {
+    if role == ScalarRole::Spring {
         if r.real_or(2, "GE", 0.0) != 0.0 {
             r.warn(
                 2,
@@ -407,13 +412,14 @@ pub(super) fn card_scalar_property(r: &mut Reader, b: &mut Bulk) {
         }
         r.real_opt(3, "S");
         r.extra_fields(4);
-        if r.ok {
-            b.pelas.push(p);
-        }
     } else {
         r.extra_fields(2);
-        if r.ok {
-            b.pmass.push(p);
+    }
+    if r.ok {
+        match role {
+            ScalarRole::Spring => b.pelas.push(p),
+            ScalarRole::Mass => b.pmass.push(p),
+            ScalarRole::Damper => b.pdamps.push(p),
         }
     }
 }

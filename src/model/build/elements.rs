@@ -473,7 +473,7 @@ pub(super) fn point_masses(cx: &mut Ctx, deck: &Deck, num: &Numbering, geo: &Geo
 pub(super) fn viscous_dampers(cx: &mut Ctx, deck: &Deck, num: &Numbering, geo: &Geometry, out: &mut Elements) {
     use crate::elements::damper::Viscous;
     let b = &deck.bulk;
-    let pvisc: HashMap<i64, (f64, f64)> = b.pviscs.iter().map(|p| (p.pid, (p.value, p.rotational))).collect();
+    let pvisc: HashMap<i64, (f64, f64)> = b.pviscs.iter().map(|p| (p.pid, (p.extension, p.rotation))).collect();
     for c in &b.cviscs {
         let Some(&(extension, rotation)) = pvisc.get(&c.pid) else {
             cx.err(c.at.error(format!(
