@@ -213,7 +213,7 @@ fn damped_errors(o: &DampedOscillator, scheme: Scheme, n: usize) -> (f64, f64, b
 /// rest from u0. Reference: u = u0 e^(−ζωt)(cos ω_d t + ζω/ω_d sin ω_d t) over three
 /// damped periods (the amplitude falls to e^(−3·2πζ/√(1−ζ²)) = 15 % of u0), the
 /// largest error, Δt = T_d/32 … T_d/256. Tolerance: fitted order 2 ± 0.1, error
-/// below 1e-3 of u0 at T_d/256 (measured 8.7e-4 newmark and energy, 4.3e-4
+/// below 1e-3 of u0 at T_d/256 (measured 1.9e-4 newmark and energy, 9.5e-5
 /// central). The three-point scheme is first order here (1 ± 0.1, 1.1e-2 at
 /// T_d/256), damped or not (1.4e-2 with c → 0): NASTRAN's start loads hold a
 /// displaced structure still for its first step (see [`super::nastran`]), which
