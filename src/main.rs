@@ -55,7 +55,7 @@ pub enum Command {
     Compare(CompareArgs),
     /// Time the paper's 49×49 plate (3000 steps) and report where the time goes.
     Bench(BenchArgs),
-    /// Sweep a deck over impact velocity, impactor mass, Hertz K and exponent on the
+    /// Sweep a deck or a scene over impact velocity, impactor mass, Hertz K and exponent on the
     /// convolution engine: sweep.csv (one row per point) and summary.json.
     Sweep(SweepArgs),
     /// Merge the output directories of a sharded sweep into the sweep.csv an unsharded
@@ -65,7 +65,7 @@ pub enum Command {
 
 #[derive(clap::Args)]
 pub struct SweepArgs {
-    /// The deck (.bdf).
+    /// The deck (.bdf), or a scene (.toml).
     pub deck: PathBuf,
     /// NAME=START:STOP:COUNT or NAME=v1,v2,... with NAME one of velocity, mass, k,
     /// exponent (values in the deck's units; velocity is the speed, the deck's

@@ -51,6 +51,9 @@ pub struct Line {
     pub point_labels: Vec<String>,
     /// Points drawn with a ring around their marker, e.g. the paper's setting.
     pub emphasis: Vec<usize>,
+    /// The lower edge of a band filled from it up to the line, translucent in the
+    /// line's colour (empty: no band), e.g. an energy stacked on another.
+    pub band: Vec<f64>,
 }
 
 impl Line {
@@ -65,6 +68,7 @@ impl Line {
             markers: false,
             point_labels: Vec::new(),
             emphasis: Vec::new(),
+            band: Vec::new(),
         }
     }
     /// Drawn dashed.
@@ -85,6 +89,11 @@ impl Line {
     /// Rings around the points at these indices.
     pub fn emphasis(mut self, points: Vec<usize>) -> Self {
         self.emphasis = points;
+        self
+    }
+    /// A band filled from `lower` (at the same abscissae) up to the line.
+    pub fn band(mut self, lower: Vec<f64>) -> Self {
+        self.band = lower;
         self
     }
 }
@@ -301,14 +310,31 @@ where
                     .map(|(a, b)| (*a, *b))
                     .filter(|(a, b)| a.is_finite() && b.is_finite() && (!c.log_x || *a > 0.0) && (!c.log_y || *b > 0.0))
                     .collect();
+                if !l.band.is_empty() {
+                    let edge: Vec<(f64, f64)> =
+                        l.x.iter()
+                            .zip(&l.band)
+                            .map(|(a, b)| (*a, *b))
+                            .filter(|(a, b)| a.is_finite() && b.is_finite())
+                            .rev()
+                            .collect();
+                    let outline: Vec<(f64, f64)> = pts.iter().copied().chain(edge).collect();
+                    ch.draw_series(std::iter::once(Polygon::new(outline, color.mix(0.3).filled())))
+                        .map_err(err)?;
+                }
                 let ann = if l.dashed {
                     ch.draw_series(DashedLineSeries::new(pts.clone(), 8, 5, style))
                         .map_err(err)?
                 } else {
                     ch.draw_series(LineSeries::new(pts.clone(), style)).map_err(err)?
                 };
-                ann.label(l.name.as_str())
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], style));
+                if l.band.is_empty() {
+                    ann.label(l.name.as_str())
+                        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], style));
+                } else {
+                    ann.label(l.name.as_str())
+                        .legend(move |(x, y)| Rectangle::new([(x, y - 6), (x + 20, y + 6)], color.mix(0.3).filled()));
+                }
                 if l.markers {
                     ch.draw_series(pts.iter().map(|p| Circle::new(*p, 4, color.filled())))
                         .map_err(err)?;

@@ -18,6 +18,7 @@ mod damage;
 mod deck_reader;
 mod dynamic_loads;
 mod elements;
+mod hysteresis;
 mod faults;
 mod laminate;
 mod modal;

@@ -45,7 +45,10 @@ fn sane(r: &RunResult, bound: f64) {
         );
     }
     for e in &r.energy {
-        assert!(e.values(true).iter().all(|v| v.is_finite()));
+        assert!(e
+            .values(impactlab::ledger::Dissipations::ALL)
+            .iter()
+            .all(|v| v.is_finite()));
     }
     let max = r.summary.energy.max_relative_error.unwrap();
     assert!(max <= bound, "energy error {max:e} > {bound:e}");

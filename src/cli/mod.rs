@@ -360,15 +360,25 @@ fn refuse_transient_flags(a: &RunArgs, kind: &str) -> Result<(), Error> {
     }
 }
 
+/// The model a sweep or a threshold search varies: a deck's (its warnings printed),
+/// or a scene's, whose contact law a deck may not be able to express.
+fn sweep_model(path: &Path) -> Result<impactlab::model::Model, Error> {
+    if path.extension().is_some_and(|e| e == "toml") {
+        return Ok(impactlab::scene::load(path)?.1);
+    }
+    let (model, warnings) = impactlab::load_deck(path, Default::default())?;
+    for w in &warnings {
+        say_err(&w.to_string());
+    }
+    Ok(model)
+}
+
 /// `impactlab sweep --find velocity --until …`: the threshold impact speed and energy,
 /// printed and written to OUT/threshold.json.
 fn threshold(a: SweepArgs) -> Result<u8, Error> {
     use impactlab::study::threshold::{find_velocity, Until, BRACKET_WIDTH};
     let until = Until::parse(a.until.as_deref().unwrap_or_default())?;
-    let (model, warnings) = impactlab::load_deck(&a.deck, Default::default())?;
-    for w in &warnings {
-        say_err(&w.to_string());
-    }
+    let model = sweep_model(&a.deck)?;
     let run = RunOptions {
         scheme: a.scheme,
         dt: a.dt,
@@ -491,6 +501,7 @@ pub fn scene(a: SceneArgs) -> Result<u8, Error> {
     let (k, how) = impactlab::scene::contact_stiffness(&s).map_err(|e| impactlab::scene::invalid(&a.scene, e))?;
     sayln(&format!("Hertz K = {k:.6e} ({how})"));
     if let Some(p) = a.to_deck {
+        impactlab::scene::deck_twin(&s).map_err(|e| impactlab::scene::invalid(&a.scene, e))?;
         output::write_file_atomically(&p, deck.as_bytes()).map_err(io_error(&p))?;
         sayln(&format!("deck: {}", p.display()));
     }
@@ -795,12 +806,12 @@ pub fn verify(a: VerifyArgs) -> Result<u8, Error> {
     Ok(if v.passed() { 0 } else { 1 })
 }
 
-/// `impactlab report`: every case that runs a deck, run once, reported; an index.
+/// `impactlab report`: every case that runs a deck or a scene, run once, reported; an index.
 pub fn report(a: ReportArgs) -> Result<u8, Error> {
     use impactlab::report;
     let cases: Vec<verify::Case> = verify::load_cases(&a.cases)?
         .into_iter()
-        .filter(|c| c.deck.is_some())
+        .filter(|c| c.reported())
         .collect();
     for (_, outcome) in impactlab::study::cases::evaluate_all(&cases, 2) {
         let outcome = outcome?;
@@ -953,9 +964,6 @@ pub fn bench(a: BenchArgs) -> Result<u8, Error> {
 /// `impactlab sweep`.
 pub fn sweep(a: SweepArgs) -> Result<u8, Error> {
     use impactlab::study::sweep::{self, SweepOptions};
-    if a.deck.extension().is_some_and(|e| e == "toml") {
-        return Err(Error::Usage(format!("{}: sweep takes a deck (.bdf)", a.deck.display())));
-    }
     if a.find.is_some() {
         return threshold(a);
     }
@@ -963,10 +971,7 @@ pub fn sweep(a: SweepArgs) -> Result<u8, Error> {
     if checks.is_off() {
         say_err("warning: --checks 0: no point of this sweep is checked against the direct engine");
     }
-    let (model, warnings) = impactlab::load_deck(&a.deck, Default::default())?;
-    for w in &warnings {
-        say_err(&w.to_string());
-    }
+    let model = sweep_model(&a.deck)?;
     let jobs = a
         .jobs
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));

@@ -31,9 +31,10 @@
 //! Δt ≤ 2/ω·(√(1 + ζ²) − ζ), c = 2ζω) with ω the Gershgorin bound above and c the
 //! Gershgorin bound of M⁻¹ᐟ² C M⁻¹ᐟ², so that damping shortens it.
 
+use super::law::History;
 use super::{contact_vectors, AppliedLoad, Current, SolveError, StepCosts, Stepper};
 use crate::assembly::System;
-use crate::model::{apply, Contact, Functional, Model};
+use crate::model::{apply, Functional, Model};
 
 /// The critical step 2/ω_max from the Gershgorin bound, or the DOF without mass.
 pub fn critical_step(model: &Model, sys: &System) -> Result<f64, SolveError> {
@@ -79,7 +80,8 @@ fn gershgorin(a: faer::sparse::SparseColMatRef<'_, usize, f64>, m: &[f64]) -> f6
 /// Velocity Verlet's state: u, v and the acceleration at the current step.
 pub struct Central<'a> {
     sys: &'a System,
-    contact: Option<&'a Contact>,
+    /// The contact's law and its history.
+    history: Option<History<'a>>,
     dt: f64,
     m: &'a [f64],
     g: Vec<f64>,
@@ -112,12 +114,12 @@ impl<'a> Central<'a> {
         }
         let n = model.n();
         let (g, c) = contact_vectors(model);
-        let contact = model.contact.as_ref();
         let alpha = apply(&c, &model.u0);
-        let phi_n = contact.map_or(0.0, |ct| ct.law(alpha));
+        let history = model.contact.as_ref().map(|ct| History::new(ct, alpha));
+        let phi_n = history.as_ref().map_or(0.0, History::load_factor);
         let mut s = Central {
             sys,
-            contact,
+            history,
             dt,
             m: sys.m_lumped.as_deref().expect("checked by critical_step"),
             g,
@@ -179,7 +181,10 @@ impl Stepper for Central<'_> {
         }
         self.phi_prev = self.phi_n;
         self.alpha = apply(&self.c, &self.u);
-        self.phi_n = self.contact.map_or(0.0, |ct| ct.law(self.alpha));
+        self.phi_n = self.history.as_mut().map_or(0.0, |h| {
+            h.commit(self.alpha);
+            h.load_factor()
+        });
         if let Some(p) = &mut self.applied {
             p.load_end(time);
             // Δu = Δt v(n+½), the half-step velocity in v now.
@@ -208,6 +213,7 @@ impl Stepper for Central<'_> {
             work_factor: 0.5 * (self.phi_prev + self.phi_n),
             applied_work: self.applied.as_ref().map_or(0.0, |p| p.work),
             dissipated: self.dissipated,
+            contact: self.history.as_ref().map(History::energy).unwrap_or_default(),
         }
     }
 

@@ -66,7 +66,7 @@ pub fn solve(alpha_star: f64, s: f64, psi: impl Fn(f64) -> (f64, f64)) -> Option
 }
 
 /// Five-point Gauss-Legendre nodes and weights on [0, 1].
-const GL5: [(f64, f64); 5] = [
+pub(super) const GL5: [(f64, f64); 5] = [
     (0.046_910_077_030_668, 0.118_463_442_528_095),
     (0.230_765_344_947_158, 0.239_314_335_249_683),
     (0.5, 0.284_444_444_444_444),

@@ -29,9 +29,10 @@
 //! Not for `nastran` (its three-point linear part is a different recursion, and its
 //! lagged contact would need its own kernel pass: not built) nor `central` (explicit).
 
+use super::law::History;
 use super::linear::Factor;
 use super::newmark::{complete, contact_load, effective_matrix, predictor, ContactForm};
-use super::{contact_vectors, SolveError, StepCosts};
+use super::{contact_vectors, ContactEnergy, SolveError, StepCosts};
 use crate::assembly::System;
 use crate::model::{apply, Model};
 use crate::numerics::dot;
@@ -224,6 +225,8 @@ pub struct ConvStep {
     pub alpha_target: f64,
     /// The contact solve's iterations in this step.
     pub iterations: usize,
+    /// The contact's energies.
+    pub contact: ContactEnergy,
 }
 
 /// The contact history of a trapezoidal run from its kernel: for each step the
@@ -255,7 +258,8 @@ pub fn contact_history(
     let s = b.c * b.g * dt * dt / (4.0 * b.mass) + h_a[0];
     let (mut x, mut xv) = (model.u0[b.dof], model.v0[b.dof]);
     let mut alpha = b.c * x;
-    let mut phi = ct.law(alpha);
+    let mut history = History::new(ct, alpha);
+    let mut phi = history.load_factor();
     let mut p: Vec<f64> = Vec::with_capacity(steps);
     let mut iterations = 0;
     let mut go = observe(&ConvStep {
@@ -269,6 +273,7 @@ pub fn contact_history(
         work_factor: phi,
         alpha_target: 0.0,
         iterations: 0,
+        contact: history.energy(),
     })?;
     let mut n = 0;
     // The first nonzero load: those before it add nothing to any sum.
@@ -285,8 +290,8 @@ pub fn contact_history(
             ContactForm::Endpoint => base + s * phi,
             ContactForm::DiscreteGradient => base,
         };
-        let (psi, its) =
-            contact_load(form, ct, alpha_star, s, alpha).ok_or(SolveError::ContactSolve { step: n, time })?;
+        let (psi, its) = contact_load(form, &history.step_law(), alpha_star, s, alpha)
+            .ok_or(SolveError::ContactSolve { step: n, time })?;
         iterations += its;
         let pn = match form {
             ContactForm::Endpoint => phi + psi,
@@ -301,7 +306,8 @@ pub fn contact_history(
         x += dx;
         let alpha_target = hist_a + h_a[0] * pn;
         alpha = b.c * x + alpha_target;
-        phi = ct.law(alpha);
+        history.commit(alpha);
+        phi = history.load_factor();
         go = observe(&ConvStep {
             step: n,
             time,
@@ -313,6 +319,7 @@ pub fn contact_history(
             work_factor: 0.5 * pn,
             alpha_target,
             iterations: its,
+            contact: history.energy(),
         })?;
     }
     Ok((p, iterations))

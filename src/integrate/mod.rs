@@ -1,5 +1,7 @@
 //! Time integration of M ü + K u = Σ S_i φ(α) e_i, with the contact law φ(α) =
-//! max(α, 0)^A and α a linear functional of u.
+//! max(α, 0)^A (Hertz's, elastic) or a law that unloads along another curve
+//! ([`law`]: Yang and Sun's, whose history each stepper keeps), and α a linear
+//! functional of u.
 //!
 //! One driver loop ([`integrate`]) owns what every scheme shares: the initial state,
 //! the finite checks, the observer (which may stop the run), and the costs. A scheme
@@ -24,6 +26,7 @@
 
 pub mod central;
 mod contact;
+pub mod law;
 pub mod convolution;
 pub mod linear;
 pub mod nastran;
@@ -183,6 +186,19 @@ pub struct StepState<'a> {
     /// The energy the viscous damping has dissipated from the start to this state,
     /// as the scheme's energy identity books it (0 without damping).
     pub dissipated: f64,
+    /// The contact's energies at this state (zero without a contact).
+    pub contact: ContactEnergy,
+}
+
+/// The energies of a contact ([`law::History`]): what it holds and what it has
+/// dissipated.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ContactEnergy {
+    /// K·E: what the contact would return unloading from this state (for an elastic
+    /// law its potential, Eq. 15).
+    pub stored: f64,
+    /// K·D: the work done on the contact beyond what it holds, so far.
+    pub dissipated: f64,
 }
 
 /// Receives each state; may stop the run (returns false) or fail it.
@@ -240,6 +256,8 @@ pub struct Current<'a> {
     pub applied_work: f64,
     /// Energy dissipated by damping from the start to this state.
     pub dissipated: f64,
+    /// The contact's energies.
+    pub contact: ContactEnergy,
 }
 
 /// What a scheme's step costs: linear algebra and the contact solve.
@@ -316,6 +334,7 @@ fn observe(model: &Model, step: usize, time: f64, c: Current, obs: &mut dyn Obse
         work_factor: c.work_factor,
         applied_work: c.applied_work,
         dissipated: c.dissipated,
+        contact: c.contact,
     })
 }
 

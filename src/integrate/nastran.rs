@@ -33,10 +33,11 @@
 //! unconditionally stable (β = 1/3 ≥ 1/4); the lagged contact load is only
 //! conditionally stable, which matters for very stiff contacts.
 
+use super::law::History;
 use super::linear::Factor;
 use super::{check_finite, contact_vectors, AppliedLoad, Current, SolveError, StepCosts, Stepper};
 use crate::assembly::{Combination, System};
-use crate::model::{apply, Contact, Functional, Model};
+use crate::model::{apply, Functional, Model};
 
 /// Parameters of the three-point scheme.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -54,7 +55,8 @@ impl ThreePointParams {
 pub struct ThreePoint<'a> {
     model: &'a Model,
     sys: &'a System,
-    contact: Option<&'a Contact>,
+    /// The contact's law and its history.
+    history: Option<History<'a>>,
     dt: f64,
     beta: f64,
     factor: Factor,
@@ -123,13 +125,13 @@ impl<'a> ThreePoint<'a> {
             &model.dofs,
         )?;
         let (g, c) = contact_vectors(model);
-        let contact = model.contact.as_ref();
         let u_prev: Vec<f64> = (0..n).map(|i| model.u0[i] - dt * model.v0[i]).collect();
-        let phi_prev = contact.map_or(0.0, |ct| ct.law(apply(&c, &model.u0)));
+        let history = model.contact.as_ref().map(|ct| History::new(ct, apply(&c, &model.u0)));
+        let phi_prev = history.as_ref().map_or(0.0, History::load_factor);
         let mut s = ThreePoint {
             model,
             sys,
-            contact,
+            history,
             dt,
             beta: params.beta,
             factor,
@@ -189,7 +191,10 @@ impl<'a> ThreePoint<'a> {
     fn solve_next(&mut self, step: usize) -> Result<(), SolveError> {
         let (n, dt, beta) = (self.u.len(), self.dt, self.beta);
         self.alpha = apply(&self.c, &self.u);
-        self.phi_n = self.contact.map_or(0.0, |ct| ct.law(self.alpha));
+        self.phi_n = self.history.as_mut().map_or(0.0, |h| {
+            h.commit(self.alpha);
+            h.load_factor()
+        });
         // rhs = N(n) + M(2u(n) − u(n−1))/Δt² − K((1 − 2β)u(n) + βu(n−1))
         for i in 0..n {
             self.t1[i] = (2.0 * self.u[i] - self.u_prev[i]) / (dt * dt);
@@ -298,6 +303,7 @@ impl Stepper for ThreePoint<'_> {
                 .damping
                 .as_ref()
                 .map_or(0.0, |d| d.full + 0.5 * d.last - 0.5 * d.first),
+            contact: self.history.as_ref().map(History::energy).unwrap_or_default(),
         }
     }
 

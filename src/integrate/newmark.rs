@@ -43,11 +43,12 @@
 //! scheme stays second order (the trapezoidal rule of a linear first-order system)
 //! and unconditionally stable (the damping only removes energy).
 
-use super::contact::{discrete_gradient, solve};
+use super::contact::solve;
+use super::law::{History, StepLaw};
 use super::linear::Factor;
 use super::{contact_vectors, AppliedLoad, Current, SolveError, StepCosts, Stepper};
 use crate::assembly::{Combination, System};
-use crate::model::{apply, Contact, Functional, Model};
+use crate::model::{apply, Functional, Model};
 
 /// How the contact load acts over a step.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -82,7 +83,8 @@ impl NewmarkParams {
 /// The trapezoidal rule's state and workspace.
 pub struct Newmark<'a> {
     sys: &'a System,
-    contact: Option<&'a Contact>,
+    /// The contact's law and its history.
+    history: Option<History<'a>>,
     form: ContactForm,
     dt: f64,
     factor: Factor,
@@ -123,11 +125,11 @@ impl<'a> Newmark<'a> {
         let mut f = vec![0.0; n];
         sys.k_mul(&u, &mut f);
         let alpha = apply(&c, &u);
-        let contact = model.contact.as_ref();
-        let phi_n = contact.map_or(0.0, |ct| ct.law(alpha));
+        let history = model.contact.as_ref().map(|ct| History::new(ct, alpha));
+        let phi_n = history.as_ref().map_or(0.0, History::load_factor);
         Ok(Newmark {
             sys,
-            contact,
+            history,
             form: params.contact,
             dt,
             factor,
@@ -150,10 +152,10 @@ impl<'a> Newmark<'a> {
         })
     }
 
-    /// The load factor ψ of the step, from the indentation α* of the contact-free
-    /// predictor.
-    fn contact_step(&mut self, ct: &Contact, alpha_star: f64, step: usize, time: f64) -> Result<f64, SolveError> {
-        let (psi, its) = contact_load(self.form, ct, alpha_star, self.s, self.alpha)
+    /// The load factor ψ of the step under the step's contact law, from the
+    /// indentation α* of the contact-free predictor.
+    fn contact_step(&mut self, law: &StepLaw, alpha_star: f64, step: usize, time: f64) -> Result<f64, SolveError> {
+        let (psi, its) = contact_load(self.form, law, alpha_star, self.s, self.alpha)
             .ok_or(SolveError::ContactSolve { step, time })?;
         self.contact_iterations += its;
         Ok(psi)
@@ -222,38 +224,36 @@ pub(crate) fn complete(
 
 /// The contact's load factor ψ over a step of the trapezoidal rule, solving
 /// α = α* + s·ψ(α) (α* the indentation of the contact-free predictor, s the condensed
-/// compliance, `a_prev` the indentation at the start of the step); with the
-/// iterations it took, or `None` if the scalar solve failed. Shared by the direct
-/// stepper and the convolution engine, which differ only in how they get α* and s.
+/// compliance, `a_prev` the indentation at the start of the step, `law` the step's
+/// contact law); with the iterations it took, or `None` if the scalar solve failed.
+/// Shared by the direct stepper and the convolution engine, which differ only in how
+/// they get α* and s.
 pub(crate) fn contact_load(
     form: ContactForm,
-    ct: &Contact,
+    law: &StepLaw,
     alpha_star: f64,
     s: f64,
     a_prev: f64,
 ) -> Option<(f64, usize)> {
-    let phi = |x: f64| ct.law(x);
-    let dphi = |x: f64| ct.law_slope(x);
-    let w = |x: f64| ct.law_integral(x);
     let (root, its) = match form {
-        ContactForm::Endpoint => solve(alpha_star, s, |x| (phi(x), dphi(x))),
+        ContactForm::Endpoint => solve(alpha_star, s, |x| (law.phi(x), law.slope(x))),
         ContactForm::DiscreteGradient => solve(alpha_star, s, |x| {
-            let dg = 2.0 * discrete_gradient(a_prev, x, w, phi);
+            let dg = 2.0 * law.mean(a_prev, x);
             // Derivative of the secant slope, for Newton only (the bracket
             // keeps the iteration convergent with any nonnegative slope).
             let d = x - a_prev;
             let slope = if d.abs() > 1e-12 * x.abs().max(a_prev.abs()) {
-                2.0 * (phi(x) - dg / 2.0) / d
+                2.0 * (law.phi(x) - dg / 2.0) / d
             } else {
-                dphi(x)
+                law.slope(x)
             };
             (dg, slope.max(0.0))
         }),
     }?;
     Some((
         match form {
-            ContactForm::Endpoint => phi(root),
-            ContactForm::DiscreteGradient => 2.0 * discrete_gradient(a_prev, root, w, phi),
+            ContactForm::Endpoint => law.phi(root),
+            ContactForm::DiscreteGradient => 2.0 * law.mean(a_prev, root),
         },
         its,
     ))
@@ -277,9 +277,9 @@ impl Stepper for Newmark<'_> {
         );
         // Contact: α = α* + s ψ(α), α* the indentation of the contact-free predictor.
         let mut psi = 0.0;
-        if let Some(ct) = self.contact {
+        if let Some(law) = self.history.as_ref().map(History::step_law) {
             let alpha_star = self.alpha + apply(&self.c, &self.du);
-            psi = self.contact_step(ct, alpha_star, step, time)?;
+            psi = self.contact_step(&law, alpha_star, step, time)?;
             if psi != 0.0 {
                 for i in 0..n {
                     self.du[i] += self.z[i] * psi;
@@ -299,7 +299,10 @@ impl Stepper for Newmark<'_> {
         // ΔuᵀCΔu/Δt, C Δu in the workspace `mv` (free until the next predictor).
         self.dissipated += self.sys.c_norm(&self.du, &mut self.mv) / self.dt;
         let alpha = apply(&self.c, &self.u);
-        let phi_new = self.contact.map_or(0.0, |ct| ct.law(alpha));
+        let phi_new = self.history.as_mut().map_or(0.0, |h| {
+            h.commit(alpha);
+            h.load_factor()
+        });
         self.work_factor = match self.form {
             ContactForm::Endpoint => 0.5 * (self.phi_n + phi_new),
             ContactForm::DiscreteGradient => 0.5 * psi,
@@ -319,6 +322,7 @@ impl Stepper for Newmark<'_> {
             work_factor: self.work_factor,
             applied_work: self.applied.as_ref().map_or(0.0, |p| p.work),
             dissipated: self.dissipated,
+            contact: self.history.as_ref().map(History::energy).unwrap_or_default(),
         }
     }
 

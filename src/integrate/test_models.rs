@@ -12,6 +12,10 @@
 //! - [`hertz_wall`]: a mass striking a rigid wall through a Hertz spring F = Kα^1.5:
 //!   α_max = (5mv0²/4K)^(2/5), F_max = Kα_max^1.5, contact time
 //!   (4/5)·B(2/5, 1/2)·α_max/v0 = 2.9432752 α_max/v0, rebound at −v0 (restitution 1).
+//! - [`yang_sun_wall`]: the same mass and wall through Yang and Sun's law (q = 2.5):
+//!   loading as the Hertz wall to α_max, unloading to α0, rebound at −e·v0 with
+//!   e² = (α_max − α0)/(1.4 α_max) (loading work 0.4 K α_max^2.5, returned work
+//!   F_max(α_max − α0)/3.5).
 
 use super::{integrate, Observer, Scheme, SolveError, StepState};
 use crate::assembly::assemble;
@@ -84,6 +88,7 @@ fn one_dof(mass: f64, spring: f64, v0: f64, hertz: Option<f64>) -> Model {
                 dofs: vec![0],
             },
             nonconservative: Vec::new(),
+            unloading: Default::default(),
         }
     });
     Model {
@@ -345,6 +350,40 @@ pub fn hertz_wall() -> HertzWall {
         mass,
         stiffness,
         v0,
+    }
+}
+
+/// The Hertz wall through Yang and Sun's law with unloading exponent `power` and
+/// critical indentation `critical_over_max`·α_max.
+pub struct YangSunWall {
+    pub wall: HertzWall,
+    pub critical: f64,
+    pub power: f64,
+}
+
+pub fn yang_sun_wall(critical_over_max: f64, power: f64) -> YangSunWall {
+    let mut wall = hertz_wall();
+    let critical = critical_over_max * wall.alpha_max();
+    wall.model.contact.as_mut().expect("a contact").unloading =
+        crate::model::Unloading::YangSun(crate::model::YangSun { critical, power });
+    YangSunWall { wall, critical, power }
+}
+
+impl YangSunWall {
+    /// α0 of α_max.
+    pub fn permanent(&self) -> f64 {
+        let m = self.wall.alpha_max();
+        // α0 written out, independently of the law's own.
+        if m > self.critical {
+            m * (1.0 - (self.critical / m).powf(0.4))
+        } else {
+            0.0
+        }
+    }
+    /// e = √(returned/loading work) = √((A + 1)(α_max − α0)/((q + 1) α_max)).
+    pub fn restitution(&self) -> f64 {
+        let m = self.wall.alpha_max();
+        (2.5 * (m - self.permanent()) / ((self.power + 1.0) * m)).sqrt()
     }
 }
 

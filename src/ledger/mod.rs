@@ -3,6 +3,8 @@
 //! Per state:
 //! - KE_i = ½ vᵀMv over the impactor's DOFs (Eq. 14: ½ m v_i²);
 //! - SE_i = V(α) = K/(A+1) α^(A+1), the integral of the contact law (Eq. 15: 2/5 K α^(5/2));
+//!   for a contact that unloads along another curve ([`crate::integrate::law`]) what
+//!   the unloading curve from the current state would return;
 //! - KE_t = ½ vᵀMv over the target's DOFs — the exact kinetic energy of the lumped model;
 //! - KE_t(Eq. 16) = Σ_e ½ m_e v̄_e², v̄_e the mean of the element's nodal velocities, as
 //!   the paper computes it for rods (applied to shells likewise, over four corners). It is not the model's kinetic energy: it drops the energy
@@ -19,13 +21,15 @@
 //! - D: the energy the structure's viscous damping has dissipated, ∫ vᵀCv dt, as the
 //!   scheme books it (its own energy identity's damping term, so that the balance
 //!   closes as tightly as without damping); present only for a damped structure;
-//! - error = (U_t + D − U_0 − W_ext)/U_0; for a structure that starts at rest (U_0 = 0,
+//! - D_c: the energy the contact has dissipated (the work done on it beyond SE_i, its
+//!   hysteresis); present only for such a contact;
+//! - error = (U_t + D + D_c − U_0 − W_ext)/U_0; for a structure that starts at rest (U_0 = 0,
 //!   loaded by a DLOAD) the balance over the largest |W_ext| of the whole run, set
 //!   when the run ends ([`Ledger::finish`]): its energies at the first steps are
 //!   round-off of the later ones, and a balance over the work done so far is noise
 //!   there (a second-order scheme's O(Δt²) at a load's kink is 25 % of the first
 //!   step's work in NASTRAN-95's t09071a);
-//! - energy ratio = (U_t + D)/(U_0 + W_ext), as LS-DYNA's GLSTAT prints it (1 when balanced);
+//! - energy ratio = (U_t + D + D_c)/(U_0 + W_ext), as LS-DYNA's GLSTAT prints it (1 when balanced);
 //! - momentum: Σ (Mv)_i over the DOFs of the impact direction (each weighted by
 //!   the cosine of its axis with it where grids are displaced in other frames).
 
@@ -54,18 +58,85 @@ pub struct EnergyRow {
     pub external_work: f64,
     /// Energy dissipated by viscous damping so far (0 for an undamped structure).
     pub dissipated_damping: f64,
-    /// (U_t + D − U_0 − W)/U_0.
+    /// Energy dissipated by the contact's hysteresis so far (0 for an elastic one).
+    pub dissipated_contact: f64,
+    /// (U_t + D + D_c − U_0 − W)/U_0.
     pub error: f64,
-    /// (U_t + D)/(U_0 + W).
+    /// (U_t + D + D_c)/(U_0 + W).
     pub energy_ratio: f64,
     /// Σ(Mv) over the DOFs of the impact direction.
     pub momentum: f64,
 }
 
-/// The columns of `energy.csv`, in the order of [`EnergyRow::values`], for a
-/// structure with damping (`damped`) or without: `dissipated_damping` is written
-/// only for a damped one.
-pub fn columns(damped: bool) -> Vec<&'static str> {
+/// What a model dissipates, each a column of `energy.csv` only when present.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Dissipations {
+    /// Viscous damping ([`Model::damped`]).
+    pub damping: bool,
+    /// A contact's hysteresis ([`Model::hysteretic`]).
+    pub contact: bool,
+}
+
+impl Dissipations {
+    /// Every column.
+    pub const ALL: Dissipations = Dissipations {
+        damping: true,
+        contact: true,
+    };
+
+    /// What `model` dissipates.
+    pub fn of(model: &Model) -> Self {
+        Dissipations {
+            damping: model.damped(),
+            contact: model.hysteretic(),
+        }
+    }
+
+    /// The dissipations booked, in column order.
+    pub fn booked(self) -> Vec<Dissipated> {
+        [
+            (
+                self.damping,
+                Dissipated {
+                    column: "dissipated_damping",
+                    symbol: "D",
+                    what: "dissipated by damping",
+                    value: |r| r.dissipated_damping,
+                },
+            ),
+            (
+                self.contact,
+                Dissipated {
+                    column: "dissipated_contact",
+                    symbol: "D_c",
+                    what: "dissipated by the contact",
+                    value: |r| r.dissipated_contact,
+                },
+            ),
+        ]
+        .into_iter()
+        .filter_map(|(on, d)| on.then_some(d))
+        .collect()
+    }
+}
+
+/// One dissipation of the ledger: its `energy.csv` column, its symbol, what it is,
+/// and its value in a row.
+#[derive(Debug, Clone, Copy)]
+pub struct Dissipated {
+    /// The column of `energy.csv`.
+    pub column: &'static str,
+    /// The symbol in tables (D, D_c).
+    pub symbol: &'static str,
+    /// What it is, for legends.
+    pub what: &'static str,
+    /// Its value in a row.
+    pub value: fn(&EnergyRow) -> f64,
+}
+
+/// The columns of `energy.csv`, in the order of [`EnergyRow::values`]:
+/// `dissipated_damping` and `dissipated_contact` only where `booked` has them.
+pub fn columns(booked: Dissipations) -> Vec<&'static str> {
     let mut c = vec![
         "time",
         "ke_impactor",
@@ -76,16 +147,14 @@ pub fn columns(damped: bool) -> Vec<&'static str> {
         "total",
         "external_work",
     ];
-    if damped {
-        c.push("dissipated_damping");
-    }
+    c.extend(booked.booked().iter().map(|d| d.column));
     c.extend(["error", "energy_ratio", "momentum"]);
     c
 }
 
 impl EnergyRow {
     /// The row's values in the order of [`columns`].
-    pub fn values(&self, damped: bool) -> Vec<f64> {
+    pub fn values(&self, booked: Dissipations) -> Vec<f64> {
         let mut v = vec![
             self.time,
             self.ke_impactor,
@@ -96,9 +165,7 @@ impl EnergyRow {
             self.total,
             self.external_work,
         ];
-        if damped {
-            v.push(self.dissipated_damping);
-        }
+        v.extend(booked.booked().iter().map(|d| (d.value)(self)));
         v.extend([self.error, self.energy_ratio, self.momentum]);
         v
     }
@@ -184,7 +251,7 @@ impl<'a> Ledger<'a> {
                 0.5 * crate::numerics::dot(s.u, &self.ku)
             }
         };
-        let se_i = m.contact.as_ref().map(|c| c.potential(s.alpha)).unwrap_or(0.0);
+        let se_i = s.contact.stored;
         if let Some(c) = &m.contact {
             if s.step > 0 {
                 let du: f64 = c
@@ -201,7 +268,7 @@ impl<'a> Ledger<'a> {
         let total = ke_i + se_i + ke_t + se_t;
         let u0 = *self.initial.get_or_insert(total);
         let external_work = self.external_work + s.applied_work;
-        let held = total + s.dissipated;
+        let held = total + s.dissipated + s.contact.dissipated;
         EnergyRow {
             time: s.time,
             ke_impactor: ke_i,
@@ -212,6 +279,7 @@ impl<'a> Ledger<'a> {
             total,
             external_work,
             dissipated_damping: s.dissipated,
+            dissipated_contact: s.contact.dissipated,
             error: relative_error(held, u0, external_work),
             energy_ratio: ratio(held, u0 + external_work),
             momentum: p,
@@ -237,7 +305,7 @@ impl Ledger<'_> {
         let scale = rows.iter().fold(0.0f64, |m, r| m.max(r.external_work.abs()));
         if scale > 0.0 {
             for r in rows {
-                r.error = (r.total + r.dissipated_damping - r.external_work) / scale;
+                r.error = (r.total + r.dissipated_damping + r.dissipated_contact - r.external_work) / scale;
             }
         }
     }
@@ -250,13 +318,15 @@ impl EnergyRow {
     pub fn with_target_total(
         time: f64,
         ke_impactor: f64,
-        se_impactor: f64,
+        contact: crate::integrate::ContactEnergy,
         target_total: f64,
         external_work: f64,
         initial: f64,
         momentum: f64,
     ) -> Self {
+        let se_impactor = contact.stored;
         let total = ke_impactor + se_impactor + target_total;
+        let held = total + contact.dissipated;
         EnergyRow {
             time,
             ke_impactor,
@@ -267,8 +337,9 @@ impl EnergyRow {
             total,
             external_work,
             dissipated_damping: 0.0,
-            error: relative_error(total, initial, external_work),
-            energy_ratio: ratio(total, initial + external_work),
+            dissipated_contact: contact.dissipated,
+            error: relative_error(held, initial, external_work),
+            energy_ratio: ratio(held, initial + external_work),
             momentum,
         }
     }

@@ -136,6 +136,43 @@ pub struct Contact {
     pub impactor: Impactor,
     /// Non-conservative remainder of the loads (DOF, S_i + K ∂α/∂u_i), nonzero entries.
     pub nonconservative: Functional,
+    /// How the contact unloads: along its loading curve (NOLIN3's law, elastic) or
+    /// along another ([`crate::integrate::law`]). A deck's contact is elastic: NOLIN
+    /// cards cannot express hysteresis; a scene sets it.
+    pub unloading: Unloading,
+}
+
+/// How a contact unloads.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum Unloading {
+    /// Along the loading curve: F = K α^A both ways, nothing dissipated.
+    #[default]
+    Elastic,
+    /// Yang and Sun's law for laminates ([`crate::integrate::law`]).
+    YangSun(YangSun),
+}
+
+/// The parameters of Yang and Sun's unloading law.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct YangSun {
+    /// The critical indentation α_cr: below it the contact unloads to α0 = 0, above it
+    /// to the permanent indentation α0 = α_m [1 − (α_cr/α_m)^(2/5)]. Infinite: never.
+    pub critical: f64,
+    /// The unloading exponent q (2.5 in Yang and Sun's tests), at least the loading
+    /// exponent A (else unloading would return more than loading took).
+    pub power: f64,
+}
+
+impl YangSun {
+    /// The permanent indentation α0 after a largest indentation α_m:
+    /// α_m [1 − (α_cr/α_m)^(2/5)] above α_cr, 0 up to it.
+    pub fn permanent(&self, max: f64) -> f64 {
+        if max > self.critical {
+            max * (1.0 - (self.critical / max).powf(0.4))
+        } else {
+            0.0
+        }
+    }
 }
 
 impl Contact {
@@ -163,6 +200,26 @@ impl Contact {
             alpha.powf(self.exponent + 1.0) / (self.exponent + 1.0)
         } else {
             0.0
+        }
+    }
+
+    /// The closure of each state of an indentation history `alpha` (every step, in
+    /// order): α less the permanent indentation the history has left by then, so that
+    /// the contact is closed exactly where it is positive. α itself for an elastic
+    /// contact.
+    pub fn closure(&self, alpha: &[f64]) -> Vec<f64> {
+        match self.unloading {
+            Unloading::Elastic => alpha.to_vec(),
+            Unloading::YangSun(y) => {
+                let mut max = 0.0f64;
+                alpha
+                    .iter()
+                    .map(|&a| {
+                        max = max.max(a);
+                        a - y.permanent(max)
+                    })
+                    .collect()
+            }
         }
     }
 
@@ -339,6 +396,12 @@ impl Model {
     /// True when the structure is damped: proportional damping or a damping element.
     pub fn damped(&self) -> bool {
         self.damping.is_some() || self.elements.iter().any(|e| e.damps())
+    }
+
+    /// True when the contact unloads along another curve than it loads on, so that it
+    /// dissipates energy.
+    pub fn hysteretic(&self) -> bool {
+        self.contact.as_ref().is_some_and(|c| c.unloading != Unloading::Elastic)
     }
 
     /// Active DOFs as NASTRAN counts them: solved DOFs plus TF-defined scalar points.

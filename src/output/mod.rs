@@ -156,7 +156,7 @@ pub fn csv_bytes(header: &[String], rows: impl Iterator<Item = Vec<f64>>) -> Vec
 pub fn energy_columns(m: &Model) -> Vec<String> {
     let u = &m.units;
     let e = format!("{}*{}", u.force, u.length);
-    ledger::columns(m.damped())
+    ledger::columns(ledger::Dissipations::of(m))
         .iter()
         .map(|c| match *c {
             "time" => format!("time [{}]", u.time),
@@ -170,8 +170,8 @@ pub fn energy_columns(m: &Model) -> Vec<String> {
 /// The three output files of a run.
 pub fn run_files(model: &Model, run: &RunResult) -> Vec<(&'static str, Vec<u8>)> {
     let history = csv_bytes(&run.history_header(), run.history.iter().cloned());
-    let damped = model.damped();
-    let energy = csv_bytes(&energy_columns(model), run.energy.iter().map(|r| r.values(damped)));
+    let booked = ledger::Dissipations::of(model);
+    let energy = csv_bytes(&energy_columns(model), run.energy.iter().map(|r| r.values(booked)));
     let mut summary = serde_json::to_vec_pretty(&run.summary).expect("json of plain values");
     summary.push(b'\n');
     vec![
@@ -284,6 +284,27 @@ pub fn human_summary(model: &Model, run: &RunResult) -> String {
             .unwrap_or("-".into()),
         num(s.energy.max_relative_error)
     );
+    if let Some(l) = &s.energy.impactor_loss {
+        out += &format!(
+            "  loss:     the impactor lost {}: target {}, damping {}, contact {}\n",
+            num(Some(l.lost)),
+            num(Some(l.target)),
+            num(Some(l.damping)),
+            num(Some(l.contact)),
+        );
+    }
+    if let Some(c) = &s.energy.contact {
+        out += &format!(
+            "  contact:  {} (q {}, alpha_cr {} {}): largest indentation {}, permanent {} {}\n",
+            c.law,
+            c.unloading_exponent,
+            num(Some(c.critical_indentation)),
+            s.units.length,
+            num(Some(c.max_indentation)),
+            num(Some(c.permanent_indentation)),
+            s.units.length,
+        );
+    }
     if let Some(t) = &s.run.modal {
         out += &format!(
             "  modal:    {} modes to {} cycles/{} ({} rigid), {} residual vectors; effective mass {:.4}, contact \

@@ -469,6 +469,8 @@ fn rod_energy(f: &Fig, lc: f64, end: f64) -> Result<Vec<PathBuf>, ReportError> {
     let (u, run, footer, dir) = (&f.model.units, f.run, f.footer, f.dir);
     let mut out = Vec::new();
     let mut lines = energy_lines(&run.energy, |t| t / lc);
+    let te: Vec<f64> = run.energy.iter().map(|r| r.time / lc).collect();
+    lines.extend(dissipation_lines(f.model, run, &te));
     let u0 = run.energy[0].total;
     let tmax = run.energy.last().map_or(1.0, |r| r.time / lc);
     lines.push(
@@ -579,29 +581,29 @@ fn free_response_figures(f: &Fig) -> Result<Vec<PathBuf>, ReportError> {
     Ok(out)
 }
 
-/// For a damped structure: the energy its damping dissipated, and the total with it
-/// (the ledger's balance: flat when it closes); nothing for an undamped one.
+/// What the structure's damping and the contact's hysteresis dissipated, each a band
+/// stacked on the total (damping, then the contact): the top of the stack is the ledger's
+/// balance, flat at U0 when it closes. Nothing for a run that dissipates nothing.
 fn dissipation_lines(model: &Model, run: &RunResult, t: &[f64]) -> Vec<Line> {
-    if !model.damped() {
-        return Vec::new();
-    }
     let e = &run.energy;
-    vec![
-        Line::new(
-            "dissipated by damping",
-            t.to_vec(),
-            e.iter().map(|r| r.dissipated_damping).collect(),
-            6,
-        )
-        .dashed(),
-        Line::new(
-            "total + dissipated",
-            t.to_vec(),
-            e.iter().map(|r| r.total + r.dissipated_damping).collect(),
-            5,
-        )
-        .dashed(),
-    ]
+    let mut base: Vec<f64> = e.iter().map(|r| r.total).collect();
+    let mut lines = Vec::new();
+    for d in crate::ledger::Dissipations::of(model).booked() {
+        // The contact's in the colour of the energy it holds (SE impactor).
+        let color = if d.symbol == "D_c" { 1 } else { 6 };
+        let top: Vec<f64> = base.iter().zip(e).map(|(b, r)| b + (d.value)(r)).collect();
+        lines.push(
+            Line::new(
+                format!("{} (stacked on the total)", d.what),
+                t.to_vec(),
+                top.clone(),
+                color,
+            )
+            .band(base),
+        );
+        base = top;
+    }
+    lines
 }
 
 fn plate_figures(f: &Fig) -> Result<Vec<PathBuf>, ReportError> {
@@ -628,16 +630,26 @@ fn plate_force(f: &Fig) -> Result<Vec<PathBuf>, ReportError> {
     if !stiffened {
         let (p, _) = crate::physics::references::infinite_plate(model)?;
         let tr = p.integrate(80e-6, 1e-9);
-        let (ta, fa) = samples_until(&tr.time, &tr.force, f64::INFINITY, 100);
-        lines.push(
-            Line::new(
-                "infinite plate, Zener/Olsson (valid before edge reflections)",
-                ax.map(&ta),
-                fa,
-                1,
+        // Through Hertz's law: for a contact that unloads along another curve, valid
+        // up to its peak only.
+        let (until, label) = if model.hysteretic() {
+            let k = tr
+                .force
+                .iter()
+                .enumerate()
+                .fold(0, |m, (k, f)| if *f > tr.force[m] { k } else { m });
+            (
+                tr.time[k],
+                "infinite plate, Zener/Olsson (Hertz's law: valid up to its peak)",
             )
-            .dashed(),
-        );
+        } else {
+            (
+                f64::INFINITY,
+                "infinite plate, Zener/Olsson (valid before edge reflections)",
+            )
+        };
+        let (ta, fa) = samples_until(&tr.time, &tr.force, until, 100);
+        lines.push(Line::new(label, ax.map(&ta), fa, 1).dashed());
     }
     out.extend(plot::line_chart(
         &Chart {
@@ -966,6 +978,16 @@ fn summary_table(m: &mut String, model: &Model, run: &RunResult) {
     if let Some(d) = &s.energy.damping {
         row(m, "energy dissipated by damping", Some(d.dissipated), &energy);
     }
+    if let Some(c) = &s.energy.contact {
+        row(m, "energy dissipated by the contact", Some(c.dissipated), &energy);
+        row(m, "largest indentation", Some(c.max_indentation), &u.length);
+        row(
+            m,
+            "permanent indentation (Yang and Sun's α0)",
+            Some(c.permanent_indentation),
+            &u.length,
+        );
+    }
     row(m, "max relative energy error", s.energy.max_relative_error, "");
     if let Some(r) = s.rod.as_ref().filter(|_| model.contact.is_some()) {
         row(m, "contact ends (tC/L)", r.contact_end_tcl, "");
@@ -975,15 +997,15 @@ fn summary_table(m: &mut String, model: &Model, run: &RunResult) {
 
 fn ledger_table(m: &mut String, model: &Model, run: &RunResult) {
     let ax = TimeAxis::of(model);
-    // The energy damping dissipated, D, for a damped structure only.
-    let damped = model.damped();
+    // The energy damping dissipated, D, and the contact's, D_c, only where there is one.
+    let extra = crate::ledger::Dissipations::of(model).booked();
     let _ = writeln!(m, "\n## Energy ledger at key instants\n");
     let _ = writeln!(
         m,
         "| instant | t [{}] | KE_i | SE_i | KE_t | KE_t (Eq. 16) | SE_t | total | W_ext |{} error |\n|---|---|---|---|---|---|---|---|---|{}---|",
         ax.unit,
-        if damped { " D |" } else { "" },
-        if damped { "---|" } else { "" }
+        extra.iter().map(|d| format!(" {} |", d.symbol)).collect::<String>(),
+        "---|".repeat(extra.len())
     );
     for (name, k) in key_instants(run) {
         let r = &run.energy[k];
@@ -998,11 +1020,10 @@ fn ledger_table(m: &mut String, model: &Model, run: &RunResult) {
             sig(r.se_target, 5),
             sig(r.total, 6),
             sig(r.external_work, 4),
-            if damped {
-                format!(" {} |", sig(r.dissipated_damping, 6))
-            } else {
-                String::new()
-            },
+            extra
+                .iter()
+                .map(|d| format!(" {} |", sig((d.value)(r), 6)))
+                .collect::<String>(),
             r.error
         );
     }

@@ -407,6 +407,7 @@ impl ContactRecord {
         let mut steps_done: Vec<ConvStep> = Vec::with_capacity(steps + 1);
         let every = model.time.every.max(1);
         let (mut in_contact, mut separated_at) = (false, None::<f64>);
+        let hysteretic = model.hysteretic();
         let mut observe = |c: &ConvStep| {
             let force = ct.stiffness * c.load_factor;
             series.time.push(c.time);
@@ -428,7 +429,9 @@ impl ContactRecord {
                     },
                 ));
             }
-            if c.alpha > 0.0 {
+            // Closed: α > 0, or for a hysteretic contact a force (α above the
+            // permanent indentation).
+            if c.alpha > 0.0 && (c.load_factor > 0.0 || !hysteretic) {
                 in_contact = true;
             } else if in_contact && separated_at.is_none() {
                 separated_at = Some(c.time);
@@ -497,10 +500,9 @@ fn ledger(
             external += (nc_imp * (c.x - prev.x) + (at(nc_t, n) - at(nc_t, n - 1))) * c.work_factor;
         }
         let ke_i = 0.5 * mass * c.xv * c.xv;
-        let se_i = ct.potential(c.alpha);
-        let u0 = *initial.get_or_insert(ke_i + se_i + target_energy);
+        let u0 = *initial.get_or_insert(ke_i + c.contact.stored + target_energy);
         let momentum = mass * c.xv + at(momentum_t, n);
-        let row = EnergyRow::with_target_total(c.time, ke_i, se_i, target_energy, external, u0, momentum);
+        let row = EnergyRow::with_target_total(c.time, ke_i, c.contact, target_energy, external, u0, momentum);
         let trip = limit
             .filter(|&limit| row.error.abs() > limit || row.error.is_nan())
             .map(|limit| GuardTrip {

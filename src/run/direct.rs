@@ -126,7 +126,9 @@ impl Observer for Recorder<'_> {
             }
             self.energy.push(row);
         }
-        if s.alpha > 0.0 {
+        // Closed: α > 0, or for a hysteretic contact a force (α above the permanent
+        // indentation).
+        if s.alpha > 0.0 && (s.load_factor > 0.0 || !m.hysteretic()) {
             self.in_contact = true;
         } else if self.in_contact && self.separated_at.is_none() {
             self.separated_at = Some(s.time);

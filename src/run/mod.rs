@@ -766,6 +766,47 @@ pub fn contact_intervals(t: &[f64], alpha: &[f64]) -> (Vec<[f64; 2]>, bool) {
     (out, open)
 }
 
+/// What a hysteretic contact dissipated over the run, with its law and the permanent
+/// indentation it leaves; `None` for an elastic contact.
+fn contact_dissipation(model: &Model, run: &RunResult) -> Option<summary::ContactDissipation> {
+    let crate::model::Unloading::YangSun(y) = model.contact.as_ref()?.unloading else {
+        return None;
+    };
+    let max = run.series.alpha.iter().copied().fold(0.0, f64::max);
+    Some(summary::ContactDissipation {
+        dissipated: run.energy.last().map_or(0.0, |r| r.dissipated_contact),
+        law: "yang-sun".into(),
+        critical_indentation: y.critical,
+        unloading_exponent: y.power,
+        max_indentation: max,
+        permanent_indentation: y.permanent(max),
+    })
+}
+
+/// Where the energy the impactor lost went, for a run with an impactor that
+/// dissipates (damping or a hysteretic contact); `None` otherwise or without a ledger.
+fn impactor_loss(model: &Model, e: &[EnergyRow]) -> Option<summary::ImpactorLoss> {
+    if model.contact.is_none() || !(model.damped() || model.hysteretic()) {
+        return None;
+    }
+    let (first, last) = (e.first()?, e.last()?);
+    // The target's energy as the total less the impactor's and the contact's: the
+    // convolution engine knows it as a total only.
+    let target = |r: &EnergyRow| r.total - r.ke_impactor - r.se_impactor;
+    let lost = first.ke_impactor - last.ke_impactor;
+    let gained = target(last) - target(first);
+    let holds = last.se_impactor - first.se_impactor;
+    Some(summary::ImpactorLoss {
+        lost,
+        target: gained,
+        contact_holds: holds,
+        damping: last.dissipated_damping,
+        contact: last.dissipated_contact,
+        external_work: last.external_work,
+        residual: lost - (gained + holds + last.dissipated_damping + last.dissipated_contact - last.external_work),
+    })
+}
+
 /// The summary of a run by `engine`.
 fn summarize(
     model: &Model,
@@ -775,7 +816,11 @@ fn summarize(
     engine: Engine,
 ) -> Result<Summary, RunError> {
     let s = &run.series;
-    let (intervals, open) = contact_intervals(&s.time, &s.alpha);
+    let closure = model
+        .contact
+        .as_ref()
+        .map_or_else(|| s.alpha.clone(), |c| c.closure(&s.alpha));
+    let (intervals, open) = contact_intervals(&s.time, &closure);
     let (kmax, fmax) = s
         .force
         .iter()
@@ -857,6 +902,8 @@ fn summarize(
                 elements: model.elements.iter().filter(|e| e.damps()).count(),
                 from: model.damping.as_ref().map_or_else(Vec::new, |d| d.from.clone()),
             }),
+            contact: contact_dissipation(model, run),
+            impactor_loss: impactor_loss(model, e),
             transferred_fraction: rebound.map(|vr| 1.0 - (vr / v0).powi(2)),
             max_relative_error: (!e.is_empty()).then(|| e.iter().map(|r| r.error.abs()).fold(0.0, f64::max)),
             final_relative_error: e.last().map(|r| r.error),

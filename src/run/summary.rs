@@ -216,6 +216,14 @@ pub struct EnergySummary {
     /// and the damping it was given (not written for an undamped one).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub damping: Option<DampingSummary>,
+    /// For a contact that unloads along another curve than it loads on only: what its
+    /// hysteresis dissipated, and its law.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub contact: Option<ContactDissipation>,
+    /// Where the energy the impactor lost went, at the last step; written only when
+    /// some of it was dissipated (damping or a contact's hysteresis).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub impactor_loss: Option<ImpactorLoss>,
     /// 1 − (v_rebound/v0)²: the fraction of the impactor's energy left in the target.
     pub transferred_fraction: Option<f64>,
     /// Largest |relative energy error| over the run.
@@ -237,6 +245,45 @@ pub struct DampingSummary {
     pub elements: usize,
     /// The cards the proportional damping comes from.
     pub from: Vec<String>,
+}
+
+/// What a hysteretic contact dissipated, and its law.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct ContactDissipation {
+    /// The energy dissipated over the run (the ledger's `dissipated_contact`).
+    pub dissipated: f64,
+    /// The law (`yang-sun`).
+    pub law: String,
+    /// Its critical indentation α_cr.
+    pub critical_indentation: f64,
+    /// Its unloading exponent q.
+    pub unloading_exponent: f64,
+    /// The largest indentation of the run, α_m.
+    pub max_indentation: f64,
+    /// The permanent indentation α0 it leaves: α_m [1 − (α_cr/α_m)^(2/5)] above α_cr,
+    /// 0 below.
+    pub permanent_indentation: f64,
+}
+
+/// Where the energy the impactor lost went, from the start to the last step:
+/// `lost` = `target` + `contact_holds` + `damping` + `contact` − `external_work`
+/// + `residual`, the residual being the ledger's balance (−error·U_0).
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct ImpactorLoss {
+    /// The impactor's kinetic energy at the start less at the end.
+    pub lost: f64,
+    /// What the target gained (its kinetic and strain energy).
+    pub target: f64,
+    /// What the contact gained (SE_i).
+    pub contact_holds: f64,
+    /// What the structure's damping dissipated.
+    pub damping: f64,
+    /// What the contact's hysteresis dissipated.
+    pub contact: f64,
+    /// The work of the loads that derive from no potential.
+    pub external_work: f64,
+    /// What the ledger does not account for.
+    pub residual: f64,
 }
 
 /// Momentum along the impact direction.

@@ -157,11 +157,48 @@ pub struct Impactor {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Contact {
-    /// "hertz" (F = K α^1.5), the default.
+    /// "hertz" (F = K α^1.5 loading and unloading), the default; or "yang-sun"
+    /// (loading as Hertz, unloading along Yang and Sun's curve,
+    /// [`crate::integrate::law`]).
     #[serde(default = "hertz")]
     pub law: String,
     /// A number, "eq5" (sphere on an isotropic flat) or "eq18" (k_t = E33).
     pub k: toml::Value,
+    /// Yang and Sun's critical indentation α_cr, in the scene's length unit
+    /// (law = "yang-sun"; `inf`: no permanent indentation).
+    #[serde(default)]
+    pub alpha_cr: Option<f64>,
+    /// Yang and Sun's unloading exponent q (law = "yang-sun"; default 2.5, the value
+    /// of their tests).
+    #[serde(default)]
+    pub q: Option<f64>,
+}
+
+/// Yang and Sun's unloading exponent, from their indentation tests (ASTM STP 787).
+pub const YANG_SUN_Q: f64 = 2.5;
+
+/// How the scene's contact unloads.
+pub fn unloading(s: &Scene) -> crate::model::Unloading {
+    match (s.contact.law.as_str(), s.contact.alpha_cr) {
+        ("yang-sun", Some(critical)) => crate::model::Unloading::YangSun(crate::model::YangSun {
+            critical,
+            power: s.contact.q.unwrap_or(YANG_SUN_Q),
+        }),
+        _ => crate::model::Unloading::Elastic,
+    }
+}
+
+/// Whether the scene has a NASTRAN deck twin: not when its contact unloads along
+/// another curve than it loads on, which NOLIN cards cannot express.
+pub fn deck_twin(s: &Scene) -> Result<(), SceneIssue> {
+    if s.contact.law == "hertz" {
+        return Ok(());
+    }
+    Err(SceneIssue(format!(
+        "contact.law = \"{}\" has no NASTRAN deck twin: NOLIN cards give one curve for loading and unloading, \
+         so the deck would run Hertz's law both ways; run the scene itself",
+        s.contact.law
+    )))
 }
 
 /// Effects asked for: each is off unless asked for or needed; the ledger is on unless
@@ -340,12 +377,7 @@ fn validate(s: &Scene) -> Result<(), SceneIssue> {
     if !s.impactor.velocity.is_finite() || s.impactor.velocity == 0.0 {
         return Err(SceneIssue("impactor.velocity must be a nonzero number".into()));
     }
-    if s.contact.law != "hertz" {
-        return Err(SceneIssue(format!(
-            "contact.law '{}' is not supported (only \"hertz\")",
-            s.contact.law
-        )));
-    }
+    validate_contact(&s.contact)?;
     if s.effects.rotary_inertia {
         return Err(SceneIssue(
             "effects.rotary_inertia is asked for, but the elements lump mass to translations only \
@@ -373,6 +405,51 @@ fn validate(s: &Scene) -> Result<(), SceneIssue> {
         ));
     }
     validate_target(s)
+}
+
+/// The contact law and its parameters.
+fn validate_contact(c: &Contact) -> Result<(), SceneIssue> {
+    match c.law.as_str() {
+        "hertz" => {
+            if c.alpha_cr.is_some() || c.q.is_some() {
+                return Err(SceneIssue(
+                    "contact.alpha_cr and contact.q are Yang and Sun's unloading law's: give them with law = \"yang-sun\""
+                        .into(),
+                ));
+            }
+        }
+        "yang-sun" => {
+            match c.alpha_cr {
+                None => {
+                    return Err(SceneIssue(
+                        "contact.law = \"yang-sun\" needs contact.alpha_cr, the critical indentation above which the \
+                         contact leaves a permanent one (a property of the laminate: measured, or stated as assumed)"
+                            .into(),
+                    ))
+                }
+                Some(a) if a.is_nan() || a <= 0.0 => {
+                    return Err(SceneIssue(format!(
+                        "contact.alpha_cr = {a}: the critical indentation must be positive (inf: never permanent)"
+                    )))
+                }
+                Some(_) => {}
+            }
+            if let Some(q) = c.q {
+                if !(q.is_finite() && q >= 1.5) {
+                    return Err(SceneIssue(format!(
+                        "contact.q = {q}: the unloading exponent must be at least the loading exponent 1.5 (below it \
+                         the unloading curve lies above the loading curve and the contact would return more than it took)"
+                    )));
+                }
+            }
+        }
+        other => {
+            return Err(SceneIssue(format!(
+                "contact.law '{other}' is not supported (\"hertz\" or \"yang-sun\")"
+            )))
+        }
+    }
+    Ok(())
 }
 
 /// The target: a rod or a square plate the generators can mesh, or a deck struck at
@@ -755,12 +832,29 @@ fn join<T: std::fmt::Display>(v: &[T]) -> String {
 
 /// The scene's model (through its deck), its run options, and the computed K.
 pub fn load(path: &Path) -> Result<(Scene, Model, String), SceneError> {
-    let s = read(path)?;
+    model_of(path, read(path)?)
+}
+
+/// A plate scene's model on another mesh (`mesh` elements a side), for a mesh study.
+pub fn load_with_mesh(path: &Path, elements: usize) -> Result<Model, SceneError> {
+    let mut s = read(path)?;
+    match &mut s.target {
+        Target::Plate { mesh, .. } => *mesh = elements,
+        _ => return Err(invalid(path, SceneIssue("a mesh study needs a plate target".into()))),
+    }
+    Ok(model_of(path, s)?.1)
+}
+
+/// The model of a scene read from `path`, and its deck.
+fn model_of(path: &Path, s: Scene) -> Result<(Scene, Model, String), SceneError> {
     let deck = to_deck(&s).map_err(|e| invalid(path, e))?;
     let name = path
         .file_stem()
         .map_or("scene".into(), |n| n.to_string_lossy().into_owned());
-    let model = crate::model_from_text(&name, &deck)?;
+    let mut model = crate::model_from_text(&name, &deck)?;
+    if let Some(c) = model.contact.as_mut() {
+        c.unloading = unloading(&s);
+    }
     Ok((s, model, deck))
 }
 
@@ -798,6 +892,16 @@ pub fn effects(s: &Scene, inert_dofs: usize, steps_done: usize) -> EffectReport 
         "transverse bending and the Hertz contact",
         "the impact itself",
     )];
+    if let crate::model::Unloading::YangSun(y) = unloading(s) {
+        sim.push(Effect::new(
+            "contact hysteresis",
+            format!(
+                "contact.law = \"yang-sun\": loading along Hertz's curve, unloading along Yang and Sun's (q = {}) with \
+                 a permanent indentation above alpha_cr = {} {}; its energy is the ledger's dissipated_contact",
+                y.power, y.critical, s.units.length
+            ),
+        ));
+    }
     let mut skip = Vec::new();
     match (&s.target, s.effects.membrane) {
         (Target::Plate { .. }, true) => sim.push(Effect::new("membrane", "asked for")),

@@ -145,7 +145,11 @@ fn convergence(case: &Case, model: &Model, run: &RunResult, spec: &CheckSpec) ->
         CheckSpec::MeshConvergence { meshes, quantity, max } => {
             let mut values = Vec::new();
             for &n in meshes {
-                let r = run_model(&plate_model(n)?, &case_options(case))?;
+                let m = match &case.scene {
+                    Some(p) => crate::scene::load_with_mesh(&crate::verify::case::rel(case, p), n)?,
+                    None => plate_model(n)?,
+                };
+                let r = run_model(&m, &case_options(case))?;
                 values.push(quantity.of(&r.summary));
             }
             let ch: Vec<f64> = values.windows(2).map(|w| ((w[1] - w[0]) / w[1]).abs()).collect();

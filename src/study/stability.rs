@@ -456,7 +456,9 @@ pub fn hard_cases(n: usize, progress: &dyn Fn(&str)) -> Result<Vec<HardCase>, St
                 Ok(r) => {
                     let s = &r.series;
                     let finite = s.force.iter().chain(&s.alpha).all(|v| v.is_finite())
-                        && r.energy.iter().all(|e| e.values(true).iter().all(|v| v.is_finite()));
+                        && r.energy
+                            .iter()
+                            .all(|e| e.values(crate::ledger::Dissipations::ALL).iter().all(|v| v.is_finite()));
                     (r.summary.energy.max_relative_error, finite, None)
                 }
                 Err(RunError::EnergyGuard { trip, .. }) => (Some(trip.error.abs()), true, Some(trip.to_string())),

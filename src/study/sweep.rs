@@ -373,11 +373,16 @@ impl SweepOutcome {
     }
 }
 
-/// The columns of `sweep.csv` for a model and its varied parameters.
+/// The columns of `sweep.csv` for a model and its varied parameters: the point,
+/// the varied values, [`RESULT_COLUMNS`], `dissipated_contact` for a hysteretic
+/// contact, the peaks of the requested outputs, and the direct check.
 pub fn header(model: &Model, varies: &[Vary]) -> Vec<String> {
     let mut h = vec!["point".to_string()];
     h.extend(varies.iter().map(|v| v.param.name().to_string()));
     h.extend(RESULT_COLUMNS.iter().map(|c| c.to_string()));
+    if model.hysteretic() {
+        h.push("dissipated_contact".into());
+    }
     h.extend(output_columns(model).iter().map(|c| format!("peak_{}", c.name())));
     h.push("direct_check".into());
     h
@@ -410,6 +415,10 @@ fn row(index: usize, values: &[f64], run: &RunResult) -> Vec<f64> {
         s.energy.transferred_fraction.unwrap_or(nan),
         s.energy.max_relative_error.unwrap_or(nan),
     ]);
+    // A hysteretic contact's dissipation (its column only for such a contact).
+    if let Some(c) = &s.energy.contact {
+        r.push(c.dissipated);
+    }
     for j in crate::run::FIXED_COLUMNS.len()..run.history_columns.len() {
         r.push(
             run.history

@@ -47,6 +47,9 @@ pub enum CaseError {
     /// Its modification could not be made.
     #[error("{0}")]
     Modify(#[from] crate::model::ModifyError),
+    /// Its scene could not be made into a model.
+    #[error("{0}")]
+    Scene(#[from] crate::scene::SceneError),
 }
 
 /// One verification case, as written in `verification/<name>.toml`.
@@ -60,6 +63,9 @@ pub struct Case {
     pub description: String,
     /// A deck, relative to the case file.
     pub deck: Option<PathBuf>,
+    /// Or a scene, relative to the case file (for what a deck cannot express, such as
+    /// a contact that unloads along another curve).
+    pub scene: Option<PathBuf>,
     /// Or the paper's plate on a generated n×n mesh.
     pub plate_mesh: Option<usize>,
     /// Or linear static decks (SOL 101), relative to the case file: one problem on a
@@ -396,9 +402,9 @@ pub enum CheckSpec {
         /// Allowed difference from it.
         tol: f64,
     },
-    /// Plate mesh refinement: `quantity` (contact_duration, peak_force_time) on each
-    /// mesh; the change between the last two meshes, relative, ≤ max and smaller
-    /// than the change before.
+    /// Plate mesh refinement: `quantity` (contact_duration, peak_force_time, ...) on each
+    /// mesh of the paper's plate, or of the case's plate scene; the change between the last
+    /// two meshes, relative, ≤ max and smaller than the change before.
     MeshConvergence {
         /// Elements a side of each mesh, coarse to fine.
         meshes: Vec<usize>,
@@ -512,16 +518,21 @@ pub fn read_case(path: &Path) -> Result<Case, CaseError> {
         line: e.span().map(|s| text[..s.start].lines().count().max(1)),
         message: e.message().to_string(),
     })?;
-    if [case.deck.is_some(), case.plate_mesh.is_some(), !case.statics.is_empty()]
-        .iter()
-        .filter(|&&b| b)
-        .count()
+    if [
+        case.deck.is_some(),
+        case.scene.is_some(),
+        case.plate_mesh.is_some(),
+        !case.statics.is_empty(),
+    ]
+    .iter()
+    .filter(|&&b| b)
+    .count()
         != 1
     {
         return Err(CaseError::Invalid {
             path: file(),
             line: None,
-            message: "give exactly one of `deck`, `plate_mesh` and `statics`".into(),
+            message: "give exactly one of `deck`, `scene`, `plate_mesh` and `statics`".into(),
         });
     }
     if case.checks.iter().any(|c| c.is_static() == case.statics.is_empty()) {
@@ -613,6 +624,14 @@ pub fn load_cases(args: &[PathBuf]) -> Result<Vec<Case>, CaseError> {
     case_files(args)?.iter().map(|p| read_case(p)).collect()
 }
 
+impl Case {
+    /// True when the case runs a model file (a deck or a scene): such a case has a
+    /// report.
+    pub fn reported(&self) -> bool {
+        self.deck.is_some() || self.scene.is_some()
+    }
+}
+
 /// A path of a case file, relative to the case file.
 pub fn rel(case: &Case, p: &Path) -> PathBuf {
     case.path.parent().unwrap_or(Path::new(".")).join(p)
@@ -622,6 +641,9 @@ pub fn rel(case: &Case, p: &Path) -> PathBuf {
 pub fn case_model(case: &Case) -> Result<Model, CaseError> {
     let mut m = match (&case.deck, case.plate_mesh) {
         (Some(d), _) => crate::load_deck(&rel(case, d), Default::default())?.0,
+        (None, None) if case.scene.is_some() => {
+            crate::scene::load(&rel(case, case.scene.as_ref().expect("a scene")))?.1
+        }
         (None, Some(n)) if case.plate_mid3 => crate::mesh::plate_model_mid3(n, case.plate_cells)?,
         (None, Some(n)) => crate::mesh::plate_model_with(n, case.plate_cells)?,
         (None, None) => {
@@ -663,6 +685,8 @@ pub enum Quantity {
     PeakForce,
     /// Its time.
     PeakForceTime,
+    /// The energy a hysteretic contact dissipated.
+    ContactDissipation,
 }
 
 impl Quantity {
@@ -673,6 +697,7 @@ impl Quantity {
             Quantity::ContactDuration => s.contact.duration,
             Quantity::PeakForce => Some(s.contact.peak_force),
             Quantity::PeakForceTime => s.contact.peak_force_time,
+            Quantity::ContactDissipation => s.energy.contact.as_ref().map(|c| c.dissipated),
         }
         .unwrap_or(f64::NAN)
     }
@@ -684,6 +709,7 @@ impl Quantity {
             Quantity::ContactDuration => "contact_duration",
             Quantity::PeakForce => "peak_force",
             Quantity::PeakForceTime => "peak_force_time",
+            Quantity::ContactDissipation => "contact_dissipation",
         }
     }
 }

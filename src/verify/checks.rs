@@ -477,10 +477,16 @@ fn momentum(cx: &Cx, max: f64) -> Result<CheckResult, CheckError> {
 
 fn contact_complementarity(cx: &Cx) -> CheckResult {
     let s = &cx.run.series;
+    // α less the permanent indentation left so far: α itself for an elastic contact.
+    let closure = cx
+        .model
+        .contact
+        .as_ref()
+        .map_or_else(|| s.alpha.clone(), |c| c.closure(&s.alpha));
     let mut bad = 0usize;
     let mut first = None;
     for (k, row) in cx.energy().iter().enumerate() {
-        let (a, f) = (s.alpha[k], s.force[k]);
+        let (a, f) = (closure[k], s.force[k]);
         let ok =
             f >= 0.0 && ((f > 0.0) == (a > 0.0)) && ((row.se_impactor > 0.0) == (a > 0.0)) && row.se_impactor >= 0.0;
         if !ok {
@@ -494,7 +500,7 @@ fn contact_complementarity(cx: &Cx) -> CheckResult {
         None,
         Bound::within(0.0, "0 violations".into()),
         bad == 0,
-        first.map_or("F ≥ 0, F > 0 and SE_i > 0 exactly when α > 0".into(), |t| {
+        first.map_or("F ≥ 0, F > 0 and SE_i > 0 exactly when α > α0".into(), |t| {
             format!("first violation at t = {t:.4e} {}", cx.run.summary.units.time)
         }),
     )
@@ -888,8 +894,13 @@ pub fn written_files(case: &Case, model: &Model, run: &RunResult) -> CheckResult
 
 /// The ledger's fields by the name and unit `energy.csv` must give each, from the
 /// deck's units and each field of [`crate::ledger::EnergyRow`] read by name (not by
-/// the writer's column order); `dissipated_damping` for a damped structure only.
-fn ledger_columns(units: &crate::deck::Units, run: &RunResult, damped: bool) -> Vec<(String, Vec<f64>)> {
+/// the writer's column order); `dissipated_damping` for a damped structure only,
+/// `dissipated_contact` for a hysteretic contact only.
+fn ledger_columns(
+    units: &crate::deck::Units,
+    run: &RunResult,
+    booked: crate::ledger::Dissipations,
+) -> Vec<(String, Vec<f64>)> {
     use crate::ledger::EnergyRow;
     let energy = format!("{}*{}", units.force, units.length);
     // Name, unit, and the field itself.
@@ -907,9 +918,7 @@ fn ledger_columns(units: &crate::deck::Units, run: &RunResult, damped: bool) -> 
         ("energy_ratio", "-".into(), |r| r.energy_ratio),
         ("momentum", format!("{}*{}", units.force, units.time), |r| r.momentum),
     ];
-    if damped {
-        fields.push(("dissipated_damping", energy.clone(), |r| r.dissipated_damping));
-    }
+    fields.extend(booked.booked().into_iter().map(|d| (d.column, energy.clone(), d.value)));
     fields
         .into_iter()
         .map(|(name, unit, f)| (format!("{name} [{unit}]"), run.energy.iter().map(f).collect()))
@@ -1002,7 +1011,11 @@ fn file_problems(model: &Model, run: &RunResult) -> Vec<String> {
                 bad.push(format!("summary peak force {peak:e}, history.csv's largest {fmax:e}"));
             }
             let inside = |t: f64| run.summary.contact.intervals.iter().any(|i| t >= i[0] && t <= i[1]);
-            if let Some(r) = rows.iter().find(|r| (r[2] > 0.0) != inside(r[0]) && r[0] > 0.0) {
+            // Closed: α > 0; for a hysteretic contact, a force (α above the permanent
+            // indentation).
+            let hysteretic = model.hysteretic();
+            let closed = |r: &Vec<f64>| if hysteretic { r[1] > 0.0 } else { r[2] > 0.0 };
+            if let Some(r) = rows.iter().find(|r| closed(r) != inside(r[0]) && r[0] > 0.0) {
                 bad.push(format!(
                     "history.csv: indentation {:e} at t = {:e} disagrees with the summary's contact intervals",
                     r[2], r[0]
@@ -1035,7 +1048,7 @@ fn file_problems(model: &Model, run: &RunResult) -> Vec<String> {
                 "energy.csv",
                 &header,
                 &rows,
-                &ledger_columns(units, run, model.damped()),
+                &ledger_columns(units, run, crate::ledger::Dissipations::of(model)),
             ));
         }
     }

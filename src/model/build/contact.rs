@@ -74,6 +74,7 @@ pub(super) fn build_contact(
         },
         loads,
         nonconservative,
+        unloading: Default::default(),
     })
 }
 
