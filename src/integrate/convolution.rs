@@ -18,6 +18,11 @@
 //!
 //! The target's energy needs no field: the trapezoidal rule satisfies the discrete
 //! work identity E_T(n) − E_T(n−1) = (w(n) − w(n−1))·p_n/2 exactly, w = g_T·u_T.
+//! A damped target (its C in the kernel pass's effective matrix, as in the direct
+//! step) satisfies it with E_T + D_T on the left: the identity gives their sum, not
+//! each. A mass-proportional damping (ALPHA1) damps the impactor too: its recursion
+//! carries its share a₁m, and its dissipation ΔxᵀcΔx/Δt is booked step by step. A
+//! damping element on the impactor is refused.
 //!
 //! Cost: the kernel pass is one solve and two sparse products per step, as a direct
 //! step. The contact history is causal (α at step n needs p before n), so its sum is
@@ -79,6 +84,9 @@ struct Ball {
     g: f64,
     /// Its coefficient in α.
     c: f64,
+    /// Its viscous damping: the mass-proportional share a₁m (ALPHA1), which damps it
+    /// as it damps every mass.
+    damping: f64,
 }
 
 /// The impactor of a model, if the convolution engine can treat it as a free mass.
@@ -101,11 +109,19 @@ fn ball(model: &Model) -> Result<Ball, NotConvolvable> {
     if c.iter().any(|&(j, _)| imp.contains(&j) && j != dof) || imp.iter().any(|&i| i != dof && g[i] != 0.0) {
         return Err(no("the contact acts on more than the impactor's impact direction"));
     }
+    if model
+        .elements
+        .iter()
+        .any(|e| e.damps() && e.dofs.iter().flatten().flatten().any(|d| imp.contains(d)))
+    {
+        return Err(no("a damping element acts on the impactor"));
+    }
     Ok(Ball {
         dof,
         mass: ct.impactor.mass,
         g: g[dof],
         c: c.iter().filter(|&&(j, _)| j == dof).map(|&(_, w)| w).sum(),
+        damping: model.damping.as_ref().map_or(0.0, |d| d.mass) * ct.impactor.mass,
     })
 }
 
@@ -227,6 +243,8 @@ pub struct ConvStep {
     pub iterations: usize,
     /// The contact's energies.
     pub contact: ContactEnergy,
+    /// What the impactor's own damping (its share of ALPHA1) has dissipated so far.
+    pub impactor_dissipated: f64,
 }
 
 /// The contact history of a trapezoidal run from its kernel: for each step the
@@ -254,8 +272,13 @@ pub fn contact_history(
     // that both go forward in memory.
     let reversed: Vec<f64> = h_a.iter().rev().copied().collect();
     let last = reversed.len();
-    // Condensed compliance: the impactor's Δt²/(4m) and the target's first response.
-    let s = b.c * b.g * dt * dt / (4.0 * b.mass) + h_a[0];
+    // The impactor's trapezoidal step with its damping c: m(v1 − v0) = Δt/2 (g p −
+    // c(v0 + v1)), so Δx = Δt v0 m/m' + Δt² g p/(4m'), m' = m + cΔt/2 (m itself, and
+    // the factor 1, when undamped). Condensed compliance: the impactor's Δt²/(4m')
+    // and the target's first response.
+    let damped_mass = b.mass + 0.5 * b.damping * dt;
+    let keep = b.mass / damped_mass;
+    let s = b.c * b.g * dt * dt / (4.0 * damped_mass) + h_a[0];
     let (mut x, mut xv) = (model.u0[b.dof], model.v0[b.dof]);
     let mut alpha = b.c * x;
     let mut history = History::new(ct, alpha);
@@ -274,7 +297,9 @@ pub fn contact_history(
         alpha_target: 0.0,
         iterations: 0,
         contact: history.energy(),
+        impactor_dissipated: 0.0,
     })?;
+    let mut dissipated = 0.0;
     let mut n = 0;
     // The first nonzero load: those before it add nothing to any sum.
     let mut first: Option<usize> = None;
@@ -284,7 +309,7 @@ pub fn contact_history(
         // History of the loads before this step, seen by α at step n: Σ_j h_α[n−1−j]·p_j
         // for j < n − 1, h_α[k] being reversed[last − 1 − k].
         let hist_a = first.map_or(0.0, |f| dot(&p[f..], &reversed[last - n + f..last - 1]));
-        let x_pred = x + xv * dt;
+        let x_pred = x + xv * dt * keep;
         let base = b.c * x_pred + hist_a;
         let alpha_star = match form {
             ContactForm::Endpoint => base + s * phi,
@@ -301,7 +326,9 @@ pub fn contact_history(
         if first.is_none() && pn != 0.0 {
             first = Some(n - 1);
         }
-        let dx = xv * dt + b.g * pn * dt * dt / (4.0 * b.mass);
+        let dx = xv * dt * keep + b.g * pn * dt * dt / (4.0 * damped_mass);
+        // ΔxᵀcΔx/Δt: the trapezoidal rule's damping term.
+        dissipated += b.damping * dx * dx / dt;
         xv = 2.0 * dx / dt - xv;
         x += dx;
         let alpha_target = hist_a + h_a[0] * pn;
@@ -317,6 +344,7 @@ pub fn contact_history(
             p: pn,
             load_factor: phi,
             work_factor: 0.5 * pn,
+            impactor_dissipated: dissipated,
             alpha_target,
             iterations: its,
             contact: history.energy(),

@@ -211,15 +211,6 @@ impl Kernels {
             .contact
             .as_ref()
             .ok_or_else(|| RunError::Engine("the convolution engine needs a model with a contact".into()))?;
-        if sys.damped() {
-            // Its ledger is the discrete work identity of an undamped target: the
-            // target's energy is the contact's work on it, which damping would split.
-            return Err(RunFailure::Model(NotConvolvable(
-                "its structure is damped: the engine books the target's energy as the contact's work on it, which damping would split; run the direct or modal engine"
-                    .into(),
-            ))
-            .into());
-        }
         // Functionals the ledger needs beyond the outputs, over the target's DOFs.
         let imp = ct.impactor.dof;
         let mut mw = vec![0.0; model.n()];
@@ -297,6 +288,7 @@ impl Kernels {
             let w = spectra.fft.convolve(&spectra.work, &loads, s * s);
             ledger(
                 ct,
+                model.damped(),
                 &rec.steps_done,
                 &w,
                 &conv(width - 2),
@@ -473,9 +465,13 @@ impl ContactRecord {
 
 /// The ledger of a convolution run from the target's work `w`, momentum and
 /// non-conservative work convolutions, and where its energy guard (`limit`) stops
-/// the run.
+/// the run. The target's energy is the contact's work on it: for a `damped` target,
+/// its energy together with what its damping dissipated, which this identity cannot
+/// split, so its rows give D as NaN (not known apart) and their total holds it, with
+/// what the impactor's own damping took.
 fn ledger(
     ct: &Contact,
+    damped: bool,
     steps_done: &[ConvStep],
     w: &[f64],
     momentum_t: &[f64],
@@ -502,7 +498,12 @@ fn ledger(
         let ke_i = 0.5 * mass * c.xv * c.xv;
         let u0 = *initial.get_or_insert(ke_i + c.contact.stored + target_energy);
         let momentum = mass * c.xv + at(momentum_t, n);
-        let row = EnergyRow::with_target_total(c.time, ke_i, c.contact, target_energy, external, u0, momentum);
+        // The target's energy with what its damping took, and the impactor's damping's.
+        let held = target_energy + c.impactor_dissipated;
+        let mut row = EnergyRow::with_target_total(c.time, ke_i, c.contact, held, external, u0, momentum);
+        if damped {
+            row.dissipated_damping = f64::NAN;
+        }
         let trip = limit
             .filter(|&limit| row.error.abs() > limit || row.error.is_nan())
             .map(|limit| GuardTrip {
@@ -641,6 +642,12 @@ fn cache_key(model: &Model, sys: &System, dt: f64, steps: usize) -> String {
     }
     for &v in k.val() {
         f(v);
+    }
+    // The damping, for a damped structure only (an undamped one's key is unchanged).
+    for t in &sys.c {
+        f(t.row as f64);
+        f(t.col as f64);
+        f(t.val);
     }
     if let Some(c) = &model.contact {
         for l in &c.loads {

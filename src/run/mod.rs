@@ -796,14 +796,19 @@ fn impactor_loss(model: &Model, e: &[EnergyRow]) -> Option<summary::ImpactorLoss
     let lost = first.ke_impactor - last.ke_impactor;
     let gained = target(last) - target(first);
     let holds = last.se_impactor - first.se_impactor;
+    // The convolution engine cannot split a damped target's energy from what its
+    // damping took (D is NaN there): its gain holds both.
+    let damping = last.dissipated_damping;
     Some(summary::ImpactorLoss {
         lost,
         target: gained,
         contact_holds: holds,
-        damping: last.dissipated_damping,
+        damping,
         contact: last.dissipated_contact,
         external_work: last.external_work,
-        residual: lost - (gained + holds + last.dissipated_damping + last.dissipated_contact - last.external_work),
+        residual: lost
+            - (gained + holds + if damping.is_nan() { 0.0 } else { damping } + last.dissipated_contact
+                - last.external_work),
     })
 }
 

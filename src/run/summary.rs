@@ -212,8 +212,9 @@ pub struct EnergySummary {
     pub final_total: Option<f64>,
     /// External work over the run.
     pub external_work: Option<f64>,
-    /// For a damped structure only: the energy its damping dissipated over the run,
-    /// and the damping it was given (not written for an undamped one).
+    /// For a damped structure only: the energy its damping dissipated over the run
+    /// (null on the convolution engine: see [`ImpactorLoss::damping`]), and the
+    /// damping it was given (not written for an undamped one).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub damping: Option<DampingSummary>,
     /// For a contact that unloads along another curve than it loads on only: what its
@@ -276,7 +277,8 @@ pub struct ImpactorLoss {
     pub target: f64,
     /// What the contact gained (SE_i).
     pub contact_holds: f64,
-    /// What the structure's damping dissipated.
+    /// What the structure's damping dissipated (null on the convolution engine, which
+    /// cannot split it from the target's energy: `target` then holds it).
     pub damping: f64,
     /// What the contact's hysteresis dissipated.
     pub contact: f64,
