@@ -181,10 +181,7 @@ impl Stepper for Central<'_> {
         }
         self.phi_prev = self.phi_n;
         self.alpha = apply(&self.c, &self.u);
-        self.phi_n = self.history.as_mut().map_or(0.0, |h| {
-            h.commit(self.alpha);
-            h.load_factor()
-        });
+        self.phi_n = self.history.as_mut().map_or(0.0, |h| h.commit(self.alpha));
         if let Some(p) = &mut self.applied {
             p.load_end(time);
             // Δu = Δt v(n+½), the half-step velocity in v now.

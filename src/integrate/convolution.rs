@@ -333,8 +333,7 @@ pub fn contact_history(
         x += dx;
         let alpha_target = hist_a + h_a[0] * pn;
         alpha = b.c * x + alpha_target;
-        history.commit(alpha);
-        phi = history.load_factor();
+        phi = history.commit(alpha);
         go = observe(&ConvStep {
             step: n,
             time,

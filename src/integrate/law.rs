@@ -271,8 +271,9 @@ impl<'a> History<'a> {
     }
 
     /// Makes α the committed state, the step having been taken with
-    /// [`History::step_law`] from the previous one.
-    pub fn commit(&mut self, alpha: f64) {
+    /// [`History::step_law`] from the previous one; returns the load factor there
+    /// ([`History::load_factor`]).
+    pub fn commit(&mut self, alpha: f64) -> f64 {
         if let Some(ys) = self.yang_sun {
             let a = self.alpha;
             match self.branch {
@@ -296,6 +297,7 @@ impl<'a> History<'a> {
         }
         self.alpha = alpha;
         self.stored = self.stored_at(alpha);
+        self.load_factor()
     }
 
     /// E at α on the committed curve.

@@ -191,10 +191,7 @@ impl<'a> ThreePoint<'a> {
     fn solve_next(&mut self, step: usize) -> Result<(), SolveError> {
         let (n, dt, beta) = (self.u.len(), self.dt, self.beta);
         self.alpha = apply(&self.c, &self.u);
-        self.phi_n = self.history.as_mut().map_or(0.0, |h| {
-            h.commit(self.alpha);
-            h.load_factor()
-        });
+        self.phi_n = self.history.as_mut().map_or(0.0, |h| h.commit(self.alpha));
         // rhs = N(n) + M(2u(n) − u(n−1))/Δt² − K((1 − 2β)u(n) + βu(n−1))
         for i in 0..n {
             self.t1[i] = (2.0 * self.u[i] - self.u_prev[i]) / (dt * dt);

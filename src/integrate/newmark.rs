@@ -299,10 +299,7 @@ impl Stepper for Newmark<'_> {
         // ΔuᵀCΔu/Δt, C Δu in the workspace `mv` (free until the next predictor).
         self.dissipated += self.sys.c_norm(&self.du, &mut self.mv) / self.dt;
         let alpha = apply(&self.c, &self.u);
-        let phi_new = self.history.as_mut().map_or(0.0, |h| {
-            h.commit(alpha);
-            h.load_factor()
-        });
+        let phi_new = self.history.as_mut().map_or(0.0, |h| h.commit(alpha));
         self.work_factor = match self.form {
             ContactForm::Endpoint => 0.5 * (self.phi_n + phi_new),
             ContactForm::DiscreteGradient => 0.5 * psi,

@@ -203,6 +203,17 @@ impl Contact {
         }
     }
 
+    /// Whether the contact is closed at a state of indentation `alpha` and contact
+    /// load `load` (its force or load factor: only its sign counts): α > 0 for an
+    /// elastic contact; for one that unloads along another curve, a load (α above
+    /// the permanent indentation it has left).
+    pub fn closed(&self, alpha: f64, load: f64) -> bool {
+        match self.unloading {
+            Unloading::Elastic => alpha > 0.0,
+            Unloading::YangSun(_) => load > 0.0,
+        }
+    }
+
     /// The closure of each state of an indentation history `alpha` (every step, in
     /// order): α less the permanent indentation the history has left by then, so that
     /// the contact is closed exactly where it is positive. α itself for an elastic

@@ -399,7 +399,6 @@ impl ContactRecord {
         let mut steps_done: Vec<ConvStep> = Vec::with_capacity(steps + 1);
         let every = model.time.every.max(1);
         let (mut in_contact, mut separated_at) = (false, None::<f64>);
-        let hysteretic = model.hysteretic();
         let mut observe = |c: &ConvStep| {
             let force = ct.stiffness * c.load_factor;
             series.time.push(c.time);
@@ -421,9 +420,7 @@ impl ContactRecord {
                     },
                 ));
             }
-            // Closed: α > 0, or for a hysteretic contact a force (α above the
-            // permanent indentation).
-            if c.alpha > 0.0 && (c.load_factor > 0.0 || !hysteretic) {
+            if ct.closed(c.alpha, c.load_factor) {
                 in_contact = true;
             } else if in_contact && separated_at.is_none() {
                 separated_at = Some(c.time);

@@ -126,9 +126,12 @@ impl Observer for Recorder<'_> {
             }
             self.energy.push(row);
         }
-        // Closed: α > 0, or for a hysteretic contact a force (α above the permanent
-        // indentation).
-        if s.alpha > 0.0 && (s.load_factor > 0.0 || !m.hysteretic()) {
+        if self
+            .stepped
+            .contact
+            .as_ref()
+            .is_some_and(|c| c.closed(s.alpha, s.load_factor))
+        {
             self.in_contact = true;
         } else if self.in_contact && self.separated_at.is_none() {
             self.separated_at = Some(s.time);

@@ -1011,10 +1011,8 @@ fn file_problems(model: &Model, run: &RunResult) -> Vec<String> {
                 bad.push(format!("summary peak force {peak:e}, history.csv's largest {fmax:e}"));
             }
             let inside = |t: f64| run.summary.contact.intervals.iter().any(|i| t >= i[0] && t <= i[1]);
-            // Closed: α > 0; for a hysteretic contact, a force (α above the permanent
-            // indentation).
-            let hysteretic = model.hysteretic();
-            let closed = |r: &Vec<f64>| if hysteretic { r[1] > 0.0 } else { r[2] > 0.0 };
+            // A row's force and indentation (columns 1 and 2).
+            let closed = |r: &Vec<f64>| model.contact.as_ref().is_some_and(|c| c.closed(r[2], r[1]));
             if let Some(r) = rows.iter().find(|r| closed(r) != inside(r[0]) && r[0] > 0.0) {
                 bad.push(format!(
                     "history.csv: indentation {:e} at t = {:e} disagrees with the summary's contact intervals",
