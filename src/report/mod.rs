@@ -804,14 +804,29 @@ fn recorded_strain_elements(run: &RunResult) -> Vec<i64> {
 
 /// The strains at gages A and B, both fibres (paper Figs. 8 and 9).
 fn plate_gages(f: &Fig) -> Result<Vec<PathBuf>, ReportError> {
-    let (run, ax, footer, dir) = (f.run, &f.ax, f.footer, f.dir);
+    let (model, run, ax, footer, dir) = (f.model, f.run, &f.ax, f.footer, f.dir);
     let mut out = Vec::new();
     let mesh_gages = recorded_strain_elements(run);
     let t: Vec<f64> = run.history.iter().map(|r| r[0] * ax.scale).collect();
     if !mesh_gages.is_empty() {
         resolves_the_pulse(f, &dir.join("gage-a"))?;
     }
-    for (k, eid) in mesh_gages.iter().skip(1).take(2).enumerate() {
+    // The gages are the recorded elements other than the struck one (every corner of
+    // which the contact loads), A then B: the paper's deck records the struck element
+    // too, a scene only the gages it names.
+    let loaded: std::collections::BTreeSet<i64> = model
+        .contact
+        .iter()
+        .flat_map(|c| c.loads.iter().map(|l| l.label.point))
+        .collect();
+    let struck = |eid: i64| {
+        model
+            .elements
+            .iter()
+            .find(|e| e.eid == eid)
+            .is_some_and(|e| e.grids.iter().all(|g| loaded.contains(g)))
+    };
+    for (k, eid) in mesh_gages.iter().filter(|&&e| !struck(e)).take(2).enumerate() {
         let (fig, gage) = if k == 0 { ("Fig. 8", "A") } else { ("Fig. 9", "B") };
         let mut lines = Vec::new();
         for (i, (fibre, comp)) in [
