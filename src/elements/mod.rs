@@ -612,6 +612,11 @@ pub struct Element {
     /// grids (an RBE3's reference grid, an RBE2 of some components). `None` when no
     /// grid is so tied.
     pub links: Option<Arc<Links>>,
+    /// β of the viscous damping β·K_e the element adds to its kernel's: GE/W4, its
+    /// structural damping coefficient GE turned viscous at PARAM W4, as NASTRAN's
+    /// direct transient solutions form it (B += K₄/W4, K₄ = Σ GE·K_e: NASTRAN-95
+    /// User's Manual, 1.6.1, Eq. 5); 0 when it has none.
+    pub stiffness_damping: f64,
 }
 
 /// Each grid's mass m when `l` (over `grids` grids) is m·I on every grid's
@@ -656,6 +661,7 @@ impl Clone for Element {
             kernel: self.kernel.clone_box(),
             placement: self.placement.clone(),
             links: self.links.clone(),
+            stiffness_damping: self.stiffness_damping,
         }
     }
 }
@@ -677,6 +683,7 @@ impl Element {
             kernel,
             placement: None,
             links: None,
+            stiffness_damping: 0.0,
         }
     }
 
@@ -762,16 +769,24 @@ impl Element {
     }
 
     /// Adds the element's viscous damping to a global triplet list (solved DOFs only;
-    /// exact zeros skipped): nothing for an element that does not damp.
+    /// exact zeros skipped): its kernel's and β·K_e ([`Element::stiffness_damping`]);
+    /// nothing for an element that does not damp.
     pub fn scatter_damping(&self, c: &mut Vec<(usize, usize, f64)>) {
         for l in self.turned(self.kernel.damping()) {
             c.extend(self.expanded(&l));
         }
+        if self.stiffness_damping != 0.0 {
+            for mut l in self.stiffness() {
+                l.values *= self.stiffness_damping;
+                c.extend(self.expanded(&l));
+            }
+        }
     }
 
-    /// True when the element damps (its kernel has a damping matrix).
+    /// True when the element damps: its kernel has a damping matrix, or its
+    /// structural damping is turned viscous.
     pub fn damps(&self) -> bool {
-        !self.kernel.damping().is_empty()
+        self.stiffness_damping != 0.0 || !self.kernel.damping().is_empty()
     }
 
     /// The element's stiffness matrices over its grids' DOFs.

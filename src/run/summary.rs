@@ -242,9 +242,11 @@ pub struct DampingSummary {
     pub mass_coefficient: f64,
     /// a₂ of K (ALPHA2 + G/W3), 0 when none.
     pub stiffness_coefficient: f64,
-    /// The damping elements (CDAMP1-4, CVISC, CBUSH with B).
+    /// The elements that damp: CDAMP1-4, CVISC, CBUSH with B, and those whose
+    /// structural damping GE PARAM W4 turns viscous.
     pub elements: usize,
-    /// The cards the proportional damping comes from.
+    /// The cards the proportional damping comes from, and PARAM W4 with the elements
+    /// whose GE it turns viscous.
     pub from: Vec<String>,
 }
 

@@ -36,8 +36,8 @@ pub struct Cbush {
     pub at: CardRef,
 }
 
-/// PBUSH: its six stiffnesses (`K` line); what else it carries is refused when not
-/// zero.
+/// PBUSH: its six stiffnesses (`K` line), dampers (`B`) and structural damping
+/// (`GE`).
 #[derive(Debug, Clone)]
 pub struct Pbush {
     /// Property id.
@@ -46,6 +46,8 @@ pub struct Pbush {
     pub k: [f64; 6],
     /// B1..B6, viscous damping in the element's axes (blank: 0).
     pub b: [f64; 6],
+    /// GE1, the element's structural damping coefficient (blank: 0).
+    pub ge: f64,
     /// The card.
     pub at: CardRef,
 }
@@ -121,15 +123,17 @@ pub(super) fn card_cbush(r: &mut Reader, b: &mut Bulk) {
 
 /// PBUSH (MSC Quick Reference Guide, PBUSH): PID, then lines each opened by a flag in
 /// its first field, "K", "B", "GE" or "RCV", with its values after it. K1..K6 are
-/// taken, and B1..B6 (viscous damping). GE (structural damping, which NASTRAN turns
-/// viscous at PARAM W4) is not formed: refused when not zero, rather than run less
-/// damped than asked. RCV's stress and strain recovery
+/// taken, B1..B6 (viscous damping) and GE1, the element's structural damping (which
+/// the transient solutions turn viscous at PARAM W4); GE2..GE6, damping per direction
+/// in other codes' PBUSH, are refused rather than read in a sense the deck may not
+/// mean. RCV's stress and strain recovery
 /// coefficients are read and not used (no stress or strain is recovered for a CBUSH).
 pub(super) fn card_pbush(r: &mut Reader, b: &mut Bulk) {
     let pid = r.id(0, "PID");
     let mut k = [0.0; 6];
     let mut damping = [0.0; 6];
     let mut seen_k = false;
+    let mut ge = 0.0;
     // A flag opens the first line's field 3 and any continuation's field 2.
     let n = r.card.fields.len();
     let mut at = 1;
@@ -154,17 +158,16 @@ pub(super) fn card_pbush(r: &mut Reader, b: &mut Bulk) {
                 r.extra_fields_in(values.start + 6, values.end);
             }
             "GE" => {
-                for f in values.clone() {
-                    if r.real_or(f, "GE", 0.0) != 0.0 {
-                        r.fail(
-                            f,
-                            "GE",
-                            "is structural damping, which impactlab does not form (NASTRAN turns it viscous at \
-                             PARAM W4): a PBUSH with GE is refused rather than run less damped; give its damping \
-                             as B",
-                        );
-                        break;
-                    }
+                ge = r.real_or(values.start, "GE1", 0.0);
+                r.non_negative(values.start, "GE1", ge);
+                if let Some(f) = (values.start + 1..values.end).find(|&f| !r.text(f).is_empty()) {
+                    let name = format!("GE{}", f - values.start + 1);
+                    r.fail(
+                        f,
+                        &name,
+                        "is damping per direction, which is not read: a PBUSH's GE line has one value, GE1, the \
+                         whole element's structural damping (MSC's form); give damping per direction as B1..B6",
+                    );
                 }
             }
             "RCV" => {
@@ -188,6 +191,7 @@ pub(super) fn card_pbush(r: &mut Reader, b: &mut Bulk) {
             pid,
             k,
             b: damping,
+            ge,
             at: r.at(),
         });
     }

@@ -161,6 +161,9 @@ pub struct ScalarCard {
     pub role: ScalarRole,
     /// Its value: through its property (PELAS, PMASS, PDAMP) or on the card.
     pub value: ScalarValue,
+    /// A CELAS2's structural damping coefficient GE (0 when blank, and for every
+    /// other card: a CELAS1's is its PELAS's).
+    pub ge: f64,
     /// Its two terminals (point, component 0-6): a grid's component 1-6, a scalar
     /// point's 0; point 0 is ground.
     pub terminals: [(i64, usize); 2],
@@ -380,15 +383,10 @@ pub(super) fn card_scalar(r: &mut Reader, b: &mut Bulk) {
     if r.ok && terminals[0] == terminals[1] {
         r.fail(4, "G2", "the two connection points must be distinct");
     }
+    let mut ge = 0.0;
     if n == 2 && spring {
-        if r.real_or(6, "GE", 0.0) != 0.0 {
-            r.warn(
-                6,
-                "GE",
-                "element damping GE is left out, as NASTRAN's transient solutions leave it out without PARAM \
-                 W4 (which impactlab refuses)",
-            );
-        }
+        ge = r.real_or(6, "GE", 0.0);
+        r.non_negative(6, "GE", ge);
         r.real_opt(7, "S");
         r.extra_fields(8);
     } else {
@@ -399,6 +397,7 @@ pub(super) fn card_scalar(r: &mut Reader, b: &mut Bulk) {
             eid,
             role,
             value,
+            ge,
             terminals,
             first_at,
             at: r.at(),

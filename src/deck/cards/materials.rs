@@ -20,6 +20,8 @@ pub struct Mat1 {
     /// Reference temperature TREF (field 8; 0.0 when blank): a temperature load
     /// strains the material by A·(T − TREF).
     pub tref: f64,
+    /// Structural damping coefficient GE (field 9; 0.0 when blank).
+    pub ge: f64,
     /// The card.
     pub at: CardRef,
 }
@@ -33,6 +35,8 @@ pub struct Mat2 {
     pub g: [[f64; 3]; 3],
     /// Mass density RHO (field 9).
     pub rho: f64,
+    /// Structural damping coefficient GE (continuation field 6; 0.0 when blank).
+    pub ge: f64,
     /// The card.
     pub at: CardRef,
 }
@@ -62,6 +66,9 @@ pub struct Mat8 {
     pub f12: Option<f64>,
     /// STRN (second continuation, field 4): 1.0 when the allowables are strains.
     pub strn: f64,
+    /// Structural damping coefficient GE (second continuation, field 2; 0.0 when
+    /// blank).
+    pub ge: f64,
     /// The card.
     pub at: CardRef,
 }
@@ -74,6 +81,8 @@ pub(super) fn card_mat1(r: &mut Reader, b: &mut Bulk) {
     let rho = r.real_or(4, "RHO", 0.0);
     let alpha = r.real_or(5, "A", 0.0);
     let tref = r.real_or(6, "TREF", 0.0);
+    let ge = r.real_or(7, "GE", 0.0);
+    r.non_negative(7, "GE", ge);
     let (e, g, nu) = match (e, g, nu) {
         (Some(e), Some(g), Some(nu)) => (e, g, nu),
         (Some(e), None, Some(nu)) => (e, e / (2.0 * (1.0 + nu)), nu),
@@ -104,6 +113,7 @@ pub(super) fn card_mat1(r: &mut Reader, b: &mut Bulk) {
         rho,
         alpha,
         tref,
+        ge,
         at: r.at(),
     };
     if r.ok {
@@ -123,18 +133,20 @@ pub(super) fn card_mat2(r: &mut Reader, b: &mut Bulk) {
         (9, "A2"),
         (10, "A3"),
         (11, "TREF"),
-        (12, "GE"),
         (13, "ST"),
         (14, "SC"),
         (15, "SS"),
     ] {
         r.real_opt(k, name);
     }
+    let ge = r.real_or(12, "GE", 0.0);
+    r.non_negative(12, "GE", ge);
     let g = [[v[0], v[1], v[2]], [v[1], v[3], v[4]], [v[2], v[4], v[5]]];
     let m = Mat2 {
         mid: r.id(0, "MID"),
         g,
         rho,
+        ge,
         at: r.at(),
     };
     if r.ok {
@@ -177,9 +189,11 @@ pub(super) fn card_mat8(r: &mut Reader, b: &mut Bulk) {
             ),
         );
     }
-    for (k, name) in [(8, "A1"), (9, "A2"), (10, "TREF"), (16, "GE")] {
+    for (k, name) in [(8, "A1"), (9, "A2"), (10, "TREF")] {
         r.real_opt(k, name);
     }
+    let ge = r.real_or(16, "GE", 0.0);
+    r.non_negative(16, "GE", ge);
     let names = ["Xt", "Xc", "Yt", "Yc", "S"];
     // Xc and Yc are magnitudes; NASTRAN-95 writes them "Real" of either sign (MAT8).
     let mut allowables: [Option<f64>; 5] = std::array::from_fn(|i| {
@@ -229,6 +243,7 @@ pub(super) fn card_mat8(r: &mut Reader, b: &mut Bulk) {
         allowables,
         f12,
         strn,
+        ge,
         at: r.at(),
     };
     if r.ok {

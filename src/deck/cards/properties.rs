@@ -123,6 +123,8 @@ pub struct Pcomp {
     pub sb: Option<f64>,
     /// Failure theory FT (field 6): HILL, HOFF, TSAI or STRN.
     pub ft: Option<String>,
+    /// The laminate's structural damping coefficient GE (field 8; 0.0 when blank).
+    pub ge: f64,
     /// The plies as listed (before LAM = SYM mirrors them).
     pub plies: Vec<Ply>,
     /// LAM (field 9).
@@ -142,13 +144,16 @@ impl Pcomp {
     }
 }
 
-/// PELAS (PID K GE S) or PMASS (PID M).
+/// PELAS (PID K GE S), PMASS (PID M) or PDAMP (PID B).
 #[derive(Debug, Clone)]
 pub struct ScalarProperty {
     /// Property id.
     pub pid: i64,
-    /// K or M.
+    /// K, M or B.
     pub value: f64,
+    /// A PELAS's structural damping coefficient GE (0 when blank, and for PMASS and
+    /// PDAMP).
+    pub ge: f64,
     /// The card.
     pub at: CardRef,
 }
@@ -396,20 +401,15 @@ pub(super) fn card_scalar_property(r: &mut Reader, b: &mut Bulk) {
         "PMASS" => ScalarRole::Mass,
         _ => ScalarRole::Damper,
     };
-    let p = ScalarProperty {
+    let mut p = ScalarProperty {
         pid: r.id(0, "PID"),
         value: r.real(1, role.value_name()),
+        ge: 0.0,
         at: r.at(),
     };
     if role == ScalarRole::Spring {
-        if r.real_or(2, "GE", 0.0) != 0.0 {
-            r.warn(
-                2,
-                "GE",
-                "element damping GE is left out, as NASTRAN's transient solutions leave it out without PARAM \
-                 W4 (which impactlab refuses)",
-            );
-        }
+        p.ge = r.real_or(2, "GE", 0.0);
+        r.non_negative(2, "GE", p.ge);
         r.real_opt(3, "S");
         r.extra_fields(4);
     } else {
@@ -559,7 +559,8 @@ pub(super) fn card_pcomp(r: &mut Reader, b: &mut Bulk) {
         }
     };
     r.real_opt(5, "TREF");
-    r.real_opt(6, "GE");
+    let ge = r.real_or(6, "GE", 0.0);
+    r.non_negative(6, "GE", ge);
     let lam = match r.text(7).to_ascii_uppercase().as_str() {
         "" => Lam::All,
         "SYM" => Lam::Sym,
@@ -619,6 +620,7 @@ pub(super) fn card_pcomp(r: &mut Reader, b: &mut Bulk) {
         nsm,
         sb,
         ft,
+        ge,
         plies,
         lam,
         at: r.at(),
@@ -708,6 +710,7 @@ pub(super) fn card_pcomp_uniform(r: &mut Reader, b: &mut Bulk) {
         nsm,
         sb,
         ft,
+        ge: 0.0,
         plies,
         lam,
         at: r.at(),

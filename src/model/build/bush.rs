@@ -13,9 +13,9 @@ const COINCIDENT: f64 = 1e-4;
 /// Every CBUSH: its kernel at the spring's point, placed on its grids.
 pub(super) fn bushings(cx: &mut Ctx, deck: &Deck, num: &Numbering, geo: &Geometry, out: &mut Elements) {
     let b = &deck.bulk;
-    let pbush: HashMap<i64, ([f64; 6], [f64; 6])> = b.pbushes.iter().map(|p| (p.pid, (p.k, p.b))).collect();
+    let pbush: HashMap<i64, &crate::deck::cards::Pbush> = b.pbushes.iter().map(|p| (p.pid, p)).collect();
     for c in &b.cbushes {
-        let Some(&(k, damping)) = pbush.get(&c.pid) else {
+        let Some(&p) = pbush.get(&c.pid) else {
             cx.err(c.at.error(format!(
                 "CBUSH {} references PBUSH {}, which does not exist",
                 c.eid, c.pid
@@ -53,11 +53,12 @@ pub(super) fn bushings(cx: &mut Ctx, deck: &Deck, num: &Numbering, geo: &Geometr
             grids,
             dofs,
             Bush {
-                k,
-                b: damping,
+                k: p.k,
+                b: p.b,
                 points: points.clone(),
             },
         );
+        let e = out.with_structural_damping(e, p.ge, &p.at);
         out.push(e.placed(Placement { turn, points }), |g| num.grid_dofs(g));
     }
 }

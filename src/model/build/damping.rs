@@ -4,12 +4,28 @@
 use super::*;
 use crate::deck::cards::{DampingParam, DampingSetting};
 
-/// a₁ = ALPHA1 and a₂ = ALPHA2 + G/W3, or `None` when they are all zero. G without
-/// W3 is left out with a warning, as NASTRAN's transient solutions leave it out
-/// (W3 = 0 by default); W3 without G turns nothing viscous. Element damping GE turned
-/// viscous at PARAM W4 is refused: impactlab does not form it, and would run a
-/// structure with less damping than asked for.
-pub(super) fn proportional_damping(cx: &mut Ctx, deck: &Deck) -> Option<Damping> {
+/// PARAM W4 when it is set and not zero: the circular frequency (radians per time
+/// unit) at which the elements' structural damping GE is turned viscous, each element
+/// adding (GE/W4)·K_e to C ([`crate::elements::Element::stiffness_damping`]).
+pub(super) fn element_damping_frequency(deck: &Deck) -> Option<&DampingSetting> {
+    deck.bulk
+        .damping
+        .iter()
+        .find(|s| s.param == DampingParam::W4)
+        .filter(|s| s.value != 0.0)
+}
+
+/// a₁ = ALPHA1 and a₂ = ALPHA2 + G/W3, with the cards they come from, or `None` when
+/// nothing damps the structure. G without W3 is left out with a warning, as NASTRAN's
+/// transient solutions leave it out (W3 = 0 by default); W3 without G turns nothing
+/// viscous. `structurally_damped` elements have a GE (the first given on the card
+/// named): W4 turns it viscous (named among the sources, a₁ and a₂ unchanged), and
+/// without W4 it is left out with a warning, as NASTRAN leaves it out.
+pub(super) fn proportional_damping(
+    cx: &mut Ctx,
+    deck: &Deck,
+    structurally_damped: &(usize, Option<CardRef>),
+) -> Option<Damping> {
     let settings = &deck.bulk.damping;
     let get = |p: DampingParam| settings.iter().find(|s| s.param == p);
     let value = |s: Option<&DampingSetting>| s.map_or(0.0, |s| s.value);
@@ -34,12 +50,27 @@ pub(super) fn proportional_damping(cx: &mut Ctx, deck: &Deck) -> Option<Damping>
         ))),
         (None, None) => {}
     }
-    if let Some(w4) = get(DampingParam::W4).filter(|s| s.value != 0.0) {
-        cx.err(w4.at.error(
-            "PARAM W4 turns the elements' damping GE viscous, which impactlab does not form: the run would be \
-             less damped than asked for. Give the structure's damping as PARAM G with W3, or ALPHA1 and ALPHA2, \
-             or with damping elements (CDAMP1-4, CVISC), and remove PARAM W4",
-        ));
+    match (element_damping_frequency(deck), structurally_damped) {
+        (Some(w4), (n, Some(first))) => from.push(format!(
+            "{} turns the structural damping GE of {n} element{} viscous (the first from {} at {})",
+            said(w4),
+            if *n == 1 { "" } else { "s" },
+            first.name,
+            first.pos
+        )),
+        (Some(w4), _) => cx.warn(w4.at.error(format!(
+            "PARAM W4 {:e} without an element whose material or property gives GE: there is no structural \
+             damping to turn viscous",
+            w4.value
+        ))),
+        (None, (n, Some(first))) => cx.warn(first.error(format!(
+            "{n} element{} a structural damping GE ({} is the first), which NASTRAN's transient solutions \
+             leave out without PARAM W4, and so does impactlab; set PARAM W4, the circular frequency (radians per \
+             time unit) at which GE is turned viscous",
+            if *n == 1 { " has" } else { "s have" },
+            first.name
+        ))),
+        (None, _) => {}
     }
     let mass = value(get(DampingParam::Alpha1));
     for s in [get(DampingParam::Alpha1), get(DampingParam::Alpha2)]
@@ -51,5 +82,5 @@ pub(super) fn proportional_damping(cx: &mut Ctx, deck: &Deck) -> Option<Damping>
         }
     }
     stiffness += value(get(DampingParam::Alpha2));
-    (mass != 0.0 || stiffness != 0.0).then_some(Damping { mass, stiffness, from })
+    (!from.is_empty()).then_some(Damping { mass, stiffness, from })
 }

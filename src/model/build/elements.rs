@@ -18,9 +18,31 @@ pub(super) struct Elements<'a, 's> {
     pub(super) survey: Option<&'s mut Surveyor<'s>>,
     /// The grids' positions and frames.
     pub(super) geo: &'a Geometry,
+    /// PARAM W4 when set (not zero): the frequency at which the elements' structural
+    /// damping GE is turned viscous.
+    pub(super) w4: Option<f64>,
+    /// The elements given a structural damping GE, and the card of the first: turned
+    /// viscous at W4, or left out without it.
+    pub(super) structurally_damped: (usize, Option<CardRef>),
 }
 
 impl Elements<'_, '_> {
+    /// `e` with its structural damping coefficient `ge` (given on the card `from`,
+    /// its material or property) turned viscous at PARAM W4:
+    /// [`Element::stiffness_damping`] = GE/W4. Without W4 it is left out, as NASTRAN's
+    /// transient solutions leave it out, and [`build_model`] says so once.
+    pub(super) fn with_structural_damping(&mut self, mut e: Element, ge: f64, from: &CardRef) -> Element {
+        if ge != 0.0 {
+            let (n, first) = &mut self.structurally_damped;
+            *n += 1;
+            first.get_or_insert_with(|| from.clone());
+            if let Some(w4) = self.w4 {
+                e.stiffness_damping = ge / w4;
+            }
+        }
+        e
+    }
+
     /// An element built, on grids whose DOFs are `dofs(g)`: attached through the ties
     /// of the rigid elements (an independent grid that a grid follows whole carries
     /// that grid's elements), then kept or surveyed.
@@ -59,6 +81,8 @@ pub(super) fn build_elements<'a, 's>(
         rigid,
         survey,
         geo,
+        w4: element_damping_frequency(deck).map(|s| s.value),
+        structurally_damped: (0, None),
     };
     connected(cx, deck, num, geo, &mut out);
     point_masses(cx, deck, num, geo, &mut out);
@@ -238,6 +262,10 @@ pub(super) fn connected(cx: &mut Ctx, deck: &Deck, num: &Numbering, geo: &Geomet
                 out.plies.insert(out.list.len(), layers);
             }
             let e = Element::boxed(c.eid, c.g.clone(), dofs, kernel);
+            let e = match props.structural_damping(c) {
+                Some((ge, from)) => out.with_structural_damping(e, ge, from),
+                None => e,
+            };
             out.push(
                 match placement {
                     Some(p) => e.placed(p),
@@ -585,6 +613,7 @@ pub(super) fn scalar_elements(
     use crate::elements::scalar::{Scalar, ScalarKind};
     let b = &deck.bulk;
     let pelas: HashMap<i64, f64> = b.pelas.iter().map(|p| (p.pid, p.value)).collect();
+    let pelas_ge: HashMap<i64, &crate::deck::cards::ScalarProperty> = b.pelas.iter().map(|p| (p.pid, p)).collect();
     let pmass: HashMap<i64, f64> = b.pmass.iter().map(|p| (p.pid, p.value)).collect();
     let pdamp: HashMap<i64, f64> = b.pdamps.iter().map(|p| (p.pid, p.value)).collect();
     for c in &b.scalars {
@@ -673,7 +702,16 @@ pub(super) fn scalar_elements(
             slots,
             points,
         };
-        out.push(Element::new(c.eid, grids, dofs, kernel), |g| num.grid_dofs(g));
+        let e = Element::new(c.eid, grids, dofs, kernel);
+        // A spring's GE: a CELAS2's own, a CELAS1's or CELAS3's its PELAS's.
+        let e = match c.value {
+            ScalarValue::Property(pid) if c.role == ScalarRole::Spring => {
+                let p = pelas_ge[&pid];
+                out.with_structural_damping(e, p.ge, &p.at)
+            }
+            _ => out.with_structural_damping(e, c.ge, &c.at),
+        };
+        out.push(e, |g| num.grid_dofs(g));
     }
 }
 

@@ -267,7 +267,7 @@ pub fn build_model(deck: &Deck) -> Result<(Model, Vec<Diagnostic>), ModelError> 
         num.lookup(cx, at, w, g, c)
     });
     let excitation = excitation(&mut cx, deck, &num);
-    let damping = proportional_damping(&mut cx, deck);
+    let damping = proportional_damping(&mut cx, deck, &elements.structurally_damped);
     let outputs = output_plan(&mut cx, deck, &num, (&dependent, &tied), &elements, contact.as_ref());
     let rod = rod_info(&elements.list);
     let model = Model {

@@ -56,6 +56,39 @@ impl<'d> Properties<'d> {
         m
     }
 
+    /// The element's structural damping coefficient GE and the card that gives it:
+    /// its MAT1's for a rod, bar or shear panel; a PSHELL's MID1 material's (MAT1 or
+    /// MAT2: "structural damping, when needed, is obtained from the MID1 material",
+    /// NASTRAN-95 User's Manual, PSHELL remark 5); a PCOMP's own GE field, its plies'
+    /// materials' being ignored (MSC Quick Reference Guide, PCOMP). `None` when its
+    /// property or material does not resolve (its error is reported where its section
+    /// is).
+    pub(super) fn structural_damping(&self, c: &'d Connection) -> Option<(f64, &'d CardRef)> {
+        let b = self.bulk;
+        let material = |mid: i64| -> Option<(f64, &'d CardRef)> {
+            match self.mat1.get(&mid) {
+                Some(m) => Some((m.ge, &m.at)),
+                None => b.mat2s.iter().find(|m| m.mid == mid).map(|m| (m.ge, &m.at)),
+            }
+        };
+        match c.kind.build {
+            Build::Rod(_) => material(c.rod.as_deref().or_else(|| self.prod.get(&c.pid).copied())?.mid),
+            Build::Panel(_) => material(self.pshear.get(&c.pid)?.mid),
+            Build::Bar(_) => material(self.bars.get(&c.pid)?.mid),
+            Build::Shell(_) => {
+                let shell = match c.property_card {
+                    Some(card) => self.cosmic.get(&(card, c.pid)),
+                    None => self.pshell.get(&c.pid),
+                };
+                match (shell, self.pcomp.get(&c.pid)) {
+                    (Some(p), _) => material(p.mid1?),
+                    (None, Some(p)) => Some((p.ge, &p.at)),
+                    (None, None) => None,
+                }
+            }
+        }
+    }
+
     /// A rod's PROD and MAT1.
     pub(super) fn rod(&self, cx: &mut Ctx, c: &'d Connection) -> Option<RodSection> {
         let property = if c.kind.card == "CTUBE" { "PTUBE" } else { "PROD" };
