@@ -242,32 +242,32 @@ impl<'a> History<'a> {
         if self.yang_sun.is_none() {
             return StepLaw::Elastic(self.contact);
         }
-        let mut pieces = Vec::with_capacity(3);
+        // At most three pieces: a branch, the reloading curve, the loading curve.
+        let mut pieces = [self.hertz(0.0); 3];
+        let mut len = 0;
+        let mut push = |p: Piece| {
+            // Adjacent pieces on one curve are one piece.
+            if len == 0 || !p.same_curve(&pieces[len - 1]) {
+                pieces[len] = p;
+                len += 1;
+            }
+        };
         let start = match self.branch {
             Some((b, top)) => {
-                pieces.push(b);
+                push(b);
                 top
             }
             None if self.alpha > self.origin => {
-                pieces.push(self.unloading_from(self.alpha));
+                push(self.unloading_from(self.alpha));
                 self.alpha
             }
             None => self.origin,
         };
-        self.upper(start, &mut pieces);
-        // Adjacent pieces on one curve are one piece.
-        pieces.dedup_by(|later, earlier| later.same_curve(earlier));
-        if let [p] = pieces[..] {
-            if p == self.hertz(0.0) {
-                return StepLaw::Elastic(self.contact);
-            }
+        self.upper(start, &mut push);
+        if len == 1 && pieces[0] == self.hertz(0.0) {
+            return StepLaw::Elastic(self.contact);
         }
-        let mut out = [self.hertz(0.0); 3];
-        out[..pieces.len()].copy_from_slice(&pieces);
-        StepLaw::Pieces {
-            pieces: out,
-            len: pieces.len(),
-        }
+        StepLaw::Pieces { pieces, len }
     }
 
     /// Makes α the committed state, the step having been taken with
@@ -367,15 +367,15 @@ impl<'a> History<'a> {
     }
 
     /// The upper curve's pieces from `start` (at least α0) on.
-    fn upper(&self, start: f64, pieces: &mut Vec<Piece>) {
+    fn upper(&self, start: f64, push: &mut impl FnMut(Piece)) {
         if start < self.max {
-            pieces.push(Piece {
+            push(Piece {
                 from: start,
                 ..self.reloading()
             });
-            pieces.push(self.hertz(self.max));
+            push(self.hertz(self.max));
         } else {
-            pieces.push(self.hertz(start));
+            push(self.hertz(start));
         }
     }
 
