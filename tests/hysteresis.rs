@@ -151,8 +151,8 @@ fn yang_sun_scenes_have_no_deck_twin_and_their_parameters_are_checked() {
 
 /// Goal: a sweep and a threshold search take a Yang-Sun scene: the sweep's points on
 /// the convolution engine agree with the direct engine (its self-check passes) and
-/// `sweep.csv` gains `dissipated_contact`, larger at a higher speed; the threshold
-/// search finds a speed.
+/// `sweep.csv` gains `dissipated_contact`, larger at a higher speed, and its figure;
+/// the threshold search finds a speed.
 #[test]
 fn yang_sun_scenes_sweep_and_find_thresholds() {
     let dir = tempfile::tempdir().unwrap();
@@ -177,6 +177,7 @@ fn yang_sun_scenes_sweep_and_find_thresholds() {
         .unwrap();
     let d: Vec<f64> = r.records().map(|x| x.unwrap()[j].parse().unwrap()).collect();
     assert!(d.len() == 3 && d[0] > 0.0 && d[2] > d[0], "{d:?}");
+    assert!(out.join("dissipated-contact.png").exists(), "no figure of D_c");
     let o = impactlab(&[
         "sweep",
         p.to_str().unwrap(),

@@ -807,7 +807,8 @@ impl FigureContext {
 }
 
 /// The figures of a sweep, from its `sweep.csv` alone: peak force, contact duration,
-/// transferred fraction and the largest |strain| of the strain outputs against the impact
+/// transferred fraction, the energy a hysteretic contact dissipated (when it has that
+/// column) and the largest |strain| of the strain outputs against the impact
 /// energy ½mv², one line per combination of the other varied parameters, the points
 /// also run on the direct (or modal) engine ringed. Written as `DIR/<name>.png` and `.svg`.
 pub fn figures(
@@ -914,8 +915,9 @@ pub fn figures(
     Ok(out)
 }
 
-/// The results every sweep draws: column, title, and the quantity with its unit.
-fn result_figures(u: &crate::run::UnitSystem) -> [(&'static str, &'static str, String); 3] {
+/// The results a sweep draws, each when `sweep.csv` has its column: column, title,
+/// and the quantity with its unit.
+fn result_figures(u: &crate::run::UnitSystem) -> [(&'static str, &'static str, String); 4] {
     [
         ("peak_force", "Peak contact force", format!("peak force [{}]", u.force)),
         (
@@ -927,6 +929,11 @@ fn result_figures(u: &crate::run::UnitSystem) -> [(&'static str, &'static str, S
             "transferred_fraction",
             "Energy left in the target",
             "1 − (v_rebound/v0)² [-]".to_string(),
+        ),
+        (
+            "dissipated_contact",
+            "Energy the contact dissipated",
+            format!("D_c [{}]", u.energy),
         ),
     ]
 }
