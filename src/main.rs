@@ -61,6 +61,10 @@ pub enum Command {
     /// Merge the output directories of a sharded sweep into the sweep.csv an unsharded
     /// run writes.
     Collect(CollectArgs),
+    /// Print this command line's reference as Markdown: the user guide's
+    /// `docs/src/reference/cli.md`, which a test holds to it.
+    #[command(hide = true)]
+    Reference,
 }
 
 #[derive(clap::Args)]
@@ -513,6 +517,44 @@ fn sweep_engine_parser() -> impl clap::builder::TypedValueParser<Value = Engine>
     })
 }
 
+/// The command-line reference: every command's and subcommand's long help, each
+/// under its own heading, as clap renders it (at its fixed width, so the page does
+/// not depend on the terminal).
+fn reference() -> String {
+    use clap::CommandFactory;
+    use std::fmt::Write;
+    fn section(cmd: &mut clap::Command, path: &str, level: usize, out: &mut String) {
+        let _ = write!(
+            out,
+            "{} `{path}`\n\n```text\n{}\n```\n\n",
+            "#".repeat(level),
+            cmd.render_long_help()
+                .to_string()
+                .trim_end()
+                .lines()
+                .map(str::trim_end)
+                .collect::<Vec<_>>()
+                .join("\n")
+        );
+        for sub in cmd
+            .get_subcommands_mut()
+            .filter(|s| !s.is_hide_set() && s.get_name() != "help")
+        {
+            let path = format!("{path} {}", sub.get_name());
+            section(sub, &path, level + 1, out);
+        }
+    }
+    let mut cmd = Cli::command();
+    cmd.build();
+    let mut out = String::from(
+        "# Command-line reference\n\nEvery command and flag, as `impactlab COMMAND --help` prints it. This page is \
+         generated from the program (`impactlab reference > docs/src/reference/cli.md`) and `tests/book.rs` fails \
+         when it differs.\n\n",
+    );
+    section(&mut cmd, "impactlab", 2, &mut out);
+    out
+}
+
 fn main() -> ExitCode {
     cli::handle_signals();
     let result = match Cli::parse().command {
@@ -528,6 +570,10 @@ fn main() -> ExitCode {
         Command::Bench(a) => cli::bench(a),
         Command::Sweep(a) => cli::sweep(a),
         Command::Collect(a) => cli::collect(a),
+        Command::Reference => {
+            print!("{}", reference());
+            Ok(0)
+        }
     };
     match result {
         Ok(code) => ExitCode::from(code),

@@ -228,7 +228,8 @@ fn failure_indices_are_the_theory_on_the_written_ply_stresses() {
     assert_eq!(f["theory"]["name"], "HILL");
     assert_eq!(f["max_stress"]["name"], "MAXSTRESS");
     // The struck plate fails its first ply at the paper's impact: a point load's plate
-    // stresses under the impactor (see the README on what they are worth).
+    // stresses under the impactor (see docs/src/reference/laminates.md on what they
+    // are worth).
     assert!(best_hill.0 > 1.0, "{best_hill:?}");
 }
 

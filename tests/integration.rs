@@ -7,6 +7,7 @@ mod common;
 
 mod bad_decks;
 mod beams;
+mod book;
 mod bush;
 mod card_rules;
 mod check;

@@ -1,4 +1,4 @@
-//! The README's Slurm array script, run as written on a real single-node Slurm
+//! The user guide's Slurm array script (`docs/src/how-to/slurm.md`), run as written on a real single-node Slurm
 //! (Debian's slurm-wlm and munge; `tests/slurm/cluster.sh` starts and stops it). Under
 //! CI (`CI` set; `.ci/run` installs the packages) a missing Slurm fails the test;
 //! elsewhere the test says it skipped.
@@ -10,10 +10,11 @@ use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-/// The README's Slurm array script: the `sh` block after "On Slurm".
-fn readme_script() -> String {
-    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
-    let after = &readme[readme.find("On Slurm").expect("the README's Slurm section")..];
+/// The guide's Slurm array script: the `sh` block after "On Slurm" in
+/// `docs/src/how-to/slurm.md`.
+fn guide_script() -> String {
+    let page = std::fs::read_to_string(root().join("docs/src/how-to/slurm.md")).unwrap();
+    let after = &page[page.find("On Slurm").expect("the guide's Slurm page")..];
     let start = after.find("```sh\n").expect("its script block") + "```sh\n".len();
     let script = &after[start..];
     script[..script.find("```").unwrap()].to_string()
@@ -63,12 +64,12 @@ impl Drop for Cluster {
     }
 }
 
-/// Goal: the README's array script, unchanged, runs a 40-point rod sweep as 4 array
+/// Goal: the guide's array script, unchanged, runs a 40-point rod sweep as 4 array
 /// tasks (`sbatch --wait --array=1-4`) sharing one kernel cache, and `impactlab
 /// collect` merges the shards into the very bytes of the unsharded `sweep.csv`; the
 /// shard count comes from the array, so no point is missing.
 #[test]
-fn the_readme_array_script_runs_on_a_real_slurm() {
+fn the_guides_array_script_runs_on_a_real_slurm() {
     if let Some(why) = missing() {
         assert!(std::env::var_os("CI").is_none(), "Slurm is required under CI: {why}");
         eprintln!("skipped: no Slurm here: {why}");
@@ -77,7 +78,7 @@ fn the_readme_array_script_runs_on_a_real_slurm() {
     let tmp = tempfile::tempdir().unwrap();
     let work = tmp.path().join("work");
     std::fs::create_dir_all(&work).unwrap();
-    std::fs::write(work.join("sweep-array.sh"), readme_script()).unwrap();
+    std::fs::write(work.join("sweep-array.sh"), guide_script()).unwrap();
     std::fs::copy(deck("rod.bdf"), work.join("rod.bdf")).unwrap();
     let _cluster = Cluster::start(&tmp.path().join("cluster"));
     let conf = tmp.path().join("cluster/slurm.conf");

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # A private single-node Slurm cluster on this machine, for tests/slurm.rs and for
-# anyone who wants to try the README's array script.
+# anyone who wants to try the user guide's array script (docs/src/how-to/slurm.md).
 #
 #   tests/slurm/cluster.sh start DIR   # start munged (if none answers), slurmctld, slurmd
 #   export SLURM_CONF=DIR/slurm.conf   # then sbatch, sinfo, squeue talk to it

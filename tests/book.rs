@@ -1,0 +1,198 @@
+//! The user guide (`docs/`, an mdBook) against the program and against itself: its
+//! generated reference is what the program generates, every card the reader takes is
+//! in its card reference, every page is in its table of contents, every link it and
+//! the README make resolves, and everything the README said before the guide has a
+//! home in it.
+
+use crate::common::{impactlab, root};
+use pulldown_cmark::{Event, HeadingLevel, Parser, Tag, TagEnd};
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+
+/// The guide's pages: `docs/src/**/*.md`, relative to `docs/src`.
+fn pages() -> Vec<PathBuf> {
+    fn walk(dir: &Path, base: &Path, out: &mut Vec<PathBuf>) {
+        for e in std::fs::read_dir(dir).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                walk(&p, base, out);
+            } else if p.extension().is_some_and(|x| x == "md") {
+                out.push(p.strip_prefix(base).unwrap().to_path_buf());
+            }
+        }
+    }
+    let src = root().join("docs/src");
+    let mut out = Vec::new();
+    walk(&src, &src, &mut out);
+    out.sort();
+    out
+}
+
+/// A heading's anchor as mdBook (and GitHub) makes it: lower case, letters, digits,
+/// `-` and `_` kept, spaces turned to `-`, anything else dropped.
+fn anchor(heading: &str) -> String {
+    heading
+        .trim()
+        .to_lowercase()
+        .chars()
+        .filter_map(|c| match c {
+            ' ' => Some('-'),
+            c if c.is_alphanumeric() || c == '-' || c == '_' => Some(c),
+            _ => None,
+        })
+        .collect()
+}
+
+/// A page's headings (their text) and the destinations of its links, code blocks
+/// left out.
+fn parse(text: &str) -> (Vec<(HeadingLevel, String)>, Vec<String>) {
+    let mut headings = Vec::new();
+    let mut links = Vec::new();
+    let mut heading: Option<(HeadingLevel, String)> = None;
+    for event in Parser::new(text) {
+        match event {
+            Event::Start(Tag::Heading { level, .. }) => heading = Some((level, String::new())),
+            Event::End(TagEnd::Heading(_)) => headings.extend(heading.take()),
+            Event::Text(t) | Event::Code(t) => {
+                if let Some((_, h)) = &mut heading {
+                    h.push_str(&t);
+                }
+            }
+            Event::Start(Tag::Link { dest_url, .. }) | Event::Start(Tag::Image { dest_url, .. }) => {
+                links.push(dest_url.to_string())
+            }
+            _ => {}
+        }
+    }
+    (headings, links)
+}
+
+/// Goal: the command-line reference is the program's own: `impactlab reference`
+/// (every command's and subcommand's `--help`) prints `docs/src/reference/cli.md`
+/// byte for byte, so a flag added, renamed or re-documented without the page fails.
+#[test]
+fn the_cli_reference_is_what_the_program_prints() {
+    let o = impactlab(&["reference"]);
+    assert!(o.status.success());
+    let page = std::fs::read_to_string(root().join("docs/src/reference/cli.md")).unwrap();
+    assert!(
+        String::from_utf8_lossy(&o.stdout) == page,
+        "docs/src/reference/cli.md is stale: `impactlab reference > docs/src/reference/cli.md`"
+    );
+    for command in ["run", "sweep", "verify", "check", "compare", "audit"] {
+        assert!(page.contains(&format!("### `impactlab {command}`")), "{command}");
+    }
+}
+
+/// Goal: the card reference names every card the reader takes, so that a card added
+/// to the reader without its documentation fails: each of `deck::cards::supported()`
+/// appears, as a word, in the first column of a table of `docs/src/reference/decks.md`.
+#[test]
+fn the_card_reference_names_every_card_the_reader_takes() {
+    let page = std::fs::read_to_string(root().join("docs/src/reference/decks.md")).unwrap();
+    let named: BTreeSet<String> = page
+        .lines()
+        .filter_map(|l| l.strip_prefix("| "))
+        .map(|l| l.split(" |").next().unwrap_or(""))
+        .flat_map(|c| {
+            c.split(|ch: char| !(ch.is_ascii_alphanumeric()))
+                .map(str::to_string)
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    // A range in the table ("CELAS1-4") names each card of it.
+    let covered = |card: &str| {
+        named.contains(card)
+            || card.strip_suffix(|c: char| c.is_ascii_digit()).is_some_and(|stem| {
+                page.lines().filter(|l| l.starts_with("| ")).any(|l| {
+                    let first = l.split(" |").next().unwrap_or("");
+                    first.contains(&format!("{stem}1-")) || first.contains(&format!("{stem}1/"))
+                })
+            })
+    };
+    let missing: Vec<&str> = impactlab::deck::cards::supported()
+        .into_iter()
+        .filter(|c| !["ENDDATA", "INCLUDE", "PARAM"].contains(c) && !covered(c))
+        .collect();
+    assert!(missing.is_empty(), "not in docs/src/reference/decks.md: {missing:?}");
+}
+
+/// Goal: the table of contents holds every page and names no missing one, so no page
+/// is left out of the built book.
+#[test]
+fn every_page_is_in_the_table_of_contents() {
+    let summary = std::fs::read_to_string(root().join("docs/src/SUMMARY.md")).unwrap();
+    let listed: BTreeSet<PathBuf> = parse(&summary).1.into_iter().map(PathBuf::from).collect();
+    let pages: BTreeSet<PathBuf> = pages().into_iter().filter(|p| p != Path::new("SUMMARY.md")).collect();
+    assert_eq!(listed, pages, "docs/src/SUMMARY.md against docs/src/**/*.md");
+}
+
+/// Goal: every link of the guide and of the README resolves: a relative path to a file
+/// or directory of the repository, and an anchor to a heading of the page it names
+/// (or of its own page). Web addresses are not fetched.
+#[test]
+fn every_link_of_the_guide_and_the_readme_resolves() {
+    let src = root().join("docs/src");
+    let mut anchors: BTreeMap<PathBuf, BTreeSet<String>> = BTreeMap::new();
+    let mut texts = Vec::new();
+    for p in pages() {
+        let file = src.join(&p);
+        let text = std::fs::read_to_string(&file).unwrap();
+        anchors.insert(file.clone(), parse(&text).0.iter().map(|(_, h)| anchor(h)).collect());
+        texts.push((file, text));
+    }
+    let readme = root().join("README.md");
+    texts.push((readme.clone(), std::fs::read_to_string(&readme).unwrap()));
+    let mut broken = Vec::new();
+    for (file, text) in &texts {
+        for link in parse(text).1 {
+            if link.contains("://") || link.starts_with("mailto:") {
+                continue;
+            }
+            let (path, fragment) = match link.split_once('#') {
+                Some((p, f)) => (p, Some(f)),
+                None => (link.as_str(), None),
+            };
+            let target = if path.is_empty() {
+                file.clone()
+            } else {
+                file.parent().unwrap().join(path)
+            };
+            if !target.exists() {
+                broken.push(format!("{}: {link} (no such file)", file.display()));
+                continue;
+            }
+            if let Some(f) = fragment {
+                let target = target.canonicalize().unwrap();
+                let known = anchors
+                    .iter()
+                    .find(|(p, _)| p.canonicalize().unwrap() == target)
+                    .is_some_and(|(_, a)| a.contains(f));
+                if !known {
+                    broken.push(format!("{}: {link} (no such heading)", file.display()));
+                }
+            }
+        }
+    }
+    assert!(broken.is_empty(), "broken links:\n{}", broken.join("\n"));
+}
+
+/// Goal: nothing the README said before the guide is lost: each of its headings (kept
+/// in `docs/readme-headings.txt`) is a heading of a page of the guide.
+#[test]
+fn every_heading_of_the_old_readme_has_a_home_in_the_guide() {
+    let src = root().join("docs/src");
+    let headings: BTreeSet<String> = pages()
+        .iter()
+        .flat_map(|p| parse(&std::fs::read_to_string(src.join(p)).unwrap()).0)
+        .map(|(_, h)| h)
+        .collect();
+    let old = std::fs::read_to_string(root().join("docs/readme-headings.txt")).unwrap();
+    let homeless: Vec<&str> = old
+        .lines()
+        .skip_while(|l| l.starts_with("//"))
+        // The parser gives a heading's code without its backticks.
+        .filter(|h| !headings.contains(&h.replace('`', "")))
+        .collect();
+    assert!(homeless.is_empty(), "without a home in docs/src: {homeless:?}");
+}
