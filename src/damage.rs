@@ -69,7 +69,7 @@ use nalgebra::{Matrix3, Vector3};
 use serde::{Deserialize, Serialize};
 
 /// The delamination threshold of a laminate, as `summary.json` gives it.
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct DelaminationOnset {
     /// The mode II interlaminar fracture toughness used, force/length.
     pub g_iic: f64,

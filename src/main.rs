@@ -61,10 +61,15 @@ pub enum Command {
     /// Merge the output directories of a sharded sweep into the sweep.csv an unsharded
     /// run writes.
     Collect(CollectArgs),
-    /// Print this command line's reference as Markdown: the user guide's
-    /// `docs/src/reference/cli.md`, which a test holds to it.
+    /// Print a page of the user guide's reference that is generated from the program
+    /// (`docs/src/reference/`), which a test holds to it.
     #[command(hide = true)]
-    Reference,
+    Reference {
+        /// `cli` (cli.md), `summary` (summary-schema.md) or `summary-schema`
+        /// (summary.schema.json).
+        #[arg(value_enum)]
+        page: ReferencePage,
+    },
 }
 
 #[derive(clap::Args)]
@@ -517,6 +522,17 @@ fn sweep_engine_parser() -> impl clap::builder::TypedValueParser<Value = Engine>
     })
 }
 
+/// The generated pages of the user guide's reference.
+#[derive(Clone, Copy, clap::ValueEnum)]
+pub enum ReferencePage {
+    /// The command-line reference.
+    Cli,
+    /// `summary.json`'s keys.
+    Summary,
+    /// `summary.json`'s JSON Schema.
+    SummarySchema,
+}
+
 /// The command-line reference: every command's and subcommand's long help, each
 /// under its own heading, as clap renders it (at its fixed width, so the page does
 /// not depend on the terminal).
@@ -548,7 +564,7 @@ fn reference() -> String {
     cmd.build();
     let mut out = String::from(
         "# Command-line reference\n\nEvery command and flag, as `impactlab COMMAND --help` prints it. This page is \
-         generated from the program (`impactlab reference > docs/src/reference/cli.md`) and `tests/book.rs` fails \
+         generated from the program (`impactlab reference cli > docs/src/reference/cli.md`) and `tests/book.rs` fails \
          when it differs.\n\n",
     );
     section(&mut cmd, "impactlab", 2, &mut out);
@@ -570,8 +586,16 @@ fn main() -> ExitCode {
         Command::Bench(a) => cli::bench(a),
         Command::Sweep(a) => cli::sweep(a),
         Command::Collect(a) => cli::collect(a),
-        Command::Reference => {
-            print!("{}", reference());
+        Command::Reference { page } => {
+            match page {
+                ReferencePage::Cli => print!("{}", reference()),
+                ReferencePage::Summary => print!("{}", impactlab::run::summary::schema_markdown()),
+                ReferencePage::SummarySchema => println!(
+                    "{}",
+                    serde_json::to_string_pretty(&impactlab::run::summary::json_schema())
+                        .expect("a JSON value serialises")
+                ),
+            }
             Ok(0)
         }
     };

@@ -67,21 +67,76 @@ fn parse(text: &str) -> (Vec<(HeadingLevel, String)>, Vec<String>) {
     (headings, links)
 }
 
-/// Goal: the command-line reference is the program's own: `impactlab reference`
+/// The generated page `file` of `docs/src/reference/`, which `impactlab reference
+/// PAGE` must print byte for byte.
+fn generated(page: &str, file: &str) -> String {
+    let o = impactlab(&["reference", page]);
+    assert!(o.status.success());
+    let committed = std::fs::read_to_string(root().join("docs/src/reference").join(file)).unwrap();
+    assert!(
+        String::from_utf8_lossy(&o.stdout) == committed,
+        "docs/src/reference/{file} is stale: `impactlab reference {page} > docs/src/reference/{file}`"
+    );
+    committed
+}
+
+/// Goal: the command-line reference is the program's own: `impactlab reference cli`
 /// (every command's and subcommand's `--help`) prints `docs/src/reference/cli.md`
 /// byte for byte, so a flag added, renamed or re-documented without the page fails.
 #[test]
 fn the_cli_reference_is_what_the_program_prints() {
-    let o = impactlab(&["reference"]);
-    assert!(o.status.success());
-    let page = std::fs::read_to_string(root().join("docs/src/reference/cli.md")).unwrap();
-    assert!(
-        String::from_utf8_lossy(&o.stdout) == page,
-        "docs/src/reference/cli.md is stale: `impactlab reference > docs/src/reference/cli.md`"
-    );
+    let page = generated("cli", "cli.md");
     for command in ["run", "sweep", "verify", "check", "compare", "audit"] {
         assert!(page.contains(&format!("### `impactlab {command}`")), "{command}");
     }
+}
+
+/// Goal: the `summary.json` reference is the typed summary's: its page and its JSON
+/// Schema are what the program generates from the types and their documentation, and
+/// they name the keys a run writes (here the rod's summary, key by key, nested objects
+/// and arrays included).
+#[test]
+fn the_summary_reference_is_the_typed_summarys() {
+    let page = generated("summary", "summary-schema.md");
+    let schema: serde_json::Value = serde_json::from_str(&generated("summary-schema", "summary.schema.json")).unwrap();
+    assert_eq!(schema["properties"]["schema_version"]["type"], "integer");
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("rod");
+    let deck = root().join("reference-data/decks/rod.bdf");
+    let o = impactlab(&["run", deck.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    assert!(o.status.success());
+    let summary: serde_json::Value = serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
+    fn keys(v: &serde_json::Value, path: &str, out: &mut Vec<String>) {
+        match v {
+            serde_json::Value::Object(m) => {
+                for (k, x) in m {
+                    let key = if path.is_empty() {
+                        k.clone()
+                    } else {
+                        format!("{path}.{k}")
+                    };
+                    keys(x, &key, out);
+                    out.push(key);
+                }
+            }
+            serde_json::Value::Array(a) => {
+                for x in a.iter().filter(|x| x.is_object()) {
+                    keys(x, &format!("{path}[]"), out);
+                }
+            }
+            _ => {}
+        }
+    }
+    let mut written = Vec::new();
+    keys(&summary, "", &mut written);
+    let missing: Vec<&String> = written
+        .iter()
+        .filter(|k| !page.contains(&format!("| `{k}` |")))
+        .collect();
+    assert!(
+        written.len() > 40 && missing.is_empty(),
+        "not in summary-schema.md: {missing:?}"
+    );
 }
 
 /// Goal: the card reference names every card the reader takes, so that a card added
@@ -195,4 +250,98 @@ fn every_heading_of_the_old_readme_has_a_home_in_the_guide() {
         .filter(|h| !headings.contains(&h.replace('`', "")))
         .collect();
     assert!(homeless.is_empty(), "without a home in docs/src: {homeless:?}");
+}
+
+/// The commands a page of the guide shows: the lines of its indented code blocks of
+/// commands (blocks whose first line is one; a block of printed output is not) that
+/// start with `impactlab` or `cargo run --release --`, without a trailing
+/// `# comment`, as the arguments after `impactlab`.
+fn shown_commands(text: &str) -> Vec<Vec<String>> {
+    let command = |l: &str| {
+        l.strip_prefix("impactlab ")
+            .or_else(|| l.strip_prefix("cargo run --release -- "))
+            .map(|l| {
+                let l = l.split("  #").next().unwrap_or("");
+                l.split_whitespace().map(str::to_string).collect::<Vec<String>>()
+            })
+    };
+    let mut out = Vec::new();
+    let mut commands_block = false;
+    let mut previous_blank = true;
+    for line in text.lines() {
+        match line.strip_prefix("    ") {
+            Some(l) => {
+                if previous_blank {
+                    commands_block = command(l).is_some();
+                }
+                if commands_block {
+                    out.extend(command(l));
+                }
+            }
+            None => commands_block = false,
+        }
+        previous_blank = line.trim().is_empty();
+    }
+    out
+}
+
+/// Goal: every command the tutorials and how-to guides show is one the program has,
+/// on files the repository has: its subcommand is in the command-line reference and
+/// every deck, scene or case it reads (a path with a directory) exists.
+#[test]
+fn every_command_the_guide_shows_names_a_command_and_files_that_exist() {
+    let src = root().join("docs/src");
+    let cli = std::fs::read_to_string(src.join("reference/cli.md")).unwrap();
+    let mut seen = 0;
+    for p in pages()
+        .iter()
+        .filter(|p| p.starts_with("tutorials") || p.starts_with("how-to"))
+    {
+        for args in shown_commands(&std::fs::read_to_string(src.join(p)).unwrap()) {
+            seen += 1;
+            let command = match args[0].as_str() {
+                "mesh" | "study" => format!("`impactlab {} {}`", args[0], args[1]),
+                c => format!("`impactlab {c}`"),
+            };
+            assert!(cli.contains(&command), "{}: {command} is no command", p.display());
+            let mut output = false;
+            for a in &args[1..] {
+                let reads = a.contains('/') && [".bdf", ".toml"].iter().any(|x| a.ends_with(x)) && !output;
+                if reads {
+                    assert!(root().join(a).exists(), "{}: {a} does not exist", p.display());
+                }
+                output = ["--out", "--fields", "--to-deck"].contains(&a.as_str());
+            }
+        }
+    }
+    assert!(seen >= 15, "{seen} commands");
+}
+
+/// Goal: the CI tutorial's comparison is what the program does: its three commands,
+/// run as shown (in a directory holding the repository's decks), print the audit the
+/// page describes ("6 of 85 quantities moved") and exit 1.
+#[test]
+fn the_ci_tutorials_audit_runs_as_shown() {
+    let page = std::fs::read_to_string(root().join("docs/src/tutorials/ci-gate.md")).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    std::os::unix::fs::symlink(root().join("reference-data"), dir.path().join("reference-data")).unwrap();
+    let commands: Vec<Vec<String>> = shown_commands(&page)
+        .into_iter()
+        .filter(|a| a[0] == "run" || a[0] == "audit")
+        .collect();
+    assert_eq!(commands.len(), 3);
+    let mut last = None;
+    for args in &commands {
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_impactlab"))
+            .args(args)
+            .current_dir(dir.path())
+            .output()
+            .unwrap();
+        last = Some(o);
+    }
+    let o = last.unwrap();
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(o.status.code(), Some(1), "{stdout}");
+    assert!(page.contains("Here 6 of 85 quantities move"));
+    assert!(stdout.contains("MOVED: 6 of 85 quantities moved"), "{stdout}");
 }

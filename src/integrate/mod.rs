@@ -41,7 +41,7 @@ use crate::model::Model;
 use std::time::Duration;
 
 /// The time schemes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum Scheme {
     /// Trapezoidal Newmark, end-point contact force ([`NewmarkParams::TRAPEZOIDAL`]).

@@ -81,7 +81,7 @@ pub struct Kernels {
 }
 
 /// Where a run's kernels came from.
-#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum CacheUse {
     /// Computed; no cache asked for.

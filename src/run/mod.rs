@@ -161,7 +161,7 @@ fn preflight(model: &Model, opts: &RunOptions, stage: Preflight) -> Result<(), R
 }
 
 /// How a run is computed.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum Engine {
     /// Step by step, every DOF (the reference).

@@ -77,7 +77,7 @@ pub const CYCLES_PER_CONTACT: f64 = 4.0;
 pub const RESIDUAL_ORDER: usize = 8;
 
 /// What the reduction kept and what it misses, in `summary.json` (`run.modal`).
-#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
 pub struct Truncation {
     /// The cutoff frequency (cycles per the deck's time unit).
     pub cutoff_frequency: f64,

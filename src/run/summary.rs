@@ -13,8 +13,143 @@ use serde::{Deserialize, Serialize};
 /// The `schema_version` this build writes.
 pub const SCHEMA_VERSION: u32 = 3;
 
+/// The JSON Schema (draft 2020-12) of `summary.json`, from the typed summary: its
+/// keys, their types, which may be `null` or left out, and each one's doc comment as
+/// its description.
+pub fn json_schema() -> serde_json::Value {
+    schemars::schema_for!(Summary).to_value()
+}
+
+/// `summary.json`'s keys as a Markdown table, from [`json_schema`]: each key's path
+/// (an array's elements under `[]`), its JSON type (`or null` where a run may have no
+/// value, "optional" where the key is left out when it has none) and its description.
+pub fn schema_markdown() -> String {
+    use serde_json::Value;
+    let schema = json_schema();
+    let defs = &schema["$defs"];
+    // A schema with its `$ref` resolved.
+    let resolve = |s: &Value| -> Value {
+        match s.get("$ref").and_then(Value::as_str) {
+            Some(r) => defs[r.trim_start_matches("#/$defs/")].clone(),
+            None => s.clone(),
+        }
+    };
+    // A schema's type in words, and the object schema its keys are listed from (an
+    // object, or an array's element object).
+    fn describe(s: &Value, resolve: &dyn Fn(&Value) -> Value) -> (String, Option<(Value, bool)>) {
+        let s = resolve(s);
+        if let Some(alternatives) = s.get("anyOf").or_else(|| s.get("oneOf")).and_then(Value::as_array) {
+            let mut words = Vec::new();
+            let mut inner = None;
+            for a in alternatives {
+                // An enum's variant with data is an object of one key, its name.
+                let r = resolve(a);
+                let variant = r
+                    .get("properties")
+                    .and_then(Value::as_object)
+                    .filter(|p| p.len() == 1 && r.get("additionalProperties") == Some(&Value::Bool(false)));
+                let (w, i) = match (a.get("const"), variant) {
+                    (Some(c), _) => (format!("`{c}`"), None),
+                    (None, Some(p)) => {
+                        let (k, v) = p.iter().next().expect("one key");
+                        (format!("`{{\"{k}\": …}}` ({})", describe(v, resolve).0), None)
+                    }
+                    (None, None) => describe(a, resolve),
+                };
+                words.push(w);
+                inner = inner.or(i);
+            }
+            return (words.join(" or "), inner);
+        }
+        if let Some(values) = s.get("enum").and_then(Value::as_array) {
+            let words: Vec<String> = values.iter().map(|v| format!("`{v}`")).collect();
+            return (words.join(" or "), None);
+        }
+        let types: Vec<&str> = match &s["type"] {
+            Value::String(t) => vec![t.as_str()],
+            Value::Array(ts) => ts.iter().filter_map(Value::as_str).collect(),
+            _ => vec!["any"],
+        };
+        let mut inner = None;
+        let words: Vec<String> = types
+            .iter()
+            .map(|&t| match t {
+                "array" => {
+                    let (w, i) = describe(&s["items"], resolve);
+                    inner = i.map(|(v, _)| (v, true));
+                    format!("array of {w}")
+                }
+                "object" if s.get("properties").is_some() => {
+                    inner = Some((s.clone(), false));
+                    "object".to_string()
+                }
+                t => t.to_string(),
+            })
+            .collect();
+        (words.join(" or "), inner)
+    }
+    fn rows(object: &Value, path: &str, resolve: &dyn Fn(&Value) -> Value, out: &mut String) {
+        let required: Vec<&str> = object["required"]
+            .as_array()
+            .map(|r| r.iter().filter_map(Value::as_str).collect())
+            .unwrap_or_default();
+        let Some(properties) = object["properties"].as_object() else {
+            return;
+        };
+        for (name, p) in properties {
+            let key = if path.is_empty() {
+                name.clone()
+            } else {
+                format!("{path}.{name}")
+            };
+            let (ty, inner) = describe(p, resolve);
+            // The field's own doc comment, else its type's.
+            let text = p
+                .get("description")
+                .and_then(Value::as_str)
+                .map(str::to_string)
+                .or_else(|| {
+                    resolve(p)
+                        .get("description")
+                        .and_then(Value::as_str)
+                        .map(str::to_string)
+                })
+                .unwrap_or_default();
+            let optional = if required.contains(&name.as_str()) {
+                ""
+            } else {
+                "; optional"
+            };
+            // One line; a rustdoc link ([`Type::field`]) as its code alone.
+            let text = text
+                .split_whitespace()
+                .collect::<Vec<_>>()
+                .join(" ")
+                .replace("[`", "`")
+                .replace("`]", "`")
+                .replace('|', "\\|");
+            let _ = writeln!(out, "| `{key}` | {ty}{optional} | {text} |");
+            if let Some((object, array)) = inner {
+                let key = if array { format!("{key}[]") } else { key };
+                rows(&object, &key, resolve, out);
+            }
+        }
+    }
+    use std::fmt::Write;
+    let mut out = format!(
+        "# The `summary.json` schema\n\nEvery key of `summary.json` (schema version {SCHEMA_VERSION}), generated from \
+         the typed summary (`impactlab::run::Summary`) and its documentation: `impactlab reference summary` prints this \
+         page and `impactlab reference summary-schema` the JSON Schema, \
+         [`summary.schema.json`](summary.schema.json), which `tests/book.rs` holds to them. A key marked optional \
+         may be absent (some are written only when a run has them); `null` is a value a run does not have.\n\n\
+         | key | type | what it is |\n|---|---|---|\n"
+    );
+    rows(&schema, "", &resolve, &mut out);
+    out
+}
+
 /// Everything `summary.json` holds.
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Summary {
     /// Version of this schema ([`SCHEMA_VERSION`]).
     pub schema_version: u32,
@@ -62,7 +197,7 @@ pub struct Summary {
 
 /// The delamination threshold ([`crate::damage`]) of the struck plate and how near the
 /// run's peak force came to it.
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct DelaminationSummary {
     /// G_IIc, D*, F_crit and the formula.
     #[serde(flatten)]
@@ -73,7 +208,7 @@ pub struct DelaminationSummary {
 
 /// The plies' failure indices ([`crate::damage`]) over the written laminate elements
 /// (the STRESS/STRAIN set), every ply's bottom and top, every history row.
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct FailureSummary {
     /// The index of the theory each ply's PCOMP names (FT).
     pub theory: PlyIndex,
@@ -87,7 +222,7 @@ pub struct FailureSummary {
 }
 
 /// Where a failure index was largest, and when it first reached 1.
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct PlyIndex {
     /// The theory (FT's word, or MAXSTRESS); several joined by `+` when the
     /// laminates name different ones.
@@ -109,7 +244,7 @@ pub struct PlyIndex {
 /// The deck's unit system, as its `$ Units:` line declares it, or "unspecified".
 /// Mass and energy are the consistent units that follow (force·time²/length and
 /// force·length): labels, not conversions.
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct UnitSystem {
     /// Length unit.
     pub length: String,
@@ -139,7 +274,7 @@ impl UnitSystem {
 }
 
 /// Sizes and contact law of the model.
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct ModelSummary {
     /// Active DOFs as NASTRAN counts them (solved, inert and TF-defined points).
     pub active_dofs: usize,
@@ -167,7 +302,7 @@ pub struct ModelSummary {
 }
 
 /// When the impactor touched the target and how hard.
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct ContactSummary {
     /// [start, end] of every interval with α > 0, interpolated between steps.
     pub intervals: Vec<[f64; 2]>,
@@ -191,7 +326,7 @@ impl ContactSummary {
 }
 
 /// The impactor's mass and motion.
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct ImpactorSummary {
     /// Mass.
     pub mass: Option<f64>,
@@ -204,7 +339,7 @@ pub struct ImpactorSummary {
 }
 
 /// The energy balance of the ledger.
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct EnergySummary {
     /// Energy at t = 0, U_0.
     pub initial: Option<f64>,
@@ -234,7 +369,7 @@ pub struct EnergySummary {
 }
 
 /// What a damped structure's damping did.
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct DampingSummary {
     /// The energy dissipated over the run.
     pub dissipated: f64,
@@ -251,7 +386,7 @@ pub struct DampingSummary {
 }
 
 /// What a hysteretic contact dissipated, and its law.
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct ContactDissipation {
     /// The energy dissipated over the run (the ledger's `dissipated_contact`).
     pub dissipated: f64,
@@ -271,7 +406,7 @@ pub struct ContactDissipation {
 /// Where the energy the impactor lost went, from the start to the last step:
 /// `lost` = `target` + `contact_holds` + `damping` + `contact` − `external_work`
 /// + `residual`, the residual being the ledger's balance (−error·U_0).
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct ImpactorLoss {
     /// The impactor's kinetic energy at the start less at the end.
     pub lost: f64,
@@ -291,7 +426,7 @@ pub struct ImpactorLoss {
 }
 
 /// Momentum along the impact direction.
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct MomentumSummary {
     /// At t = 0.
     pub initial: Option<f64>,
@@ -300,7 +435,7 @@ pub struct MomentumSummary {
 }
 
 /// Settings and costs of the run.
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct RunSummary {
     /// The scheme.
     pub scheme: Scheme,
@@ -341,7 +476,7 @@ pub struct RunSummary {
 }
 
 /// Times in units of a rod's transit time L/C.
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct RodSummary {
     /// Bar wave speed C.
     pub wave_speed: f64,

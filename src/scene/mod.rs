@@ -859,7 +859,7 @@ fn model_of(path: &Path, s: Scene) -> Result<(Scene, Model, String), SceneError>
 }
 
 /// A scene's effects, each with the reason it is in or out (`effects` in the summary).
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct EffectReport {
     /// Effects simulated, with why.
     pub simulated: Vec<Effect>,
@@ -868,7 +868,7 @@ pub struct EffectReport {
 }
 
 /// One effect and why it is simulated or skipped.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Effect {
     /// The effect (`membrane`, `ledger`, ...).
     pub name: String,
