@@ -168,6 +168,8 @@ pub fn lanczos(
     let mut last: Option<Vec<f64>> = None;
     let mut norm_scale = 0.0_f64;
     let mut next_test = params.test_every.max(1);
+    // The most roots in the range a test has accepted: the end must hold them all.
+    let mut seen = 0;
     loop {
         // The next Lanczos vector: w normalised, or a new start when w has vanished.
         let mut b = if w.is_empty() {
@@ -226,7 +228,8 @@ pub fn lanczos(
         if j == n || j >= next_test || full {
             next_test = j + params.test_every.max(1);
             let next = dot(&w, &m_mul(&w)).max(0.0).sqrt();
-            let (values, _) = ritz(&alpha, &beta, next, shift, roots, params, false);
+            let (values, accepted) = ritz(&alpha, &beta, next, shift, roots, params, false);
+            seen = seen.max(accepted.len());
             if let Some(v) = values {
                 if j == n || last.as_ref().is_some_and(|l| same(l, &v, params.tolerance)) {
                     break;
@@ -256,6 +259,13 @@ pub fn lanczos(
         params,
         true,
     );
+    if pairs.len() < seen {
+        return Err(SolveError::Lanczos {
+            steps: q.len(),
+            found: pairs.len(),
+            seen,
+        });
+    }
     let mut out = Eigenpairs {
         values: Vec::new(),
         vectors: Vec::new(),
@@ -471,8 +481,9 @@ type Pairs = Vec<(f64, nalgebra::DVector<f64>)>;
 
 /// The Ritz values of T (α on its diagonal, β beside it; `next` the residual norm
 /// after the last step) as roots λ = σ + 1/θ, ascending: the wanted ones when all
-/// of them, and every root below them, are accepted (`None` while not), with the
-/// eigenvectors of T when `vectors` is set.
+/// of them, and every root below them, are accepted (`None` while not); and the
+/// wanted ones accepted so far, each with its eigenvector of T when `vectors` is set
+/// (an empty vector when not).
 fn ritz(
     alpha: &[f64],
     beta: &[f64],
@@ -487,7 +498,9 @@ fn ritz(
         // The values and the last components of the vectors only: O(j²), where the
         // dense solve below is O(j³) and dominated a long extraction's tests.
         let (values, last) = tridiagonal_values(alpha, beta);
-        return (ritz_values(&values, &last, next, shift, roots, params).0, Vec::new());
+        let (complete, wanted) = ritz_values(&values, &last, next, shift, roots, params);
+        let accepted = wanted.iter().map(|&(l, _)| (l, nalgebra::DVector::zeros(0))).collect();
+        return (complete, accepted);
     }
     let t = DMatrix::from_fn(j, j, |r, c| {
         if r == c {

@@ -512,3 +512,48 @@ fn with_every_mode_the_modal_run_is_the_direct_run() {
     println!("{d:.2e} ({what} at {at:e})");
     assert!(d <= 1e-9, "{d:e} ({what} at {at:e})");
 }
+
+/// Goal: a Lanczos extraction that breaks down says so and stops the run, never
+/// reducing the structure to fewer modes than it asked for. On shells whose rotations
+/// carry no mass, round-off along M's null space overtakes the recurrence after some
+/// hundreds of steps; the extraction then ended "converged" with none of the roots it
+/// had held (a 25 × 25 curved panel cut at 1.05e5 cycles/s ran on 0 modes and 32
+/// residual vectors, its peak force 1.8 % off, and said nothing). Model: the curved
+/// panel `impactlab mesh panel --n 19 --radius 10`, asked for its modes to 8e4
+/// cycles/s on the modal engine. Reference: exit 3 (a numerical failure), naming the
+/// breakdown and the roots it had converged (568 of them, after 954 steps).
+#[test]
+fn a_lanczos_breakdown_stops_the_run_instead_of_dropping_modes() {
+    let dir = tempfile::tempdir().unwrap();
+    let panel = dir.path().join("panel.bdf");
+    let o = common::impactlab(&[
+        "mesh",
+        "panel",
+        "--n",
+        "19",
+        "--radius",
+        "10",
+        "--out",
+        panel.to_str().unwrap(),
+    ]);
+    assert!(o.status.success());
+    let out = dir.path().join("out");
+    let o = common::impactlab(&[
+        "run",
+        panel.to_str().unwrap(),
+        "--steps",
+        "10",
+        "--engine",
+        "modal",
+        "--modes-up-to",
+        "8e4",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(3), "{stderr}");
+    assert!(
+        stderr.contains("the Lanczos extraction broke down after") && stderr.contains("ask for fewer roots"),
+        "{stderr}"
+    );
+}
