@@ -513,24 +513,16 @@ fn with_every_mode_the_modal_run_is_the_direct_run() {
     assert!(d <= 1e-9, "{d:e} ({what} at {at:e})");
 }
 
-/// Goal: a Lanczos extraction that breaks down says so and stops the run, never
-/// reducing the structure to fewer modes than it asked for. On shells whose rotations
-/// carry no mass, round-off along M's null space overtakes the recurrence after some
-/// hundreds of steps; the extraction then ended "converged" with none of the roots it
-/// had held (a 25 × 25 curved panel cut at 1.05e5 cycles/s ran on 0 modes and 32
-/// residual vectors, its peak force 1.8 % off, and said nothing). Model: the curved
-/// panel `impactlab mesh panel --n 19 --radius 10`, asked for its modes to 8e4
-/// cycles/s on the modal engine. Reference: exit 3 (a numerical failure), naming the
-/// breakdown and the roots it had converged (568 of them, after 954 steps).
-#[test]
-fn a_lanczos_breakdown_stops_the_run_instead_of_dropping_modes() {
+/// Runs `impactlab mesh panel --n n --radius 10` on the modal engine cut at `cutoff`
+/// cycles/s for 10 steps: its exit code and standard error.
+fn curved_panel_cut_at(n: &str, cutoff: &str) -> (Option<i32>, String) {
     let dir = tempfile::tempdir().unwrap();
     let panel = dir.path().join("panel.bdf");
     let o = common::impactlab(&[
         "mesh",
         "panel",
         "--n",
-        "19",
+        n,
         "--radius",
         "10",
         "--out",
@@ -546,14 +538,38 @@ fn a_lanczos_breakdown_stops_the_run_instead_of_dropping_modes() {
         "--engine",
         "modal",
         "--modes-up-to",
-        "8e4",
+        cutoff,
         "--out",
         out.to_str().unwrap(),
     ]);
-    let stderr = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(o.status.code(), Some(3), "{stderr}");
+    (o.status.code(), String::from_utf8_lossy(&o.stderr).into_owned())
+}
+
+/// Goal: a cutoff the reduction cannot honour stops the run with the reason, never
+/// reducing the structure to fewer modes than asked or naming a DOF the deck does
+/// not have. On shells whose rotations carry no mass, round-off along M's null space
+/// overtakes the Lanczos recurrence after some hundreds of steps; the extraction then
+/// ended "converged" with none of the roots it had held (a 25 × 25 curved panel cut
+/// at 1.05e5 cycles/s ran on 0 modes and 32 residual vectors, its peak force 1.8 %
+/// off, and said nothing). And where the modes and residual vectors span every DOF
+/// with mass, the reduced system is singular along a basis vector, which the run
+/// reported as a "mechanism" at "point -588" to be constrained with SPC1. Model: the
+/// curved panels `impactlab mesh panel --n 19 (15) --radius 10` cut at 8e4 (1e5)
+/// cycles/s. Reference: exit 3 (a numerical failure), the breakdown named with the
+/// roots it had converged (568, after 954 steps); the dependent basis named as such,
+/// with its modes and residual vectors (558 and 30), and the cutoff to lower.
+#[test]
+fn cutoffs_the_reduction_cannot_honour_stop_the_run_with_the_reason() {
+    let (code, stderr) = curved_panel_cut_at("19", "8e4");
+    assert_eq!(code, Some(3), "{stderr}");
     assert!(
         stderr.contains("the Lanczos extraction broke down after") && stderr.contains("ask for fewer roots"),
+        "{stderr}"
+    );
+    let (code, stderr) = curved_panel_cut_at("15", "1e5");
+    assert_eq!(code, Some(3), "{stderr}");
+    assert!(
+        stderr.contains("basis vectors") && stderr.contains("nearly dependent") && !stderr.contains("SPC1"),
         "{stderr}"
     );
 }

@@ -284,7 +284,19 @@ pub fn run_reduced(model: &Model, r: &Reduction, opts: &RunOptions) -> Result<Ru
         Fields::Reduced(r),
         opts,
         Engine::Modal,
-    );
+    )
+    .map_err(|e| match e {
+        // A reduced coordinate is no DOF of the deck: "constrain it" would mislead.
+        RunError::Solve(crate::integrate::SolveError::Mechanism { dof }) if dof.starts_with("point -") => {
+            RunError::Engine(format!(
+                "the modal engine's reduced system is singular along one of its {} basis vectors ({dof}): they are \
+                 nearly dependent, as when the modes and residual vectors ({} and {} here) span nearly every DOF \
+                 with mass; lower the cutoff (--modes-up-to)",
+                r.truncation.coordinates, r.truncation.modes, r.truncation.residual_vectors
+            ))
+        }
+        e => e,
+    });
     super::amended(result, |run| run.summary.run.modal = Some(r.truncation.clone()))
 }
 
