@@ -6,14 +6,17 @@ use crate::common;
 
 use impactlab::verify::printed::{read_run_histories, Histories};
 
-/// Runs a deck (written into a temporary directory) with `scheme` and `extra`
-/// arguments: its exit status, stderr, displacement histories, summary and
-/// `energy.csv` header.
-fn run(deck: &str, scheme: &str, extra: &[&str]) -> Result<(Histories, serde_json::Value, String), String> {
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("deck.bdf");
+/// Writes `deck` into `dir` and runs it with `scheme` and `extra` arguments into
+/// `dir/out`: that directory and the command's output.
+fn run_in(
+    dir: &std::path::Path,
+    deck: &str,
+    scheme: &str,
+    extra: &[&str],
+) -> (std::path::PathBuf, std::process::Output) {
+    let path = dir.join("deck.bdf");
     std::fs::write(&path, deck).unwrap();
-    let out = dir.path().join("out");
+    let out = dir.join("out");
     let mut args = vec![
         "run",
         path.to_str().unwrap(),
@@ -24,6 +27,15 @@ fn run(deck: &str, scheme: &str, extra: &[&str]) -> Result<(Histories, serde_jso
     ];
     args.extend(extra);
     let o = common::impactlab(&args);
+    (out, o)
+}
+
+/// Runs a deck (written into a temporary directory) with `scheme` and `extra`
+/// arguments: its displacement histories, summary and `energy.csv` header, or its
+/// standard error when it fails.
+fn run(deck: &str, scheme: &str, extra: &[&str]) -> Result<(Histories, serde_json::Value, String), String> {
+    let dir = tempfile::tempdir().unwrap();
+    let (out, o) = run_in(dir.path(), deck, scheme, extra);
     if !o.status.success() {
         return Err(String::from_utf8_lossy(&o.stderr).into_owned());
     }
@@ -201,17 +213,12 @@ fn short_run(deck: &str) -> (Vec<(String, Vec<f64>)>, serde_json::Value) {
         dir.path().join(mesh),
     )
     .unwrap();
-    let path = dir.path().join("deck.bdf");
-    std::fs::write(&path, deck.replace("TSTEP, 1,2000,", "TSTEP, 1,300,")).unwrap();
-    let out = dir.path().join("out");
-    let o = common::impactlab(&[
-        "run",
-        path.to_str().unwrap(),
-        "--scheme",
+    let (out, o) = run_in(
+        dir.path(),
+        &deck.replace("TSTEP, 1,2000,", "TSTEP, 1,300,"),
         "energy",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+        &[],
+    );
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let summary = serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
     let mut csv = csv::Reader::from_path(out.join("history.csv")).unwrap();
@@ -278,17 +285,12 @@ fn element_ge_at_w4_damps_as_param_g_at_w3_when_every_element_has_it() {
     }
     let rod = read("rod.bdf");
     let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("ge.bdf");
-    std::fs::write(&path, rod.replace("2.5-4,,,,+MAT1-1", "2.5-4,,,0.02,+MAT1-1")).unwrap();
-    let out = dir.path().join("out");
-    let o = common::impactlab(&[
-        "run",
-        path.to_str().unwrap(),
-        "--scheme",
+    let (out, o) = run_in(
+        dir.path(),
+        &rod.replace("2.5-4,,,,+MAT1-1", "2.5-4,,,0.02,+MAT1-1"),
         "newmark",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+        &[],
+    );
     assert!(o.status.success());
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert!(

@@ -447,18 +447,7 @@ fn sweep_engine_modal_takes_its_kernels_from_the_reduction() {
 #[test]
 fn a_scene_on_a_curved_panel_deck_runs_on_the_modal_engine() {
     let dir = tempfile::tempdir().unwrap();
-    let panel = dir.path().join("panel.bdf");
-    let o = common::impactlab(&[
-        "mesh",
-        "panel",
-        "--n",
-        "15",
-        "--radius",
-        "10",
-        "--out",
-        panel.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    curved_panel(dir.path(), "15");
     let scene = dir.path().join("strike.toml");
     std::fs::write(
         &scene,
@@ -513,11 +502,9 @@ fn with_every_mode_the_modal_run_is_the_direct_run() {
     assert!(d <= 1e-9, "{d:e} ({what} at {at:e})");
 }
 
-/// Runs `impactlab mesh panel --n n --radius 10` on the modal engine cut at `cutoff`
-/// cycles/s for 10 steps: its exit code and standard error.
-fn curved_panel_cut_at(n: &str, cutoff: &str) -> (Option<i32>, String) {
-    let dir = tempfile::tempdir().unwrap();
-    let panel = dir.path().join("panel.bdf");
+/// `dir/panel.bdf`: the curved panel `impactlab mesh panel --n n --radius 10`.
+fn curved_panel(dir: &std::path::Path, n: &str) -> std::path::PathBuf {
+    let panel = dir.join("panel.bdf");
     let o = common::impactlab(&[
         "mesh",
         "panel",
@@ -528,7 +515,15 @@ fn curved_panel_cut_at(n: &str, cutoff: &str) -> (Option<i32>, String) {
         "--out",
         panel.to_str().unwrap(),
     ]);
-    assert!(o.status.success());
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    panel
+}
+
+/// Runs [`curved_panel`] `n` on the modal engine cut at `cutoff` cycles/s for 10
+/// steps: its exit code and standard error.
+fn curved_panel_cut_at(n: &str, cutoff: &str) -> (Option<i32>, String) {
+    let dir = tempfile::tempdir().unwrap();
+    let panel = curved_panel(dir.path(), n);
     let out = dir.path().join("out");
     let o = common::impactlab(&[
         "run",
