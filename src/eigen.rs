@@ -170,6 +170,8 @@ pub fn lanczos(
     let mut next_test = params.test_every.max(1);
     // The most roots in the range a test has accepted: the end must hold them all.
     let mut seen = 0;
+    // Whether the vectors span the whole space with mass: T's roots are then exact.
+    let mut spanned = false;
     loop {
         // The next Lanczos vector: w normalised, or a new start when w has vanished.
         let mut b = if w.is_empty() {
@@ -194,7 +196,10 @@ pub fn lanczos(
                 }
             }
             // The whole space with mass is spanned.
-            let Some((v, left)) = fresh else { break };
+            let Some((v, left)) = fresh else {
+                spanned = true;
+                break;
+            };
             w = v;
             b = left;
             if !q.is_empty() {
@@ -253,7 +258,7 @@ pub fn lanczos(
     let (_, pairs) = ritz(
         &alpha,
         &beta,
-        if q.len() == n { 0.0 } else { next },
+        if q.len() == n || spanned { 0.0 } else { next },
         shift,
         roots,
         params,

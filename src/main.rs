@@ -138,8 +138,9 @@ pub struct SweepArgs {
     /// Where the kernels come from: `convolution` (the deck's own system, checked on
     /// the direct engine) or `modal` (its reduction to the modes up to --modes-up-to
     /// and residual vectors, computed once and not cached; the checked points are
-    /// stepped on the modal engine on the same reduction).
-    #[arg(long, default_value = "convolution", value_parser = sweep_engine_parser(), conflicts_with = "find")]
+    /// stepped on the modal engine on the same reduction). With --find, `modal` needs
+    /// --modes-up-to, and the bracket's ends are checked on the modal engine.
+    #[arg(long, default_value = "convolution", value_parser = sweep_engine_parser())]
     pub engine: Engine,
     /// The modal engine's cutoff, in cycles per the deck's time unit [default: 4 cycles
     /// over the shortest Hertz contact time on a rigid target of the sweep's points].

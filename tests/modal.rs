@@ -568,3 +568,85 @@ fn cutoffs_the_reduction_cannot_honour_stop_the_run_with_the_reason() {
         "{stderr}"
     );
 }
+
+/// Runs `impactlab` with `args` (its output directory last, `--out DIR` appended):
+/// its `name` JSON file, or its standard error when it fails.
+fn json_of(args: &[&str], name: &str) -> Result<serde_json::Value, String> {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let mut all = args.to_vec();
+    all.extend(["--out", out.to_str().unwrap()]);
+    let o = common::impactlab(&all);
+    if !o.status.success() {
+        return Err(String::from_utf8_lossy(&o.stderr).into_owned());
+    }
+    Ok(serde_json::from_slice(&std::fs::read(out.join(name)).unwrap()).unwrap())
+}
+
+/// Goal: a cutoff above the structure's highest mode keeps every mode it has and is
+/// the direct run: the paper's rod (145 structural DOFs, every one with mass) cut at
+/// 1e6 cycles/s, above its highest root (2.5e5). The Lanczos run spans the whole
+/// space with mass and must then accept every root it holds (its residual is zero,
+/// not the round-off left in the last vector, against which some were refused), and
+/// the reduction must keep no residual vector past the DOFs with mass (round-off
+/// normalised to unit mass, which leaves the reduced mass singular: the run stopped
+/// on it). Reference: the direct run: contact duration and peak
+/// force within 1e-10 (measured 1.5e-13, 5.7e-14), the basis exactly as many vectors
+/// as DOFs with mass.
+#[test]
+fn a_cutoff_above_the_highest_mode_is_the_direct_run() {
+    let rod = common::root().join("reference-data/decks/rod.bdf");
+    let rod = rod.to_str().unwrap();
+    let direct = json_of(&["run", rod], "summary.json").unwrap();
+    let modal = json_of(
+        &["run", rod, "--engine", "modal", "--modes-up-to", "1e6"],
+        "summary.json",
+    )
+    .unwrap();
+    for key in ["duration", "peak_force"] {
+        let (d, m) = (
+            direct["contact"][key].as_f64().unwrap(),
+            modal["contact"][key].as_f64().unwrap(),
+        );
+        assert!((m / d - 1.0).abs() < 1e-10, "{key}: direct {d:e}, modal {m:e}");
+    }
+    let t = &modal["run"]["modal"];
+    let basis = t["modes"].as_u64().unwrap() + t["residual_vectors"].as_u64().unwrap();
+    assert_eq!(basis, t["structure_dofs"].as_u64().unwrap(), "{t}");
+}
+
+/// Goal: a threshold search runs on the modal engine: its kernels from one reduction
+/// at the cutoff it is given, the bracket's ends checked on the modal engine on that
+/// reduction; without a cutoff it is refused (the default cutoff comes from the
+/// contact time at a speed, the speed being what the search looks for). Model: the
+/// paper's rod, the speed at which the peak force reaches 300 lbf. Reference: the
+/// search on the convolution engine (checked on the direct engine): the two speeds
+/// within the bracket's width, 1e-6 (measured: the same bits), and `threshold.json`
+/// naming the engine each was checked on.
+#[test]
+fn a_threshold_search_runs_on_the_modal_engine() {
+    let rod = common::root().join("reference-data/decks/rod.bdf");
+    let find = [
+        "sweep",
+        rod.to_str().unwrap(),
+        "--find",
+        "velocity",
+        "--until",
+        "peak_force=300",
+    ];
+    let conv = json_of(&[&find[..], &["--no-cache"]].concat(), "threshold.json").unwrap();
+    let modal = json_of(
+        &[&find[..], &["--engine", "modal", "--modes-up-to", "2e5"]].concat(),
+        "threshold.json",
+    )
+    .unwrap();
+    let (c, m) = (conv["velocity"].as_f64().unwrap(), modal["velocity"].as_f64().unwrap());
+    assert!((m / c - 1.0).abs() <= 1e-6, "convolution {c:e}, modal {m:e}");
+    assert_eq!(
+        (conv["checked_on"].as_str(), modal["checked_on"].as_str()),
+        (Some("direct"), Some("modal"))
+    );
+    assert!(modal["direct_check"].as_f64().unwrap() <= 1e-9, "{modal}");
+    let refused = json_of(&[&find[..], &["--engine", "modal"]].concat(), "threshold.json").unwrap_err();
+    assert!(refused.contains("needs its cutoff (--modes-up-to)"), "{refused}");
+}

@@ -373,10 +373,23 @@ fn sweep_model(path: &Path) -> Result<impactlab::model::Model, Error> {
     Ok(model)
 }
 
+/// A sweep's (or a threshold search's) `--modes-up-to` and `--cache` against its
+/// engine.
+fn engine_arguments(a: &SweepArgs) -> Result<(), Error> {
+    modes_up_to(a.modes_up_to, a.engine)?;
+    if a.engine == Engine::Modal && a.cache.is_some() {
+        return Err(Error::Usage(
+            "--cache: a modal sweep's kernels come with its reduction, computed afresh and not cached".into(),
+        ));
+    }
+    Ok(())
+}
+
 /// `impactlab sweep --find velocity --until …`: the threshold impact speed and energy,
 /// printed and written to OUT/threshold.json.
 fn threshold(a: SweepArgs) -> Result<u8, Error> {
     use impactlab::study::threshold::{find_velocity, Until, BRACKET_WIDTH};
+    engine_arguments(&a)?;
     let until = Until::parse(a.until.as_deref().unwrap_or_default())?;
     let model = sweep_model(&a.deck)?;
     let run = RunOptions {
@@ -385,6 +398,11 @@ fn threshold(a: SweepArgs) -> Result<u8, Error> {
         steps: a.steps,
         kernel_cache: kernel_cache(a.cache, a.no_cache),
         interlaminar_toughness: interlaminar_toughness(a.giic, &model)?,
+        engine: a.engine,
+        modal: impactlab::run::modal::ModalParams {
+            cutoff: a.modes_up_to,
+            ..Default::default()
+        },
         ..Default::default()
     };
     let bar = progress(format!("{} threshold", model.name)).unwrap_or_else(ProgressBar::hidden);
@@ -411,11 +429,13 @@ fn threshold(a: SweepArgs) -> Result<u8, Error> {
         "bracket_width": BRACKET_WIDTH,
         "energy": t.energy,
         "energy_joules": joules.map(|j| j * t.energy),
+        "checked_on": t.checked_on.name(),
         "direct_values": t.direct_values,
         "direct_check": t.direct_check,
         "direct_check_max": impactlab::study::sweep::DIRECT_CHECK_MAX,
         "evaluations": t.evaluations,
         "search_engine": if t.direct_reason.is_some() { "direct" } else { "convolution" },
+        "modes_up_to": a.modes_up_to,
         "direct_reason": t.direct_reason,
         "kernel_pass_s": t.times_s[0],
         "search_s": t.times_s[1],
@@ -447,7 +467,8 @@ fn threshold(a: SweepArgs) -> Result<u8, Error> {
         joules.map_or(String::new(), |j| format!(" = {:.6e} J", j * t.energy))
     ));
     sayln(&format!(
-        "  direct engine: {:.6e} below and {:.6e} at the threshold; engines agree to {:.1e} (max {:.0e})",
+        "  {} engine: {:.6e} below and {:.6e} at the threshold; engines agree to {:.1e} (max {:.0e})",
+        t.checked_on.name(),
         t.direct_values[0],
         t.direct_values[1],
         t.direct_check,
@@ -1048,12 +1069,7 @@ fn sweep_arguments(a: &SweepArgs) -> Result<SweepArguments, Error> {
         spread: a.checks,
         every: a.check_every.map(|n| n as usize),
     };
-    modes_up_to(a.modes_up_to, a.engine)?;
-    if a.engine == Engine::Modal && a.cache.is_some() {
-        return Err(Error::Usage(
-            "--cache: a modal sweep's kernels come with its reduction, computed afresh and not cached".into(),
-        ));
-    }
+    engine_arguments(a)?;
     if a.checks == 0 && a.check_every.is_some() {
         return Err(Error::Usage(
             "--checks 0 turns the self-check off; --check-every needs it on".into(),

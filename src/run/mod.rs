@@ -181,6 +181,15 @@ impl Engine {
     pub fn is_direct(&self) -> bool {
         *self == Engine::Direct
     }
+
+    /// Its name, as `--engine` takes it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Engine::Direct => "direct",
+            Engine::Convolution => "convolution",
+            Engine::Modal => "modal",
+        }
+    }
 }
 
 impl RunOptions {

@@ -438,6 +438,9 @@ pub fn reduce_at(
     for phi in std::mem::take(&mut pairs.vectors) {
         kept.push(&phi);
     }
+    // No more M-independent vectors than DOFs with mass: past them a residual vector
+    // is round-off (the modes up to a cutoff above the mesh's highest span them all).
+    let with_mass = md.iter().filter(|&&m| m > 0.0).count();
     let modes = kept.len();
     {
         let (mut factor, _) = factorise(&s_sys, &labels)?;
@@ -462,7 +465,7 @@ pub fn reduce_at(
                 if order == 0 && Some(bl) == contact_dof {
                     residual_flexibility = psi[bl];
                 }
-                if !params.residual_vectors {
+                if !params.residual_vectors || kept.len() >= with_mass {
                     break;
                 }
                 // M-orthogonal to the modes and the residual vectors before it.

@@ -113,8 +113,11 @@ pub struct Threshold {
     pub energy: f64,
     /// The impactor's mass.
     pub mass: f64,
-    /// The measure (peak force, or largest failure index) at v_lo and v_hi on the
-    /// direct engine.
+    /// The engine the bracket's ends are checked on: the direct engine, or the modal
+    /// engine on the search's own reduction when the search's kernels came from it.
+    pub checked_on: Engine,
+    /// The measure (peak force, or largest failure index) at v_lo and v_hi on
+    /// `checked_on`.
     pub direct_values: [f64; 2],
     /// The engines' largest difference at the two ends, relative to each quantity's peak.
     pub direct_check: f64,
@@ -161,24 +164,63 @@ pub fn find_velocity(base: &Model, run: &RunOptions, until: Until, bar: &Progres
         progress: None,
         ..run.clone()
     };
-    let (conv_opts, direct_opts) = (on(Engine::Convolution), on(Engine::Direct));
+    let checked_on = if run.engine == Engine::Modal {
+        Engine::Modal
+    } else {
+        Engine::Direct
+    };
+    let (conv_opts, direct_opts) = (on(Engine::Convolution), on(checked_on));
     let prepared = prepare(base, &conv_opts)?;
     let (model, sys) = (prepared.model.as_ref(), &prepared.system);
     let dt = run.dt.unwrap_or(model.time.dt);
     let steps = run.steps.unwrap_or(model.time.steps);
+    // On the modal engine: one reduction at the cutoff asked for, its kernels for the
+    // search and its coordinates for the checks. The default cutoff comes from the
+    // contact time at a speed, the very speed the search looks for: it is not taken.
+    let reduction = match checked_on {
+        Engine::Modal => {
+            if run.modal.cutoff.is_none() {
+                return Err(StudyError::Input(
+                    "a threshold search on the modal engine needs its cutoff (--modes-up-to): the default comes \
+                     from the contact time at a speed, and the speed is what the search looks for"
+                        .into(),
+                ));
+            }
+            let cut = crate::run::modal::cutoff(model, &run.modal)?;
+            Some(crate::run::modal::reduce_at(model, sys, &run.modal, cut, None)?)
+        }
+        _ => None,
+    };
     // A model the convolution engine cannot run (a mass matrix that is not lumped:
     // offset beams or masses) is searched on the direct engine, run by run.
-    let (kernels, direct_reason) = match Kernels::for_run(
-        model,
-        sys,
-        dt,
-        steps,
-        run.kernel_cache.as_deref(),
-        &ProgressBar::hidden(),
-    ) {
-        Ok((k, _)) => (Some(k), None),
-        Err(RunError::Engine(why)) => (None, Some(why)),
-        Err(e) => return Err(e.into()),
+    let (kernels, direct_reason) = match &reduction {
+        Some(r) => (
+            Some(Kernels::compute_modal(r, dt, steps, &ProgressBar::hidden())?),
+            None,
+        ),
+        None => match Kernels::for_run(
+            model,
+            sys,
+            dt,
+            steps,
+            run.kernel_cache.as_deref(),
+            &ProgressBar::hidden(),
+        ) {
+            Ok((k, _)) => (Some(k), None),
+            Err(RunError::Engine(why)) => (None, Some(why)),
+            Err(e) => return Err(e.into()),
+        },
+    };
+    // A point's run on the checking engine.
+    let check = |m: &Model| -> Result<RunResult, StudyError> {
+        match &reduction {
+            Some(r) => {
+                let p = prepare(m, &direct_opts)?;
+                let r = r.for_point(&p.model, &p.system)?;
+                guarded(crate::run::modal::run_reduced(&p.model, &r, &direct_opts))
+            }
+            None => guarded(run_model(m, &direct_opts)),
+        }
     };
     let pass_s = t0.elapsed().as_secs_f64();
     let t1 = std::time::Instant::now();
@@ -197,10 +239,10 @@ pub fn find_velocity(base: &Model, run: &RunOptions, until: Until, bar: &Progres
         evaluations += 1;
         bar.inc(1);
         let m = point(v)?;
-        until.measure(&guarded(match &kernels {
-            Some(k) => k.run(&m, &conv_opts, &ProgressBar::hidden()),
-            None => run_model(&m, &direct_opts),
-        })?)
+        until.measure(&match &kernels {
+            Some(k) => guarded(k.run(&m, &conv_opts, &ProgressBar::hidden()))?,
+            None => check(&m)?,
+        })
     };
     let reached = |f: f64| f >= target_value;
     let (mut lo, mut hi) = (v_deck, v_deck);
@@ -245,7 +287,7 @@ pub fn find_velocity(base: &Model, run: &RunOptions, until: Until, bar: &Progres
     let mut direct_check = 0.0f64;
     for (k, v) in [lo, hi].into_iter().enumerate() {
         let m = point(v)?;
-        let direct = guarded(run_model(&m, &direct_opts))?;
+        let direct = check(&m)?;
         if let Some(kernels) = &kernels {
             let conv = guarded(kernels.run(&m, &conv_opts, &ProgressBar::hidden()))?;
             direct_check =
@@ -255,9 +297,11 @@ pub fn find_velocity(base: &Model, run: &RunOptions, until: Until, bar: &Progres
     }
     if direct_check > DIRECT_CHECK_MAX || reached(direct_values[0]) || !reached(direct_values[1]) {
         return Err(StudyError::Unconfirmed(format!(
-            "the direct engine does not confirm the threshold bracket [{lo:e}, {hi:e}]: engines differ by \
-             {direct_check:e} (at most {DIRECT_CHECK_MAX:e}), direct values {:e} and {:e} against {target_value:e}",
-            direct_values[0], direct_values[1]
+            "the {} engine does not confirm the threshold bracket [{lo:e}, {hi:e}]: engines differ by \
+             {direct_check:e} (at most {DIRECT_CHECK_MAX:e}), its values {:e} and {:e} against {target_value:e}",
+            checked_on.name(),
+            direct_values[0],
+            direct_values[1]
         )));
     }
     let velocity = 0.5 * (lo + hi);
@@ -268,6 +312,7 @@ pub fn find_velocity(base: &Model, run: &RunOptions, until: Until, bar: &Progres
         velocity,
         energy: 0.5 * ct.impactor.mass * velocity * velocity,
         mass: ct.impactor.mass,
+        checked_on,
         direct_values,
         direct_check,
         evaluations,
