@@ -345,3 +345,42 @@ fn the_ci_tutorials_audit_runs_as_shown() {
     assert!(page.contains("Here 6 of 85 quantities move"));
     assert!(stdout.contains("MOVED: 6 of 85 quantities moved"), "{stdout}");
 }
+
+/// Goal: what a tutorial shows a command printing is what it prints: the rod's report
+/// (`tutorials/rod.md`) and the plate's run (`tutorials/plate.md`), run as shown in a
+/// directory holding the repository's decks and cases, print the lines of the page's
+/// `text` block after that command, but for the wall time on the first.
+#[test]
+fn the_tutorials_printed_output_is_what_the_commands_print() {
+    let dir = tempfile::tempdir().unwrap();
+    for d in ["reference-data", "verification"] {
+        std::os::unix::fs::symlink(root().join(d), dir.path().join(d)).unwrap();
+    }
+    for (page, command) in [("tutorials/rod.md", "report"), ("tutorials/plate.md", "run")] {
+        let text = std::fs::read_to_string(root().join("docs/src").join(page)).unwrap();
+        let args = shown_commands(&text)
+            .into_iter()
+            .find(|a| a[0] == command)
+            .unwrap_or_else(|| panic!("{page}: no `{command}`"));
+        let shown_at = text.find(&args.join(" ")).unwrap();
+        let block = &text[shown_at..];
+        let block = &block[block.find("```text\n").expect("its output") + 8..];
+        let shown: Vec<&str> = block[..block.find("```").unwrap()].lines().collect();
+        let mut args = args.clone();
+        if command == "run" {
+            // Into the temporary directory, not the page's out/.
+            args.truncate(args.iter().position(|a| a == "--out").unwrap_or(args.len()));
+        }
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_impactlab"))
+            .args(&args)
+            .current_dir(dir.path())
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{page}: {}", String::from_utf8_lossy(&o.stderr));
+        let printed = String::from_utf8_lossy(&o.stdout).into_owned();
+        let printed: Vec<&str> = printed.lines().collect();
+        let wall = |l: &str| l.rsplit_once(", ").map_or(l.to_string(), |(head, _)| head.to_string());
+        assert_eq!(wall(shown[0]), wall(printed[0]), "{page}");
+        assert_eq!(shown[1..], printed[1..shown.len()], "{page}");
+    }
+}
