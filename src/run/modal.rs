@@ -185,6 +185,15 @@ impl Reduction {
         u
     }
 
+    /// Runs `point` (a model of this reduction's structure: a sweep's or a threshold
+    /// search's point) on the modal engine with this reduction:
+    /// [`Reduction::for_point`] on its prepared system, then [`run_reduced`].
+    pub fn run_point(&self, point: &Model, opts: &RunOptions) -> Result<RunResult, RunError> {
+        let prepared = super::prepare(point, opts)?;
+        let r = self.for_point(&prepared.model, &prepared.system)?;
+        run_reduced(&prepared.model, &r, opts)
+    }
+
     /// The reduction of `point` (prepared, with its system `sys`): a model of the same
     /// structure, contact DOFs and outputs as this reduction's, whose impactor, contact
     /// law or impactor's initial state differ (a sweep's point). The structure's basis,

@@ -538,11 +538,7 @@ pub fn sweep(base: &Model, run: &RunOptions, opts: &SweepOptions) -> Result<Swee
             let i = checked[k - 1];
             let r = point_model(model, &opts.varies, &all[i]).and_then(|m| match &modal {
                 // Stepped on the modal engine with the sweep's reduction.
-                Some(cut) => {
-                    let prepared = prepare(&m, &opts_check)?;
-                    let r = reduced(cut)?.for_point(&prepared.model, &prepared.system)?;
-                    outputs(modal::run_reduced(&prepared.model, &r, &opts_check))
-                }
+                Some(cut) => outputs(reduced(cut)?.run_point(&m, &opts_check)),
                 None => outputs(run_model(&m, &opts_check)),
             });
             bar.inc(1);

@@ -213,14 +213,10 @@ pub fn find_velocity(base: &Model, run: &RunOptions, until: Until, bar: &Progres
     };
     // A point's run on the checking engine.
     let check = |m: &Model| -> Result<RunResult, StudyError> {
-        match &reduction {
-            Some(r) => {
-                let p = prepare(m, &direct_opts)?;
-                let r = r.for_point(&p.model, &p.system)?;
-                guarded(crate::run::modal::run_reduced(&p.model, &r, &direct_opts))
-            }
-            None => guarded(run_model(m, &direct_opts)),
-        }
+        guarded(match &reduction {
+            Some(r) => r.run_point(m, &direct_opts),
+            None => run_model(m, &direct_opts),
+        })
     };
     let pass_s = t0.elapsed().as_secs_f64();
     let t1 = std::time::Instant::now();

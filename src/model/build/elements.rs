@@ -612,14 +612,17 @@ pub(super) fn scalar_elements(
     use crate::deck::cards::{ScalarRole, ScalarValue};
     use crate::elements::scalar::{Scalar, ScalarKind};
     let b = &deck.bulk;
-    let pelas: HashMap<i64, f64> = b.pelas.iter().map(|p| (p.pid, p.value)).collect();
-    let pelas_ge: HashMap<i64, &crate::deck::cards::ScalarProperty> = b.pelas.iter().map(|p| (p.pid, p)).collect();
-    let pmass: HashMap<i64, f64> = b.pmass.iter().map(|p| (p.pid, p.value)).collect();
-    let pdamp: HashMap<i64, f64> = b.pdamps.iter().map(|p| (p.pid, p.value)).collect();
+    use crate::deck::cards::ScalarProperty;
+    fn by_pid(props: &[ScalarProperty]) -> HashMap<i64, &ScalarProperty> {
+        props.iter().map(|p| (p.pid, p)).collect()
+    }
+    let (pelas, pmass, pdamp) = (by_pid(&b.pelas), by_pid(&b.pmass), by_pid(&b.pdamps));
     for c in &b.scalars {
         let card = c.at.name.as_str();
+        // The element's value and structural damping GE, with the card that gives GE:
+        // a CELAS2's own, a CELAS1's or CELAS3's its PELAS's (0 for masses and dampers).
         let value = match c.value {
-            ScalarValue::Value(v) => Some(v),
+            ScalarValue::Value(v) => Some((v, c.ge, &c.at)),
             ScalarValue::Property(pid) => {
                 let props = match c.role {
                     ScalarRole::Spring => &pelas,
@@ -627,7 +630,7 @@ pub(super) fn scalar_elements(
                     ScalarRole::Damper => &pdamp,
                 };
                 let name = c.role.property();
-                let v = props.get(&pid).copied();
+                let v = props.get(&pid).map(|p| (p.value, p.ge, &p.at));
                 if v.is_none() {
                     cx.err(c.at.error(format!(
                         "{card} {} references {name} {pid}, which does not exist",
@@ -690,7 +693,9 @@ pub(super) fn scalar_elements(
             dofs.push(d);
             points.push(x);
         }
-        let Some(v) = value.filter(|_| ok) else { continue };
+        let Some((v, ge, ge_from)) = value.filter(|_| ok) else {
+            continue;
+        };
         let kind = match c.role {
             ScalarRole::Spring => ScalarKind::Spring(v),
             ScalarRole::Mass => ScalarKind::Mass(v),
@@ -702,15 +707,7 @@ pub(super) fn scalar_elements(
             slots,
             points,
         };
-        let e = Element::new(c.eid, grids, dofs, kernel);
-        // A spring's GE: a CELAS2's own, a CELAS1's or CELAS3's its PELAS's.
-        let e = match c.value {
-            ScalarValue::Property(pid) if c.role == ScalarRole::Spring => {
-                let p = pelas_ge[&pid];
-                out.with_structural_damping(e, p.ge, &p.at)
-            }
-            _ => out.with_structural_damping(e, c.ge, &c.at),
-        };
+        let e = out.with_structural_damping(Element::new(c.eid, grids, dofs, kernel), ge, ge_from);
         out.push(e, |g| num.grid_dofs(g));
     }
 }
