@@ -1,8 +1,8 @@
 //! The user guide (`docs/`, an mdBook) against the program and against itself: its
 //! generated reference is what the program generates, every card the reader takes is
 //! in its card reference, every page is in its table of contents, every link it and
-//! the README make resolves, and everything the README said before the guide has a
-//! home in it.
+//! the README make resolves, everything the README said before the guide has a
+//! home in it, and every tutorial runs as shown. (`.ci/run` builds it with mdBook.)
 
 use crate::common::{impactlab, root};
 use pulldown_cmark::{Event, HeadingLevel, Parser, Tag, TagEnd};
@@ -382,5 +382,160 @@ fn the_tutorials_printed_output_is_what_the_commands_print() {
         let wall = |l: &str| l.rsplit_once(", ").map_or(l.to_string(), |(head, _)| head.to_string());
         assert_eq!(wall(shown[0]), wall(printed[0]), "{page}");
         assert_eq!(shown[1..], printed[1..shown.len()], "{page}");
+    }
+}
+
+/// A tutorial's commands, run as shown in a fresh directory holding the repository's
+/// decks and cases (and `files`, written there first), the kernels' cache kept inside
+/// it: each must succeed. Returns the directory and each command's standard output.
+fn run_tutorial(page: &str, files: &[(&str, &str)]) -> (tempfile::TempDir, Vec<String>) {
+    let text = std::fs::read_to_string(root().join("docs/src").join(page)).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    for d in ["reference-data", "verification"] {
+        std::os::unix::fs::symlink(root().join(d), dir.path().join(d)).unwrap();
+    }
+    for (name, content) in files {
+        std::fs::write(dir.path().join(name), content).unwrap();
+    }
+    let commands = shown_commands(&text);
+    assert!(!commands.is_empty(), "{page}: no command");
+    let printed = commands
+        .iter()
+        .map(|args| {
+            let o = std::process::Command::new(env!("CARGO_BIN_EXE_impactlab"))
+                .args(args)
+                .current_dir(dir.path())
+                .env("XDG_CACHE_HOME", dir.path().join("cache"))
+                .output()
+                .unwrap();
+            let stdout = String::from_utf8_lossy(&o.stdout).into_owned();
+            assert!(
+                o.status.success(),
+                "{page}: `impactlab {}`: {stdout}{}",
+                args.join(" "),
+                String::from_utf8_lossy(&o.stderr)
+            );
+            stdout
+        })
+        .collect();
+    (dir, printed)
+}
+
+/// The directory a command printed as its `outputs:` (the first word after it).
+fn outputs(dir: &Path, printed: &str) -> PathBuf {
+    let line = printed
+        .lines()
+        .find_map(|l| l.trim().strip_prefix("outputs:"))
+        .unwrap_or_else(|| panic!("no outputs line: {printed}"));
+    dir.join(line.split_whitespace().next().unwrap())
+}
+
+/// The number printed after `label` on a line of `printed` (`F_crit 3.7439e2`).
+fn printed_number(printed: &str, label: &str) -> f64 {
+    let at = printed.find(label).unwrap_or_else(|| panic!("no `{label}`: {printed}")) + label.len();
+    let word = printed[at..].split_whitespace().next().unwrap();
+    word.trim_end_matches([',', ':'])
+        .parse()
+        .unwrap_or_else(|_| panic!("`{label}` {word}"))
+}
+
+/// A number as a page writes it agrees with the program's when the program's, rounded
+/// to the page's last digit, is the page's.
+fn as_written(page_value: &str, printed: f64) -> bool {
+    let decimals = page_value.split_once('.').map_or(0, |(_, d)| d.len());
+    format!("{printed:.decimals$}") == page_value
+}
+
+/// Goal: the panel tutorial (`tutorials/your-panel.md`) runs as shown: the page's scene
+/// as `strike.toml`, the panel meshed, struck and written out as the deck the scene
+/// stands for, which holds the cards the page says the scene writes.
+#[test]
+fn the_panel_tutorial_runs_as_shown() {
+    let page = "tutorials/your-panel.md";
+    let text = std::fs::read_to_string(root().join("docs/src").join(page)).unwrap();
+    let scene = text.split("```toml\n").nth(1).unwrap().split("```").next().unwrap();
+    assert!(text.contains("A scene, `strike.toml`:"));
+    let (dir, printed) = run_tutorial(page, &[("strike.toml", scene)]);
+    assert_eq!(printed.len(), 3);
+    assert!(printed[1].contains("peak force"), "{}", printed[1]);
+    let deck = std::fs::read_to_string(dir.path().join("strike.bdf")).unwrap();
+    for card in ["EPOINT", "TF", "NOLIN3", "CONM2", "TIC"] {
+        assert!(text.contains(card), "{card}");
+        assert!(
+            deck.lines().any(|l| l.split([',', ' ']).next() == Some(card)),
+            "strike.bdf has no {card}"
+        );
+    }
+}
+
+/// Goal: the sweeps tutorial (`tutorials/sweeps.md`) runs as shown: each sweep writes a
+/// row a point (the product of its `--vary` lists), the columns the page names, and,
+/// for the grid of two parameters, the maps.
+#[test]
+fn the_sweeps_tutorial_runs_as_shown() {
+    let page = "tutorials/sweeps.md";
+    let text = std::fs::read_to_string(root().join("docs/src").join(page)).unwrap();
+    let (dir, printed) = run_tutorial(page, &[]);
+    let commands = shown_commands(&text);
+    assert_eq!(printed.len(), 3);
+    for (args, printed) in commands.iter().zip(&printed) {
+        let counts: Vec<usize> = args
+            .windows(2)
+            .filter(|w| w[0] == "--vary")
+            .map(|w| {
+                let values = w[1].split_once('=').unwrap().1;
+                match values.split(':').collect::<Vec<_>>()[..] {
+                    [_, _, n] => n.parse::<usize>().unwrap(),
+                    _ => values.split(',').count(),
+                }
+            })
+            .collect();
+        let points: usize = counts.iter().product();
+        let out = outputs(dir.path(), printed);
+        let mut csv = csv::Reader::from_path(out.join("sweep.csv")).unwrap();
+        let header: Vec<String> = csv.headers().unwrap().iter().map(str::to_string).collect();
+        for column in [
+            "point",
+            "peak_force",
+            "peak_force_time",
+            "contact_end",
+            "n_contacts",
+            "rebound_velocity",
+            "transferred_fraction",
+            "energy_error",
+            "direct_check",
+        ] {
+            assert!(text.contains(&format!("`{column}`")), "{column}");
+            assert!(header.contains(&column.to_string()), "{}: no {column}", args.join(" "));
+        }
+        assert_eq!(csv.records().count(), points, "{}", args.join(" "));
+        // "for a grid of two parameters of three values or more, maps"
+        if counts.len() == 2 && counts.iter().all(|&n| n >= 3) {
+            assert!(text.contains("`peak-force-map`"));
+            assert!(out.join("peak-force-map.png").exists(), "{}", args.join(" "));
+        }
+    }
+}
+
+/// Goal: the layup tutorial (`tutorials/layup-threshold.md`) runs as shown and prints
+/// the numbers the page quotes: F_crit and the peak force of the run, the threshold
+/// speed and its impact energy (in the deck's units and in joules) of the search.
+#[test]
+fn the_layup_tutorial_runs_as_shown() {
+    let page = "tutorials/layup-threshold.md";
+    let text = std::fs::read_to_string(root().join("docs/src").join(page)).unwrap();
+    let (_dir, printed) = run_tutorial(page, &[]);
+    assert_eq!(printed.len(), 2);
+    let quoted = [
+        ("F_crit\n374.4 lbf", printed_number(&printed[0], "F_crit")),
+        ("a peak of 1398 lbf", printed_number(&printed[0], "peak force")),
+        ("start at 423.7 in/s", printed_number(&printed[1], "threshold speed")),
+        ("7.27 lbf·in", printed_number(&printed[1], "½mv² =")),
+        ("= 0.821 J", printed_number(&printed[1], "lbf*in =")),
+    ];
+    for (phrase, value) in quoted {
+        assert!(text.contains(phrase), "{page} no longer says `{phrase}`");
+        let number = phrase.split_whitespace().find(|w| w.parse::<f64>().is_ok()).unwrap();
+        assert!(as_written(number, value), "{page}: `{phrase}`, printed {value}");
     }
 }
