@@ -65,8 +65,8 @@ pub enum Command {
     /// (`docs/src/reference/`), which a test holds to it.
     #[command(hide = true)]
     Reference {
-        /// `cli` (cli.md), `summary` (summary-schema.md) or `summary-schema`
-        /// (summary.schema.json).
+        /// `cli` (cli.md), `summary` (summary-schema.md), `summary-schema`
+        /// (summary.schema.json) or `cards` (card-fields.md).
         #[arg(value_enum)]
         page: ReferencePage,
     },
@@ -532,6 +532,8 @@ pub enum ReferencePage {
     Summary,
     /// `summary.json`'s JSON Schema.
     SummarySchema,
+    /// Every card's fields as the reader reads them.
+    Cards,
 }
 
 /// The command-line reference: every command's and subcommand's long help, each
@@ -596,6 +598,7 @@ fn main() -> ExitCode {
                     serde_json::to_string_pretty(&impactlab::run::summary::json_schema())
                         .expect("a JSON value serialises")
                 ),
+                ReferencePage::Cards => print!("{}", impactlab::deck::cards::fields_markdown()),
             }
             Ok(0)
         }

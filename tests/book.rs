@@ -172,6 +172,55 @@ fn the_card_reference_names_every_card_the_reader_takes() {
     assert!(missing.is_empty(), "not in docs/src/reference/decks.md: {missing:?}");
 }
 
+/// Goal: the card fields reference is the reader's: `impactlab reference cards`
+/// prints `docs/src/reference/card-fields.md` byte for byte, it has a section for
+/// every card the reader takes, and it puts fields where NASTRAN's manuals put them
+/// (MSC's Quick Reference Guide and NASTRAN-95's BULK.TXT): a reader that moved a
+/// field, renamed it or changed its default would move a row.
+#[test]
+fn the_card_fields_reference_is_the_readers() {
+    let page = generated("cards", "card-fields.md");
+    let sections: BTreeSet<&str> = page.lines().filter_map(|l| l.strip_prefix("## ")).collect();
+    let supported: BTreeSet<&str> = impactlab::deck::cards::supported().into_iter().collect();
+    assert_eq!(sections, supported);
+    let rows = |card: &str| -> Vec<String> {
+        let at = page.find(&format!("## {card}\n")).unwrap();
+        page[at..]
+            .lines()
+            .skip(1)
+            .take_while(|l| !l.starts_with("## "))
+            .filter(|l| l.starts_with("| ") && !l.starts_with("| field"))
+            .map(str::to_string)
+            .collect()
+    };
+    for (card, row) in [
+        // MAT1 MID E G NU RHO A TREF GE
+        ("MAT1", "| 1.9 | GE | real | `0.0` |"),
+        ("MAT1", "| 1.2 | MID | id (> 0) | required |"),
+        // PSHELL PID MID1 T MID2 12I/T**3 MID3 TS/T NSM: 12I/T**3 1.0, TS/T 0.833333
+        ("PSHELL", "| 1.6 | 12I/T**3 | real | `1.0` |"),
+        ("PSHELL", "| 1.8 | TS/T | real | `0.833333` |"),
+        // CONM2 EID G CID M X1 X2 X3, then I11 I21 I22 I31 I32 I33
+        ("CONM2", "| 1.5 | M | real | required |"),
+        ("CONM2", "| 2.7 | I33 | real | `0.0` |"),
+        // CQUAD4 EID PID G1 G2 G3 G4 THETA/MCID ZOFFS; PID blank: EID
+        ("CQUAD4", "| 1.3 | PID | integer | EID's |"),
+        ("CQUAD4", "| 1.9 | ZOFFS | real | `0.0` |"),
+        // PLOAD4 SID EID P1 P2 P3 P4: P2-P4 blank, P1
+        ("PLOAD4", "| 1.6 | P3 | real | P1's |"),
+        // SPC1 SID C G1 G2 ... (THRU)
+        ("SPC1", "| 1.4 | G | ids to the card's end (THRU) | — |"),
+        // LOAD SID S S1 L1 S2 L2 ...
+        ("LOAD", "| 1.6 … | Si, Li | repeated | |"),
+    ] {
+        assert!(
+            rows(card).iter().any(|r| r == row),
+            "{card}: no `{row}` in {:#?}",
+            rows(card)
+        );
+    }
+}
+
 /// Goal: the table of contents holds every page and names no missing one, so no page
 /// is left out of the built book.
 #[test]

@@ -138,7 +138,7 @@ pub(super) fn card_pbush(r: &mut Reader, b: &mut Bulk) {
     let n = r.card.fields.len();
     let mut at = 1;
     while at < n {
-        let flag = r.text(at).to_ascii_uppercase();
+        let flag = r.word(at, "flag").to_ascii_uppercase();
         let values = if at == 1 { 2..8 } else { at + 1..at + 8 };
         match flag.as_str() {
             "" => {}

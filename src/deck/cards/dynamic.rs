@@ -241,7 +241,7 @@ const EIGR_METHODS: [&str; 15] = [
 /// EIGR: `EIGR SID METHOD F1 F2 NE ND NZ E` and `+ NORM G C`.
 pub(super) fn card_eigr(r: &mut Reader, b: &mut Bulk) {
     let sid = r.id(0, "SID");
-    let method = r.text(1).to_ascii_uppercase();
+    let method = r.word(1, "METHOD").to_ascii_uppercase();
     if !EIGR_METHODS.contains(&method.as_str()) {
         r.fail(
             1,
@@ -318,7 +318,7 @@ fn root_count(r: &mut Reader, k: usize) -> Option<i64> {
 
 /// NORM at field `k` (MASS when blank), with POINT's G and C at fields `point`.
 fn norm(r: &mut Reader, k: usize, point: Option<(usize, usize)>) -> Norm {
-    match r.text(k).to_ascii_uppercase().as_str() {
+    match r.word(k, "NORM").to_ascii_uppercase().as_str() {
         "" | "MASS" => Norm::Mass,
         "MAX" => Norm::Max,
         "POINT" => match point {

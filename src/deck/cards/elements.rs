@@ -207,10 +207,11 @@ pub enum ScalarValue {
 pub(super) fn card_element(r: &mut Reader, b: &mut Bulk, kind: &'static crate::elements::Kind) {
     let n = kind.grids;
     let shell = matches!(kind.build, crate::elements::Build::Shell(_));
+    let eid = r.id(0, "EID");
     let mut c = Connection {
         kind,
-        eid: r.id(0, "EID"),
-        pid: r.int_or(1, "PID", 0),
+        eid,
+        pid: r.int_or(1, "PID", eid),
         g: (0..n).map(|k| r.id(2 + k, &format!("G{}", k + 1))).collect(),
         orientation: Orientation::Theta(0.0),
         orientation_at: shell.then(|| r.field_ref(2 + n, "THETA/MCID")),
@@ -220,7 +221,6 @@ pub(super) fn card_element(r: &mut Reader, b: &mut Bulk, kind: &'static crate::e
         property_card: None,
         at: r.at(),
     };
-    let pid = if r.text(1).is_empty() { c.eid } else { c.pid };
     if shell {
         let t = r.text(2 + n);
         c.orientation = match parse_real(t) {
@@ -252,7 +252,7 @@ pub(super) fn card_element(r: &mut Reader, b: &mut Bulk, kind: &'static crate::e
         r.extra_fields(2 + n);
     }
     if r.ok {
-        b.elements.push(Connection { pid, ..c });
+        b.elements.push(c);
     }
 }
 
@@ -287,7 +287,7 @@ pub(super) fn card_bar(r: &mut Reader) -> BarCard {
             BarOrientation::Vector(v)
         }
     };
-    let offt = match (flag, r.text(7)) {
+    let offt = match (flag, r.word(7, "OFFT")) {
         (Some(1 | 2), _) | (None, "") => "GGG".to_string(),
         (Some(_), _) => {
             r.fail(

@@ -271,7 +271,7 @@ pub(super) fn card_tload(r: &mut Reader, b: &mut Bulk, two: bool) {
         },
         _ => DelayRef::Value(r.real(2, "M")),
     };
-    match r.text(3).to_ascii_uppercase().as_str() {
+    match r.word(3, "TYPE").to_ascii_uppercase().as_str() {
         "" | "0" | "L" | "LO" | "LOA" | "LOAD" => {}
         _ => r.fail(
             3,

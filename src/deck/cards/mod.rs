@@ -241,6 +241,120 @@ pub fn supported() -> Vec<&'static str> {
     all
 }
 
+/// What a field holds, as the reader reads it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FieldKind {
+    /// An integer.
+    Integer,
+    /// An identification number: a positive integer.
+    Id,
+    /// A real number.
+    Real,
+    /// A list of DOF components (`123456`).
+    Components,
+    /// One DOF component (0-6).
+    Component,
+    /// Ids from this field on, with `THRU` ranges.
+    Ids,
+    /// A word: a name or a flag.
+    Word,
+}
+
+/// What a blank field means.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Blank {
+    /// The field is required: a blank is an error.
+    Refused,
+    /// The field takes this value.
+    Default(String),
+    /// The field takes the value of the field so named.
+    As(String),
+    /// The field is absent: its card's reader decides (a default that depends on other
+    /// fields, or the field's meaning left out).
+    Absent,
+}
+
+/// One field as a card's reader reads it.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct FieldRead {
+    /// Data field index (0 = NASTRAN field 2 of the first line; 8 fields a line).
+    pub k: usize,
+    /// The field's name in the reader's messages.
+    pub name: String,
+    /// What it holds.
+    pub kind: FieldKind,
+    /// What a blank means.
+    pub blank: Blank,
+}
+
+/// The fields the reader reads of card `name`, in field order: each field's name,
+/// kind and what its blank means, as the reader's own calls say. The card is read
+/// twice, its first two lines (16 data fields) blank, then each field holding its
+/// own number (data field k: k + 1): a field
+/// read only on the second has no known blank meaning, and a default that differs
+/// between the two (one taken from another field) none either. A field read only
+/// when another holds some other value is not found. `None` for a card the reader
+/// does not type.
+pub fn fields_read(name: &str) -> Option<Vec<FieldRead>> {
+    if !supported().contains(&name) {
+        return None;
+    }
+    let pos = Pos {
+        file: "probe".into(),
+        line: 1,
+        column: 1,
+    };
+    let mut read: Vec<FieldRead> = Vec::new();
+    for numbered in [false, true] {
+        let card = RawCard {
+            name: name.into(),
+            pos: pos.clone(),
+            fields: (0..16)
+                .map(|k| super::image::Field {
+                    text: if numbered {
+                        (k + 1).to_string().into()
+                    } else {
+                        Default::default()
+                    },
+                    pos: pos.clone(),
+                    number: k % 8 + 2,
+                })
+                .collect(),
+            source: String::new(),
+            replicated_at: None,
+        };
+        let (mut diags, mut ids_left, mut b, mut unknown) =
+            (Diagnostics::default(), usize::MAX, Bulk::default(), Vec::new());
+        let mut r = Reader::new(&card, &mut diags, &mut ids_left);
+        r.trace = Some(Vec::new());
+        type_one(&mut r, &mut b, &mut unknown, &card);
+        let trace = r.trace.take().unwrap_or_default();
+        for f in &trace {
+            match read.iter().position(|g| g.k == f.k) {
+                // A default that moves with the other fields is another field's value
+                // (a PID's EID): field j holds j + 1 on the numbered card.
+                Some(i) if matches!(read[i].blank, Blank::Default(_)) && f.blank != read[i].blank => {
+                    let from = match &f.blank {
+                        Blank::Default(v) => v.parse::<f64>().ok(),
+                        _ => None,
+                    };
+                    read[i].blank = from
+                        .and_then(|v| trace.iter().find(|g| g.k != f.k && (g.k + 1) as f64 == v))
+                        .map_or(Blank::Absent, |g| Blank::As(g.name.clone()));
+                }
+                Some(_) => {}
+                None if !numbered => read.push(f.clone()),
+                None => read.push(FieldRead {
+                    blank: Blank::Absent,
+                    ..f.clone()
+                }),
+            }
+        }
+    }
+    read.sort_by_key(|f| f.k);
+    Some(read)
+}
+
 /// Types raw cards as they come, in the order they come. Unknown card names are
 /// collected. The raw cards are dropped as they are typed, unless `keep` is set: they
 /// are then returned.
@@ -322,82 +436,7 @@ impl Typer {
         for piece in pieces(&whole, self.baror.as_ref()) {
             let card: &RawCard = &piece;
             let mut r = Reader::new(card, diags, ids_left);
-            match card.name.as_str() {
-                "BAROR" => r.extra_fields(8),
-                "GRID" => card_grid(&mut r, b),
-                "GRDSET" => card_grdset(&mut r, b),
-                "CORD1R" | "CORD1C" | "CORD1S" => card_cord1(&mut r, b),
-                "CORD2R" | "CORD2C" | "CORD2S" => card_cord2(&mut r, b),
-                "EPOINT" | "SPOINT" => card_points(&mut r, b, card),
-                "PROD" => card_prod(&mut r, b),
-                "PTUBE" => card_ptube(&mut r, b),
-                "CELAS1" | "CELAS2" | "CELAS3" | "CELAS4" | "CMASS1" | "CMASS2" | "CMASS3" | "CMASS4" | "CDAMP1"
-                | "CDAMP2" | "CDAMP3" | "CDAMP4" => card_scalar(&mut r, b),
-                "PVISC" => card_pvisc(&mut r, b),
-                "CVISC" => card_cvisc(&mut r, b),
-                "PELAS" | "PMASS" | "PDAMP" => card_scalar_property(&mut r, b),
-                "PCOMP1" | "PCOMP2" => card_pcomp_uniform(&mut r, b),
-                "CQUAD1" | "CQUAD2" | "CQDMEM" | "CQDMEM1" | "CQDMEM2" | "CTRIA1" | "CTRIA2" | "CTRMEM" => {
-                    card_cosmic_plate(&mut r, b)
-                }
-                "PQUAD1" | "PTRIA1" | "PQUAD2" | "PTRIA2" | "PQDMEM" | "PQDMEM1" | "PQDMEM2" | "PTRMEM" => {
-                    card_cosmic_plate_property(&mut r, b)
-                }
-                "CONROD" => card_conrod(&mut r, b),
-                "PBAR" | "PBEAM" => card_pbar(&mut r, b),
-                "PBARL" | "PBEAML" => card_pbarl(&mut r, b),
-                "PSHELL" => card_pshell(&mut r, b),
-                "MAT1" => card_mat1(&mut r, b),
-                "MAT2" => card_mat2(&mut r, b),
-                "MAT8" => card_mat8(&mut r, b),
-                "PCOMP" => card_pcomp(&mut r, b),
-                "CONM1" => card_conm1(&mut r, b),
-                "CBUSH" => card_cbush(&mut r, b),
-                "TEMPP1" => card_tempp1(&mut r, b),
-                "TEMP" | "TEMPD" => card_temp(&mut r, b),
-                "PBUSH" => card_pbush(&mut r, b),
-                "CONM2" => card_conm2(&mut r, b),
-                "SPC1" => card_spc1(&mut r, b),
-                "SPC" => card_spc(&mut r, b),
-                "SPCADD" => card_spcadd(&mut r, b),
-                "RBE2" => card_rbe2(&mut r, b),
-                "CRIGD1" => card_crigd1(&mut r, b),
-                "PSHEAR" => card_pshear(&mut r, b),
-                "GENEL" => card_genel(&mut r, b),
-                "SPCD" => card_spcd(&mut r, b),
-                "PLOAD2" => card_pload2(&mut r, b),
-                "PLOAD" => card_pload(&mut r, b),
-                "RBE3" => card_rbe3(&mut r, b),
-                "TF" => card_tf(&mut r, b, card),
-                "TSTEP" => card_tstep(&mut r, b, card),
-                "NOLIN3" => card_nolin3(&mut r, b),
-                "TIC" => card_tic(&mut r, b),
-                "FORCE" | "MOMENT" => card_point_load(&mut r, b),
-                "PLOAD4" => card_pload4(&mut r, b),
-                "GRAV" => card_grav(&mut r, b),
-                "TEMPRB" => card_temprb(&mut r, b),
-                "EIGR" => card_eigr(&mut r, b),
-                "EIGRL" => card_eigrl(&mut r, b),
-                "DAREA" => card_darea_delay(&mut r, b, false),
-                "DELAY" => card_darea_delay(&mut r, b, true),
-                "TLOAD1" => card_tload(&mut r, b, false),
-                "TLOAD2" => card_tload(&mut r, b, true),
-                "TABLED1" => card_tabled(&mut r, b, 1),
-                "TABLED2" => card_tabled(&mut r, b, 2),
-                "TABLED3" => card_tabled(&mut r, b, 3),
-                "TABLED4" => card_tabled(&mut r, b, 4),
-                "LSEQ" => card_lseq(&mut r, b),
-                "LOAD" | "DLOAD" => card_load(&mut r, b),
-                "PARAM" => card_param(&mut r, b, card),
-                name => match crate::elements::kind(name) {
-                    Some(kind) => card_element(&mut r, b, kind),
-                    None => unknown.push(super::UnknownCard {
-                        name: card.name.to_string(),
-                        pos: card.pos.clone(),
-                        line: card.source.lines().next().unwrap_or("").to_string(),
-                    }),
-                },
-            }
+            type_one(&mut r, b, unknown, card);
             for what in r.readings {
                 *b.readings.entry(what).or_default() += 1;
             }
@@ -405,6 +444,87 @@ impl Typer {
         if let Some(kept) = &mut self.kept {
             kept.push(whole);
         }
+    }
+}
+
+/// Types one card (one of a card of several, [`pieces`]) into `b`, or records it as
+/// unknown.
+fn type_one(r: &mut Reader, b: &mut Bulk, unknown: &mut Vec<super::UnknownCard>, card: &RawCard) {
+    match card.name.as_str() {
+        "BAROR" => r.extra_fields(8),
+        "GRID" => card_grid(r, b),
+        "GRDSET" => card_grdset(r, b),
+        "CORD1R" | "CORD1C" | "CORD1S" => card_cord1(r, b),
+        "CORD2R" | "CORD2C" | "CORD2S" => card_cord2(r, b),
+        "EPOINT" | "SPOINT" => card_points(r, b, card),
+        "PROD" => card_prod(r, b),
+        "PTUBE" => card_ptube(r, b),
+        "CELAS1" | "CELAS2" | "CELAS3" | "CELAS4" | "CMASS1" | "CMASS2" | "CMASS3" | "CMASS4" | "CDAMP1" | "CDAMP2"
+        | "CDAMP3" | "CDAMP4" => card_scalar(r, b),
+        "PVISC" => card_pvisc(r, b),
+        "CVISC" => card_cvisc(r, b),
+        "PELAS" | "PMASS" | "PDAMP" => card_scalar_property(r, b),
+        "PCOMP1" | "PCOMP2" => card_pcomp_uniform(r, b),
+        "CQUAD1" | "CQUAD2" | "CQDMEM" | "CQDMEM1" | "CQDMEM2" | "CTRIA1" | "CTRIA2" | "CTRMEM" => {
+            card_cosmic_plate(r, b)
+        }
+        "PQUAD1" | "PTRIA1" | "PQUAD2" | "PTRIA2" | "PQDMEM" | "PQDMEM1" | "PQDMEM2" | "PTRMEM" => {
+            card_cosmic_plate_property(r, b)
+        }
+        "CONROD" => card_conrod(r, b),
+        "PBAR" | "PBEAM" => card_pbar(r, b),
+        "PBARL" | "PBEAML" => card_pbarl(r, b),
+        "PSHELL" => card_pshell(r, b),
+        "MAT1" => card_mat1(r, b),
+        "MAT2" => card_mat2(r, b),
+        "MAT8" => card_mat8(r, b),
+        "PCOMP" => card_pcomp(r, b),
+        "CONM1" => card_conm1(r, b),
+        "CBUSH" => card_cbush(r, b),
+        "TEMPP1" => card_tempp1(r, b),
+        "TEMP" | "TEMPD" => card_temp(r, b),
+        "PBUSH" => card_pbush(r, b),
+        "CONM2" => card_conm2(r, b),
+        "SPC1" => card_spc1(r, b),
+        "SPC" => card_spc(r, b),
+        "SPCADD" => card_spcadd(r, b),
+        "RBE2" => card_rbe2(r, b),
+        "CRIGD1" => card_crigd1(r, b),
+        "PSHEAR" => card_pshear(r, b),
+        "GENEL" => card_genel(r, b),
+        "SPCD" => card_spcd(r, b),
+        "PLOAD2" => card_pload2(r, b),
+        "PLOAD" => card_pload(r, b),
+        "RBE3" => card_rbe3(r, b),
+        "TF" => card_tf(r, b, card),
+        "TSTEP" => card_tstep(r, b, card),
+        "NOLIN3" => card_nolin3(r, b),
+        "TIC" => card_tic(r, b),
+        "FORCE" | "MOMENT" => card_point_load(r, b),
+        "PLOAD4" => card_pload4(r, b),
+        "GRAV" => card_grav(r, b),
+        "TEMPRB" => card_temprb(r, b),
+        "EIGR" => card_eigr(r, b),
+        "EIGRL" => card_eigrl(r, b),
+        "DAREA" => card_darea_delay(r, b, false),
+        "DELAY" => card_darea_delay(r, b, true),
+        "TLOAD1" => card_tload(r, b, false),
+        "TLOAD2" => card_tload(r, b, true),
+        "TABLED1" => card_tabled(r, b, 1),
+        "TABLED2" => card_tabled(r, b, 2),
+        "TABLED3" => card_tabled(r, b, 3),
+        "TABLED4" => card_tabled(r, b, 4),
+        "LSEQ" => card_lseq(r, b),
+        "LOAD" | "DLOAD" => card_load(r, b),
+        "PARAM" => card_param(r, b, card),
+        name => match crate::elements::kind(name) {
+            Some(kind) => card_element(r, b, kind),
+            None => unknown.push(super::UnknownCard {
+                name: card.name.to_string(),
+                pos: card.pos.clone(),
+                line: card.source.lines().next().unwrap_or("").to_string(),
+            }),
+        },
     }
 }
 
@@ -499,7 +619,7 @@ fn pieces<'a>(card: &'a RawCard, baror: Option<&RawCard>) -> Vec<std::borrow::Co
 /// ([`DampingParam`]) are read; any other is not used by impactlab and ignored with
 /// a warning.
 fn card_param(r: &mut Reader, b: &mut Bulk, card: &RawCard) {
-    if let Some(p) = DampingParam::of_name(r.text(0)) {
+    if let Some(p) = DampingParam::of_name(r.word(0, "N")) {
         card_damping_param(r, b, p);
         return;
     }
@@ -574,3 +694,62 @@ impl Bulk {
         }
     }
 }
+
+/// The card fields reference page (`docs/src/reference/card-fields.md`): every card
+/// the reader types, with the fields [`fields_read`] finds it reading; a field whose
+/// name was met before on the card ends the table with the fields repeated from there.
+pub fn fields_markdown() -> String {
+    use std::fmt::Write;
+    let at = |k: usize| format!("{}.{}", k / 8 + 1, k % 8 + 2);
+    let mut out = String::from(FIELDS_PAGE_HEAD);
+    for name in supported() {
+        let read = fields_read(name).unwrap_or_default();
+        let _ = writeln!(out, "## {name}\n");
+        if read.is_empty() {
+            let _ = writeln!(out, "No field is read on a blank card (see [Decks](decks.md)).\n");
+            continue;
+        }
+        let _ = writeln!(out, "| field | name | holds | blank |\n|---|---|---|---|");
+        for (i, f) in read.iter().enumerate() {
+            if let Some(first) = read[..i].iter().position(|g| g.name == f.name) {
+                let names: Vec<&str> = read[first..i].iter().map(|g| g.name.as_str()).collect();
+                let _ = writeln!(out, "| {} … | {} | repeated | |", at(f.k), names.join(", "));
+                break;
+            }
+            let kind = match f.kind {
+                FieldKind::Integer => "integer",
+                FieldKind::Id => "id (> 0)",
+                FieldKind::Real => "real",
+                FieldKind::Components => "components (1-6)",
+                FieldKind::Component => "component (0-6)",
+                FieldKind::Ids => "ids to the card's end (THRU)",
+                FieldKind::Word => "word",
+            };
+            let blank = match &f.blank {
+                Blank::Refused => "required".to_string(),
+                Blank::Default(v) => format!("`{v}`"),
+                Blank::As(name) => format!("{name}'s"),
+                Blank::Absent => "—".to_string(),
+            };
+            let _ = writeln!(out, "| {} | {} | {kind} | {blank} |", at(f.k), f.name);
+        }
+        out.push('\n');
+    }
+    out
+}
+
+/// The head of [`fields_markdown`]'s page.
+const FIELDS_PAGE_HEAD: &str = "# Card fields\n\n\
+Every bulk data card the reader types, with the fields its reader reads: the field as \
+*line.field* (1.2 is field 2 of the card's first line, 2.2 the first data field of its first \
+continuation), the name the reader's messages give it, what it holds, and what a blank \
+field means: `required` (a blank is an error), the value taken, or — (the reader \
+decides from the card's other fields, or leaves the field's meaning out). This page is \
+generated from the reader itself (`impactlab reference cards > docs/src/reference/card-fields.md`), \
+which is run on each card with its first two lines blank and again with each field \
+holding its own number, and `tests/book.rs` fails when it differs. What the program does with each card, \
+and what it refuses, is in [Decks](decks.md). Not listed: fields read only when \
+another holds some other value, and groups a card's reader parses itself: a PBARL's \
+dimensions (its TYPE names them), a TABLED's entries to its ENDT, an RBE3's weighted \
+groups, a PBUSH's lines after their flag (K, B, GE), a PARAM's values (its name decides \
+them).\n\n";

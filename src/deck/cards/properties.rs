@@ -246,7 +246,7 @@ pub(super) fn card_pbar(r: &mut Reader, b: &mut Bulk) {
 pub(super) fn card_pbarl(r: &mut Reader, b: &mut Bulk) {
     use crate::elements::section::Shape;
     let (pid, mid) = (r.id(0, "PID"), r.id(1, "MID"));
-    let group = r.text(2);
+    let group = r.word(2, "GROUP");
     if !group.is_empty() && !group.eq_ignore_ascii_case("MSCBML0") {
         r.fail(
             2,
@@ -254,7 +254,7 @@ pub(super) fn card_pbarl(r: &mut Reader, b: &mut Bulk) {
             "only the standard section library (GROUP blank or MSCBML0) is supported",
         );
     }
-    let shape = Shape::named(r.text(3));
+    let shape = Shape::named(r.word(3, "TYPE"));
     if shape.is_none() {
         let list: Vec<&str> = Shape::ALL.iter().map(|s| s.1).collect();
         r.fail(
@@ -550,7 +550,7 @@ pub(super) fn card_pcomp(r: &mut Reader, b: &mut Bulk) {
     if let Some(v) = sb {
         r.positive(3, "SB", v);
     }
-    let ft = match r.text(4).to_ascii_uppercase().as_str() {
+    let ft = match r.word(4, "FT").to_ascii_uppercase().as_str() {
         "" => None,
         f @ ("HILL" | "HOFF" | "TSAI" | "STRN") => Some(f.to_string()),
         _ => {
@@ -561,7 +561,7 @@ pub(super) fn card_pcomp(r: &mut Reader, b: &mut Bulk) {
     r.real_opt(5, "TREF");
     let ge = r.real_or(6, "GE", 0.0);
     r.non_negative(6, "GE", ge);
-    let lam = match r.text(7).to_ascii_uppercase().as_str() {
+    let lam = match r.word(7, "LAM").to_ascii_uppercase().as_str() {
         "" => Lam::All,
         "SYM" => Lam::Sym,
         other => {
@@ -601,7 +601,7 @@ pub(super) fn card_pcomp(r: &mut Reader, b: &mut Bulk) {
         }
         let t = ply_thickness(r, k + 1, &t_name, above.as_ref());
         let theta = r.real_or(k + 2, &theta_name, 0.0);
-        let sout = match r.text(k + 3).to_ascii_uppercase().as_str() {
+        let sout = match r.word(k + 3, &sout_name).to_ascii_uppercase().as_str() {
             "" | "NO" => false,
             "YES" => true,
             _ => {
@@ -645,7 +645,7 @@ pub(super) fn card_pcomp_uniform(r: &mut Reader, b: &mut Bulk) {
     if let Some(v) = sb {
         r.positive(3, "SBOND", v);
     }
-    let ft = match r.text(4).to_ascii_uppercase().as_str() {
+    let ft = match r.word(4, "FT").to_ascii_uppercase().as_str() {
         "" => None,
         f @ ("HILL" | "HOFF" | "TSAI") => Some(f.to_string()),
         "STRAIN" => Some("STRN".to_string()),
@@ -666,7 +666,7 @@ pub(super) fn card_pcomp_uniform(r: &mut Reader, b: &mut Bulk) {
     } else {
         0.0
     };
-    let lam = match r.text(7).to_ascii_uppercase().as_str() {
+    let lam = match r.word(7, "LAM").to_ascii_uppercase().as_str() {
         "" | "ALL" => Lam::All,
         "SYM" => Lam::Sym,
         other => {
