@@ -158,9 +158,8 @@ pub enum SolveError {
         /// The bytes it holds when stopped.
         bytes: u64,
     },
-    /// A Lanczos extraction lost roots it had converged: round-off along the massless
-    /// DOFs' directions has overtaken the recurrence, whose later Ritz values are not
-    /// the structure's.
+    /// A Lanczos extraction lost roots it had converged: round-off has overtaken the
+    /// recurrence, whose later Ritz values are not the structure's.
     #[error(
         "the Lanczos extraction broke down after {steps} steps: it had converged {seen} roots in the range asked \
          for and ends with {found}; ask for fewer roots (a lower cutoff, --modes-up-to, or a smaller ND)"
