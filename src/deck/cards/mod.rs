@@ -289,12 +289,12 @@ pub struct FieldRead {
 
 /// The fields the reader reads of card `name`, in field order: each field's name,
 /// kind and what its blank means, as the reader's own calls say. The card is read
-/// twice, its first two lines (16 data fields) blank, then each field holding its
-/// own number (data field k: k + 1): a field
-/// read only on the second has no known blank meaning, and a default that differs
-/// between the two (one taken from another field) none either. A field read only
-/// when another holds some other value is not found. `None` for a card the reader
-/// does not type.
+/// twice, its first two lines (16 data fields) blank, then each field holding its own
+/// number (data field k: k + 1). A field read only on the second has no known blank
+/// meaning; a default that differs between the two is the value of the field whose
+/// number it is (a PID's EID), or has no known meaning either. A field read only when
+/// another holds some other value is not found. `None` for a card the reader does not
+/// type.
 pub fn fields_read(name: &str) -> Option<Vec<FieldRead>> {
     if !supported().contains(&name) {
         return None;
