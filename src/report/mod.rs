@@ -709,25 +709,16 @@ fn plate_force(f: &Fig) -> Result<Vec<PathBuf>, ReportError> {
     Ok(out)
 }
 
-/// The largest angle (radians) between the normals of two of the model's shells, each
-/// from its corners' basic positions (a shell placed without them lies in the basic XY
-/// plane): 0 for a flat plate, however it is turned.
+/// The largest angle (radians) between the normals of two of the model's shells
+/// ([`crate::geometry::shell_frame`] of each one's corners): 0 for a flat plate,
+/// however it is turned.
 fn shell_normal_spread(model: &Model) -> f64 {
     let normals: Vec<nalgebra::Vector3<f64>> = model
         .elements
         .iter()
         .filter(|e| e.kernel.family().shell().is_some())
-        .map(|e| match &e.placement {
-            Some(p) if p.points.len() >= 3 => {
-                let v = |i: usize| nalgebra::Vector3::from(p.points[i % p.points.len()]);
-                let (a, b) = match p.points.len() {
-                    3 => (v(1) - v(0), v(2) - v(0)),
-                    _ => (v(2) - v(0), v(3) - v(1)),
-                };
-                a.cross(&b).normalize()
-            }
-            _ => nalgebra::Vector3::z(),
-        })
+        .filter_map(|e| crate::geometry::shell_frame(&e.points()).ok())
+        .map(|f| f.axes.column(2).into_owned())
         .collect();
     let Some(first) = normals.first() else {
         return 0.0;
