@@ -4,7 +4,7 @@
 use super::super::bulk::RawCard;
 use super::super::diag::{Diagnostic, Diagnostics};
 use super::super::number::{parse_int, parse_real, RealToken};
-use super::{Blank, CardRef, Components, FieldKind, FieldRef};
+use super::{Blank, CardRef, Components, FieldKind, FieldRead, FieldRef};
 
 /// Reads the fields of one raw card, recording every problem.
 pub(super) struct Reader<'a> {
@@ -16,7 +16,7 @@ pub(super) struct Reader<'a> {
     /// Readings of dialect-dependent fields made on this card ([`Bulk::readings`]).
     pub(super) readings: Vec<&'static str>,
     /// The fields read, each as first read, when traced ([`super::fields_read`]).
-    pub(super) trace: Option<Vec<super::FieldRead>>,
+    pub(super) trace: Option<Vec<FieldRead>>,
 }
 
 impl<'a> Reader<'a> {
@@ -32,15 +32,16 @@ impl<'a> Reader<'a> {
     }
 
     /// Notes a field read, when traced: the first read of a field is the one kept (a
-    /// reader's outermost call, which notes before it delegates).
-    fn note(&mut self, k: usize, name: &str, kind: super::FieldKind, blank: super::Blank) {
+    /// reader's outermost call, which notes before it delegates). `blank` is only
+    /// evaluated when traced: reading a deck allocates nothing here.
+    fn note(&mut self, k: usize, name: &str, kind: FieldKind, blank: impl FnOnce() -> Blank) {
         if let Some(trace) = &mut self.trace {
             if !trace.iter().any(|f| f.k == k) {
-                trace.push(super::FieldRead {
+                trace.push(FieldRead {
                     k,
                     name: name.to_string(),
                     kind,
-                    blank,
+                    blank: blank(),
                 });
             }
         }
@@ -65,7 +66,7 @@ impl<'a> Reader<'a> {
 
     /// Field `k` read as a word (a method's name, a flag), as written.
     pub(super) fn word(&mut self, k: usize, name: &str) -> &'a str {
-        self.note(k, name, FieldKind::Word, Blank::Absent);
+        self.note(k, name, FieldKind::Word, || Blank::Absent);
         self.card.text(k)
     }
 
@@ -120,7 +121,7 @@ impl<'a> Reader<'a> {
     }
 
     pub(super) fn int_opt(&mut self, k: usize, name: &str) -> Option<i64> {
-        self.note(k, name, FieldKind::Integer, Blank::Absent);
+        self.note(k, name, FieldKind::Integer, || Blank::Absent);
         let t = self.text(k);
         if t.is_empty() {
             return None;
@@ -135,7 +136,7 @@ impl<'a> Reader<'a> {
     }
 
     pub(super) fn int(&mut self, k: usize, name: &str) -> i64 {
-        self.note(k, name, FieldKind::Integer, Blank::Refused);
+        self.note(k, name, FieldKind::Integer, || Blank::Refused);
         if self.text(k).is_empty() {
             self.fail(k, name, "is blank: an integer is required");
             return 0;
@@ -145,7 +146,7 @@ impl<'a> Reader<'a> {
 
     /// A required identification number: a positive integer.
     pub(super) fn id(&mut self, k: usize, name: &str) -> i64 {
-        self.note(k, name, FieldKind::Id, Blank::Refused);
+        self.note(k, name, FieldKind::Id, || Blank::Refused);
         let v = self.int(k, name);
         if self.text(k).is_empty() || parse_int(self.text(k)).is_none() {
             return v;
@@ -157,12 +158,12 @@ impl<'a> Reader<'a> {
     }
 
     pub(super) fn int_or(&mut self, k: usize, name: &str, default: i64) -> i64 {
-        self.note(k, name, FieldKind::Integer, Blank::Default(default.to_string()));
+        self.note(k, name, FieldKind::Integer, || Blank::Default(default.to_string()));
         self.int_opt(k, name).unwrap_or(default)
     }
 
     pub(super) fn real_opt(&mut self, k: usize, name: &str) -> Option<f64> {
-        self.note(k, name, FieldKind::Real, Blank::Absent);
+        self.note(k, name, FieldKind::Real, || Blank::Absent);
         let t = self.text(k);
         if t.is_empty() {
             return None;
@@ -193,7 +194,7 @@ impl<'a> Reader<'a> {
     }
 
     pub(super) fn real(&mut self, k: usize, name: &str) -> f64 {
-        self.note(k, name, FieldKind::Real, Blank::Refused);
+        self.note(k, name, FieldKind::Real, || Blank::Refused);
         if self.text(k).is_empty() {
             self.fail(k, name, "is blank: a real number is required");
             return 0.0;
@@ -202,7 +203,7 @@ impl<'a> Reader<'a> {
     }
 
     pub(super) fn real_or(&mut self, k: usize, name: &str, default: f64) -> f64 {
-        self.note(k, name, FieldKind::Real, Blank::Default(format!("{default:?}")));
+        self.note(k, name, FieldKind::Real, || Blank::Default(format!("{default:?}")));
         self.real_opt(k, name).unwrap_or(default)
     }
 
@@ -223,7 +224,7 @@ impl<'a> Reader<'a> {
 
     /// Component list such as `123456`; blank gives the empty set.
     pub(super) fn components(&mut self, k: usize, name: &str) -> Components {
-        self.note(k, name, FieldKind::Components, Blank::Default("none".into()));
+        self.note(k, name, FieldKind::Components, || Blank::Default("none".into()));
         let t = self.text(k);
         let mut c = 0u8;
         for ch in t.chars() {
@@ -241,7 +242,7 @@ impl<'a> Reader<'a> {
 
     /// A single component: 0 or blank for a scalar point, 1-6 for a grid.
     pub(super) fn component(&mut self, k: usize, name: &str) -> usize {
-        self.note(k, name, FieldKind::Component, Blank::Default("0".into()));
+        self.note(k, name, FieldKind::Component, || Blank::Default("0".into()));
         let v = self.int_or(k, name, 0);
         if !(0..=6).contains(&v) {
             self.fail(k, name, "is not a component number (0-6)");
@@ -257,7 +258,7 @@ impl<'a> Reader<'a> {
 
     /// Reads ids from field `from` up to (not including) field `n`, with `THRU` ranges.
     pub(super) fn id_list_in(&mut self, from: usize, n: usize, name: &str) -> Vec<i64> {
-        self.note(from, name, FieldKind::Ids, Blank::Absent);
+        self.note(from, name, FieldKind::Ids, || Blank::Absent);
         let mut out = Vec::new();
         let mut k = from;
         while k < n {
