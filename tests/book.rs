@@ -366,29 +366,41 @@ fn every_command_the_guide_shows_names_a_command_and_files_that_exist() {
     assert!(seen >= 15, "{seen} commands");
 }
 
+/// A fresh directory holding the repository's decks and cases (linked), where the
+/// guide's commands run as a reader would run them from a checkout.
+fn checkout_like() -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    for d in ["reference-data", "verification"] {
+        std::os::unix::fs::symlink(root().join(d), dir.path().join(d)).unwrap();
+    }
+    dir
+}
+
+/// `impactlab args` run in `dir`, the kernels' cache kept inside it.
+fn impactlab_in(dir: &Path, args: &[String]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_impactlab"))
+        .args(args)
+        .current_dir(dir)
+        .env("XDG_CACHE_HOME", dir.join("cache"))
+        .output()
+        .unwrap()
+}
+
 /// Goal: the CI tutorial's comparison is what the program does: its three commands,
 /// run as shown (in a directory holding the repository's decks), print the audit the
 /// page describes ("6 of 85 quantities moved") and exit 1.
 #[test]
 fn the_ci_tutorials_audit_runs_as_shown() {
     let page = std::fs::read_to_string(root().join("docs/src/tutorials/ci-gate.md")).unwrap();
-    let dir = tempfile::tempdir().unwrap();
-    std::os::unix::fs::symlink(root().join("reference-data"), dir.path().join("reference-data")).unwrap();
+    let dir = checkout_like();
     let commands: Vec<Vec<String>> = shown_commands(&page)
         .into_iter()
         .filter(|a| a[0] == "run" || a[0] == "audit")
         .collect();
     assert_eq!(commands.len(), 3);
-    let mut last = None;
-    for args in &commands {
-        let o = std::process::Command::new(env!("CARGO_BIN_EXE_impactlab"))
-            .args(args)
-            .current_dir(dir.path())
-            .output()
-            .unwrap();
-        last = Some(o);
-    }
-    let o = last.unwrap();
+    // Each in turn: the audit reads what the runs before it wrote.
+    let mut outputs: Vec<_> = commands.iter().map(|args| impactlab_in(dir.path(), args)).collect();
+    let o = outputs.pop().unwrap();
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert_eq!(o.status.code(), Some(1), "{stdout}");
     assert!(page.contains("Here 6 of 85 quantities move"));
@@ -401,10 +413,7 @@ fn the_ci_tutorials_audit_runs_as_shown() {
 /// `text` block after that command, but for the wall time on the first.
 #[test]
 fn the_tutorials_printed_output_is_what_the_commands_print() {
-    let dir = tempfile::tempdir().unwrap();
-    for d in ["reference-data", "verification"] {
-        std::os::unix::fs::symlink(root().join(d), dir.path().join(d)).unwrap();
-    }
+    let dir = checkout_like();
     for (page, command) in [("tutorials/rod.md", "report"), ("tutorials/plate.md", "run")] {
         let text = std::fs::read_to_string(root().join("docs/src").join(page)).unwrap();
         let args = shown_commands(&text)
@@ -420,11 +429,7 @@ fn the_tutorials_printed_output_is_what_the_commands_print() {
             // Into the temporary directory, not the page's out/.
             args.truncate(args.iter().position(|a| a == "--out").unwrap_or(args.len()));
         }
-        let o = std::process::Command::new(env!("CARGO_BIN_EXE_impactlab"))
-            .args(&args)
-            .current_dir(dir.path())
-            .output()
-            .unwrap();
+        let o = impactlab_in(dir.path(), &args);
         assert!(o.status.success(), "{page}: {}", String::from_utf8_lossy(&o.stderr));
         let printed = String::from_utf8_lossy(&o.stdout).into_owned();
         let printed: Vec<&str> = printed.lines().collect();
@@ -434,15 +439,11 @@ fn the_tutorials_printed_output_is_what_the_commands_print() {
     }
 }
 
-/// A tutorial's commands, run as shown in a fresh directory holding the repository's
-/// decks and cases (and `files`, written there first), the kernels' cache kept inside
-/// it: each must succeed. Returns the directory and each command's standard output.
+/// A tutorial's commands, run as shown in a [`checkout_like`] directory (`files`
+/// written there first) by [`impactlab_in`]: each must succeed. Returns the directory and each command's standard output.
 fn run_tutorial(page: &str, files: &[(&str, &str)]) -> (tempfile::TempDir, Vec<String>) {
     let text = std::fs::read_to_string(root().join("docs/src").join(page)).unwrap();
-    let dir = tempfile::tempdir().unwrap();
-    for d in ["reference-data", "verification"] {
-        std::os::unix::fs::symlink(root().join(d), dir.path().join(d)).unwrap();
-    }
+    let dir = checkout_like();
     for (name, content) in files {
         std::fs::write(dir.path().join(name), content).unwrap();
     }
@@ -451,12 +452,7 @@ fn run_tutorial(page: &str, files: &[(&str, &str)]) -> (tempfile::TempDir, Vec<S
     let printed = commands
         .iter()
         .map(|args| {
-            let o = std::process::Command::new(env!("CARGO_BIN_EXE_impactlab"))
-                .args(args)
-                .current_dir(dir.path())
-                .env("XDG_CACHE_HOME", dir.path().join("cache"))
-                .output()
-                .unwrap();
+            let o = impactlab_in(dir.path(), args);
             let stdout = String::from_utf8_lossy(&o.stdout).into_owned();
             assert!(
                 o.status.success(),
