@@ -138,6 +138,47 @@ fn the_modal_ledger_closes_and_the_rod_is_the_direct_rod() {
     assert!(modal.energy.iter().all(|r| r.ke_target_eq16.is_nan()));
 }
 
+/// Goal: the reduced system is an arrowhead, so that a step costs O(p·nb), not
+/// O(p²): between two interior coordinates (those that are no DOF of the deck) M_r
+/// holds exactly I and K_r a diagonal, ascending (the reduced model's own modes with
+/// the boundary held); every other entry lies in the impactor's or a boundary DOF's
+/// row or column. On the rod (a rigid-body mode, one boundary DOF) and the plate (four).
+#[test]
+fn the_reduced_system_is_an_arrowhead() {
+    for (name, model) in [("rod", rod_model()), ("plate", plate())] {
+        let opts = RunOptions {
+            engine: Engine::Modal,
+            ..Default::default()
+        };
+        let p = impactlab::run::prepare(&model, &opts).unwrap();
+        let r = modal::reduce(p.model.as_ref(), &p.system, &ModalParams::default(), None).unwrap();
+        let interior: Vec<bool> = r.model.dofs.iter().map(|d| d.point < 0).collect();
+        let first = interior.iter().position(|&i| i).unwrap();
+        assert!(
+            interior[first..].iter().all(|&i| i),
+            "{name}: the interior coordinates come last"
+        );
+        let n = interior.len();
+        let mut k_diagonal = vec![0.0; n];
+        for (matrix, entries) in [("K", &r.system.k), ("M", &r.system.m)] {
+            for t in entries.iter().filter(|t| interior[t.row] && interior[t.col]) {
+                assert_eq!(t.row, t.col, "{name}: {matrix}_r couples two interior coordinates");
+                if matrix == "M" {
+                    assert_eq!(t.val, 1.0, "{name}: M_r's interior diagonal");
+                } else {
+                    k_diagonal[t.row] = t.val;
+                }
+            }
+            let m = entries.iter().filter(|t| interior[t.row] && interior[t.col]).count();
+            assert!(m <= n - first, "{name}: {m} interior entries of {matrix}_r");
+        }
+        let m_interior = r.system.m.iter().filter(|t| interior[t.row] && interior[t.col]).count();
+        assert_eq!(m_interior, n - first, "{name}: every interior coordinate has unit mass");
+        let k = &k_diagonal[first..];
+        assert!(k.windows(2).all(|w| w[0] <= w[1]), "{name}: {k:?}");
+    }
+}
+
 /// Goal: `impactlab run --engine modal` runs the paper's rod, prints its truncation
 /// and writes it to summary.json (`run.engine`, `run.modal`); `--modes-up-to` sets
 /// the cutoff and is refused without `--engine modal` (exit 2, saying what to add).
