@@ -32,7 +32,7 @@ pub struct System {
     k_lower: LowerRows,
     /// M for products, where it is not lumped.
     m_lower: LowerRows,
-    /// The diagonal of M when M is diagonal (lumped masses, no rotary inertia coupling).
+    /// The diagonal of M when M is diagonal (lumped masses, no rotary inertia coupling, no coupled mass).
     pub m_lumped: Option<Vec<f64>>,
 }
 

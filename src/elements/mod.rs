@@ -956,6 +956,7 @@ mod tests {
             torsion: 0.01,
             rho: 2.5e-4,
             nsm: 0.0,
+            coupled_mass: false,
         };
         let g = Matrix3::new(4.3e6, 2.9e5, 0.0, 2.9e5, 2.8e6, 0.0, 0.0, 0.0, 5.7e5);
         let shell = shell::ShellSection {

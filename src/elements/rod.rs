@@ -2,8 +2,11 @@
 //!
 //! Formulation: linear shape functions (exact for uniform EA and GJ, so the element
 //! stiffness is exact and no quadrature is needed); axial stiffness EA/L along the
-//! element axis, torsion GJ/L about it. Mass is lumped half to each end on the
-//! translational DOFs (NASTRAN's default, no COUPMASS): (ρA + NSM)·L/2 per node.
+//! element axis, torsion GJ/L about it. Mass on the translational DOFs, m = (ρA +
+//! NSM)·L: lumped, m/2 at each end (NASTRAN's default), or coupled when the deck asks
+//! (PARAM COUPMASS, CPROD, CPTUBE): the consistent mass of linear shape functions,
+//! m/6 [2 1; 1 2] along each of the three directions alike, as NASTRAN-95 builds it
+//! (its rod routine's consistent mass matrix). No rotary inertia either way.
 //! Recovery: axial strain (e·(u2 − u1))/L, constant over the element; its resultants
 //! N = EA ε and T = GJ (e·(θ2 − θ1))/L.
 
@@ -25,6 +28,8 @@ pub struct RodSection {
     pub rho: f64,
     /// Non-structural mass per unit length.
     pub nsm: f64,
+    /// The mass coupled (consistent), not lumped.
+    pub coupled_mass: bool,
 }
 
 /// Unit axis and length from end 1 to end 2.
@@ -144,7 +149,17 @@ impl Kernel for Rod {
     }
     fn mass(&self) -> Vec<LocalMatrix> {
         let m = lumped_mass(self.x[0], self.x[1], &self.section);
-        vec![LocalMatrix::translational(&[m; 2])]
+        if !self.section.coupled_mass {
+            return vec![LocalMatrix::translational(&[m; 2])];
+        }
+        // (2m_end)/6 [2 1; 1 2] on each direction: m_end·2/3 and m_end/3.
+        let at: Vec<(usize, usize)> = (0..6).map(|i| (i / 3, i % 3)).collect();
+        let values = DMatrix::from_fn(6, 6, |i, j| match (i % 3 == j % 3, i / 3 == j / 3) {
+            (true, true) => 2.0 * m / 3.0,
+            (true, false) => m / 3.0,
+            _ => 0.0,
+        });
+        vec![LocalMatrix { at, values }]
     }
     fn strain_energy(&self, ue: &[f64]) -> f64 {
         strain_energy(self.x[0], self.x[1], &self.section, end(ue, 0), end(ue, 1))
@@ -202,6 +217,7 @@ mod tests {
         torsion: 6.14e-3,
         rho: 2.5e-4,
         nsm: 0.0,
+        coupled_mass: false,
     };
 
     /// Goal: the element is a spring EA/L along its axis and stress-free in rigid motion.

@@ -39,7 +39,7 @@ use crate::model::{apply, Functional, Model};
 /// The critical step 2/ω_max from the Gershgorin bound, or the DOF without mass.
 pub fn critical_step(model: &Model, sys: &System) -> Result<f64, SolveError> {
     let m = sys.m_lumped.as_ref().ok_or_else(|| SolveError::Explicit {
-        reason: "the mass matrix is not diagonal (rotary inertia coupling)".into(),
+        reason: "the mass matrix is not diagonal (rotary inertia coupling, or coupled mass)".into(),
     })?;
     if let Some(i) = m.iter().position(|&x| x <= 0.0) {
         return Err(SolveError::Explicit {

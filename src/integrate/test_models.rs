@@ -47,6 +47,7 @@ fn one_dof(mass: f64, spring: f64, v0: f64, hertz: Option<f64>) -> Model {
             torsion: 0.0,
             rho: 0.0,
             nsm: 0.0,
+            coupled_mass: false,
         };
         let x = [[0.0; 3], [1.0, 0.0, 0.0]];
         elements.push(Element::new(

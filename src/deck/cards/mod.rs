@@ -209,6 +209,9 @@ pub struct Bulk {
     /// PARAM WTMASS when the deck sets it, with its card: every mass of the deck
     /// (densities, non-structural and concentrated masses) has been multiplied by it.
     pub wtmass: Option<(f64, CardRef)>,
+    /// PARAM COUPMASS and the per-element CPxxx parameters as the deck sets them
+    /// (name upper-case, value, card): see [`Bulk::coupled_mass`].
+    pub mass_params: Vec<(String, i64, CardRef)>,
     /// How fields that COSMIC and MSC read differently were read: the reading, and
     /// on how many cards.
     pub readings: std::collections::BTreeMap<&'static str, usize>,
@@ -615,12 +618,28 @@ fn pieces<'a>(card: &'a RawCard, baror: Option<&RawCard>) -> Vec<std::borrow::Co
     }
 }
 
-/// PARAM: WTMASS, which scales every mass of the deck, and the damping parameters
+/// The parameters that choose coupled mass (NASTRAN-95 User's Manual, PARAM):
+/// COUPMASS for every element that has it, the others each for one kind (active only
+/// when COUPMASS is 0).
+pub const COUPLED_MASS_PARAMS: [&str; 11] = [
+    "COUPMASS", "CPBAR", "CPROD", "CPQUAD1", "CPQUAD2", "CPTRIA1", "CPTRIA2", "CPTUBE", "CPQDPLT", "CPTRPLT", "CPTRBSC",
+];
+
+/// PARAM: WTMASS, which scales every mass of the deck, COUPMASS and its per-element
+/// parameters ([`COUPLED_MASS_PARAMS`]), and the damping parameters
 /// ([`DampingParam`]) are read; any other is not used by impactlab and ignored with
 /// a warning.
 fn card_param(r: &mut Reader, b: &mut Bulk, card: &RawCard) {
     if let Some(p) = DampingParam::of_name(r.word(0, "N")) {
         card_damping_param(r, b, p);
+        return;
+    }
+    let name = r.text(0).to_ascii_uppercase();
+    if COUPLED_MASS_PARAMS.contains(&name.as_str()) {
+        let v = r.int(1, "V1");
+        if r.ok {
+            b.mass_params.push((name, v, r.at()));
+        }
         return;
     }
     if r.text(0).eq_ignore_ascii_case("WTMASS") {
@@ -639,6 +658,20 @@ fn card_param(r: &mut Reader, b: &mut Bulk, card: &RawCard) {
 }
 
 impl Bulk {
+    /// The PARAM card that asks for the coupled mass of the elements `param` governs
+    /// ("CPROD": CROD and CONROD, "CPTUBE": CTUBE, "CPBAR": CBAR, ...), as NASTRAN-95
+    /// reads them: a positive COUPMASS asks for it for every such element, a negative
+    /// one or none for lumped masses (the default), and COUPMASS = 0 leaves it to
+    /// `param`, positive for coupled (the last card of a name counts). `None`: lumped.
+    pub fn coupled_mass(&self, param: &str) -> Option<&CardRef> {
+        let last = |name: &str| self.mass_params.iter().rev().find(|(n, _, _)| n == name);
+        match last("COUPMASS")? {
+            (_, v, at) if *v > 0 => Some(at),
+            (_, 0, _) => last(param).filter(|(_, v, _)| *v > 0).map(|(_, _, at)| at),
+            _ => None,
+        }
+    }
+
     /// Multiplies every term of the mass by PARAM WTMASS, as NASTRAN does ("the terms
     /// of the structural mass matrix are multiplied by the value of this parameter"):
     /// the materials' densities, the properties' non-structural masses and the

@@ -179,11 +179,58 @@ pub(super) fn drilling_supports(num: &Numbering, geo: &Geometry, out: &mut Eleme
     }
 }
 
+/// What the deck's coupled-mass parameters do not do here, as warnings on their
+/// cards: a per-element parameter without COUPMASS = 0 is inactive (NASTRAN-95 reads
+/// it only then), and the coupled mass of a BAR (CBAR, CBEAM) or of COSMIC's QUAD1,
+/// QUAD2, TRIA1 and TRIA2 is not built: those keep their lumped mass, where NASTRAN
+/// would couple it. A rod's is built ([`crate::elements::rod`]).
+fn coupled_mass_notes(cx: &mut Ctx, b: &crate::deck::cards::Bulk) {
+    let coupmass = b
+        .mass_params
+        .iter()
+        .rev()
+        .find(|(n, _, _)| n == "COUPMASS")
+        .map(|p| p.1);
+    for (name, _, at) in b
+        .mass_params
+        .iter()
+        .filter(|(n, _, _)| n != "COUPMASS" && coupmass != Some(0))
+    {
+        cx.warn(at.error(format!(
+            "PARAM {name} is read only when PARAM COUPMASS is 0 ({}): ignored",
+            coupmass.map_or("the deck sets none".to_string(), |v| format!("the deck's is {v}"))
+        )));
+    }
+    let lumped_here = |c: &Connection| match (c.kind.build, c.property_card) {
+        (Build::Bar(_), _) => Some("CPBAR"),
+        (_, Some("PQUAD1")) => Some("CPQUAD1"),
+        (_, Some("PQUAD2")) => Some("CPQUAD2"),
+        (_, Some("PTRIA1")) => Some("CPTRIA1"),
+        (_, Some("PTRIA2")) => Some("CPTRIA2"),
+        _ => None,
+    };
+    for c in &b.elements {
+        let Some(param) = lumped_here(c) else { continue };
+        if let Some(at) = b.coupled_mass(param) {
+            let card = if param == "CPBAR" {
+                c.kind.card.to_string()
+            } else {
+                format!("C{}", &param[2..])
+            };
+            cx.warn(at.error(format!(
+                "coupled mass is asked for, and impactlab builds it for CROD, CONROD and CTUBE only: this deck's \
+                 {card} elements keep their lumped mass (NASTRAN would couple it)"
+            )));
+        }
+    }
+}
+
 /// The element cards of [`crate::elements::KINDS`], kind by kind in the table's
 /// order and each in deck order, with their properties and materials resolved and
 /// their frames (see [`Placement`]).
 pub(super) fn connected(cx: &mut Ctx, deck: &Deck, num: &Numbering, geo: &Geometry, out: &mut Elements) {
     let b = &deck.bulk;
+    coupled_mass_notes(cx, b);
     let mut props = Properties::new(cx, b);
     for kind in &crate::elements::KINDS {
         for c in b.elements.iter().filter(|c| c.kind.card == kind.card) {

@@ -107,6 +107,10 @@ impl<'d> Properties<'d> {
             torsion: p.j,
             rho: m.rho,
             nsm: p.nsm,
+            coupled_mass: self
+                .bulk
+                .coupled_mass(if c.kind.card == "CTUBE" { "CPTUBE" } else { "CPROD" })
+                .is_some(),
         })
     }
 
