@@ -352,9 +352,9 @@ pub fn cutoff(model: &Model, params: &ModalParams) -> Result<(f64, String), RunE
 
 /// Reduces a prepared model (see the module's text), in at most `budget` bytes
 /// besides the run's system and records. Its storage is vectors over the structure's
-/// DOFs: j Lanczos vectors, with the m modes as they are formed (j + m), then T and
-/// its reordered copy (2p, p = m + residual vectors, m ≤ j); so the extraction may
-/// store half the budget in Lanczos vectors.
+/// DOFs: j Lanczos vectors, with the m modes as they are formed (j + m), then T as it
+/// is reordered and turned, two copies at a time (2p, p = m + residual vectors,
+/// m ≤ j); so the extraction may store half the budget in Lanczos vectors.
 pub fn reduce(model: &Model, sys: &System, params: &ModalParams, budget: Option<u64>) -> Result<Reduction, RunError> {
     reduce_at(model, sys, params, cutoff(model, params)?, budget)
 }
@@ -551,8 +551,9 @@ pub fn reduce_at(
         .chain((0..p).filter(|j| !pivots.contains(j)))
         .collect();
     let mut columns = {
+        let v = columns;
         let mut t = Columns::new(ns);
-        order.iter().for_each(|&j| t.push(columns.col(j)));
+        order.iter().for_each(|&j| t.push(v.col(j)));
         t
     };
     // The reduced coordinates: the impactor's DOFs, then T's columns.
