@@ -632,13 +632,13 @@ pub fn reduce_at(
     // M_r become arrowheads (diagonal but for the impactor's and the boundary's rows),
     // so that a step costs O(p·nb), not O(p²).
     let first = o + boundary.len();
+    let massless_vector =
+        || RunError::Engine("the reduced mass matrix is not positive definite: a basis vector carries no mass".into());
     let (lambda, x) = held_modes(
         &k_r.view((first, first), (nr - first, nr - first)).into_owned(),
         &m_r.view((first, first), (nr - first, nr - first)).into_owned(),
     )
-    .ok_or_else(|| {
-        RunError::Engine("the reduced mass matrix is not positive definite: a basis vector carries no mass".into())
-    })?;
+    .ok_or_else(massless_vector)?;
     let ni = nr - first;
     {
         let mut turned = faer::Mat::<f64>::zeros(ns, ni);
@@ -684,9 +684,11 @@ pub fn reduce_at(
     // A full vector x on the coordinates: the impactor's entries as they are (its
     // block is not coupled to the structure's), the structure's projected,
     // M_r⁻¹TᵀMx; zero stays zero.
-    let ms = m_r.view((o, o), (p, p)).into_owned().cholesky().ok_or_else(|| {
-        RunError::Engine("the reduced mass matrix is not positive definite: a basis vector carries no mass".into())
-    })?;
+    let ms = m_r
+        .view((o, o), (p, p))
+        .into_owned()
+        .cholesky()
+        .ok_or_else(massless_vector)?;
     let project = |x: &[f64]| -> Vec<f64> {
         let mut q: Vec<f64> = own.iter().map(|&i| x[i]).collect();
         let xs: Vec<f64> = structure.iter().map(|&i| x[i]).collect();

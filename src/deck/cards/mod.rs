@@ -664,12 +664,20 @@ impl Bulk {
     /// one or none for lumped masses (the default), and COUPMASS = 0 leaves it to
     /// `param`, positive for coupled (the last card of a name counts). `None`: lumped.
     pub fn coupled_mass(&self, param: &str) -> Option<&CardRef> {
-        let last = |name: &str| self.mass_params.iter().rev().find(|(n, _, _)| n == name);
-        match last("COUPMASS")? {
-            (_, v, at) if *v > 0 => Some(at),
-            (_, 0, _) => last(param).filter(|(_, v, _)| *v > 0).map(|(_, _, at)| at),
+        match self.mass_param("COUPMASS")? {
+            (v, at) if v > 0 => Some(at),
+            (0, _) => self.mass_param(param).filter(|(v, _)| *v > 0).map(|(_, at)| at),
             _ => None,
         }
+    }
+
+    /// The value and card of the deck's last PARAM `name` of [`COUPLED_MASS_PARAMS`].
+    pub fn mass_param(&self, name: &str) -> Option<(i64, &CardRef)> {
+        self.mass_params
+            .iter()
+            .rev()
+            .find(|(n, _, _)| n == name)
+            .map(|(_, v, at)| (*v, at))
     }
 
     /// Multiplies every term of the mass by PARAM WTMASS, as NASTRAN does ("the terms

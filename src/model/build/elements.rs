@@ -185,12 +185,10 @@ pub(super) fn drilling_supports(num: &Numbering, geo: &Geometry, out: &mut Eleme
 /// QUAD2, TRIA1 and TRIA2 is not built: those keep their lumped mass, where NASTRAN
 /// would couple it. A rod's is built ([`crate::elements::rod`]).
 fn coupled_mass_notes(cx: &mut Ctx, b: &crate::deck::cards::Bulk) {
-    let coupmass = b
-        .mass_params
-        .iter()
-        .rev()
-        .find(|(n, _, _)| n == "COUPMASS")
-        .map(|p| p.1);
+    if b.mass_params.is_empty() {
+        return;
+    }
+    let coupmass = b.mass_param("COUPMASS").map(|(v, _)| v);
     for (name, _, at) in b
         .mass_params
         .iter()
@@ -201,22 +199,19 @@ fn coupled_mass_notes(cx: &mut Ctx, b: &crate::deck::cards::Bulk) {
             coupmass.map_or("the deck sets none".to_string(), |v| format!("the deck's is {v}"))
         )));
     }
+    // The parameter governing each such element, and the card it was written as (a
+    // COSMIC plate is read as a CQUAD4 or CTRIA3).
     let lumped_here = |c: &Connection| match (c.kind.build, c.property_card) {
-        (Build::Bar(_), _) => Some("CPBAR"),
-        (_, Some("PQUAD1")) => Some("CPQUAD1"),
-        (_, Some("PQUAD2")) => Some("CPQUAD2"),
-        (_, Some("PTRIA1")) => Some("CPTRIA1"),
-        (_, Some("PTRIA2")) => Some("CPTRIA2"),
+        (Build::Bar(_), _) => Some(("CPBAR", c.kind.card)),
+        (_, Some("PQUAD1")) => Some(("CPQUAD1", "CQUAD1")),
+        (_, Some("PQUAD2")) => Some(("CPQUAD2", "CQUAD2")),
+        (_, Some("PTRIA1")) => Some(("CPTRIA1", "CTRIA1")),
+        (_, Some("PTRIA2")) => Some(("CPTRIA2", "CTRIA2")),
         _ => None,
     };
     for c in &b.elements {
-        let Some(param) = lumped_here(c) else { continue };
+        let Some((param, card)) = lumped_here(c) else { continue };
         if let Some(at) = b.coupled_mass(param) {
-            let card = if param == "CPBAR" {
-                c.kind.card.to_string()
-            } else {
-                format!("C{}", &param[2..])
-            };
             cx.warn(at.error(format!(
                 "coupled mass is asked for, and impactlab builds it for CROD, CONROD and CTUBE only: this deck's \
                  {card} elements keep their lumped mass (NASTRAN would couple it)"
