@@ -161,12 +161,12 @@ pub enum SolveError {
     /// A Lanczos extraction lost roots it had converged: round-off has overtaken the
     /// recurrence, whose later Ritz values are not the structure's.
     #[error(
-        "the Lanczos extraction broke down after {steps} steps: it had converged {seen} roots in the range asked \
+        "the Lanczos extraction broke down after {vectors} Lanczos vectors: it had converged {seen} roots in the range asked \
          for and ends with {found}; ask for fewer roots (a lower cutoff, --modes-up-to, or a smaller ND)"
     )]
     Lanczos {
-        /// Lanczos steps taken.
-        steps: usize,
+        /// Lanczos vectors formed.
+        vectors: usize,
         /// Roots in the range accepted at the end.
         found: usize,
         /// The most roots in the range accepted at an earlier test.

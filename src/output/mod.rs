@@ -512,7 +512,7 @@ pub fn modal_summary(s: &crate::run::modes::ModalSolution) -> String {
         s.units.time.clone()
     };
     let mut out = format!(
-        "{}: normal modes by {}, {}; {} DOF solved ({} held), {} Lanczos steps\n  mode   eigenvalue     cycles per {per}\n",
+        "{}: normal modes by {}, {}; {} DOF solved ({} held), {} Lanczos vectors\n  mode   eigenvalue     cycles per {per}\n",
         s.deck,
         s.method,
         s.roots_asked,

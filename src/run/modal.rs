@@ -39,7 +39,9 @@
 use super::direct::{record, Fields};
 use super::{linear_outputs, Engine, RunError, RunOptions, RunResult};
 use crate::assembly::System;
-use crate::eigen::{factorise, highest_root_scale, lanczos, orthogonalise, Columns, LanczosParams, Roots};
+use crate::eigen::{
+    column, factorise, highest_root_scale, lanczos_with, orthogonalise_columns, Columns, LanczosParams, Roots,
+};
 use crate::integrate::Scheme;
 use crate::ledger::Ledger;
 use crate::model::{Contact, DofLabel, Model};
@@ -110,7 +112,8 @@ pub struct Truncation {
     /// The same captured by the reduced model: Σ x_c²/λ over its own elastic
     /// eigenpairs (K_r x = λ M_r x), against the same whole.
     pub flexibility_reduced: f64,
-    /// Lanczos steps the modes took.
+    /// Lanczos vectors the modes took (a step of the block recurrence forms four; the
+    /// key keeps its name from when a step formed one).
     pub lanczos_steps: usize,
     /// Seconds for the reduction: modes, residual vectors, the reduced system.
     pub reduction_s: f64,
@@ -404,7 +407,9 @@ pub fn reduce_at(
         max_vectors: budget.map(|b| (b / 2 / (8 * ns.max(1) as u64)) as usize),
         ..Default::default()
     };
-    let mut pairs = lanczos(&s_sys, &labels, &roots, &lanczos_params).map_err(|e| match e {
+    // K − σM, factorised once for the extraction and the residual vectors.
+    let (mut factor, shift) = factorise(&s_sys, &labels)?;
+    let mut pairs = lanczos_with(&s_sys, &mut factor, shift, &roots, &lanczos_params).map_err(|e| match e {
         crate::integrate::SolveError::Memory { what, bytes } => RunError::Input(format!(
             "the modal reduction (modes up to {cut:.4e} cycles per the deck's time unit) is over the memory \
              limit: {what}, {:.2} GiB, half of what the limit leaves beside the system and the records; lower \
@@ -457,7 +462,6 @@ pub fn reduce_at(
     let with_mass = md.iter().filter(|&&m| m > 0.0).count();
     let modes = kept.len();
     {
-        let (mut factor, _) = factorise(&s_sys, &labels)?;
         for &b in &boundary {
             let bl = local[b].expect("boundary DOFs are the structure's");
             // (I − MΦΦᵀ) e_b: the modes' share of the load taken out.
@@ -484,14 +488,18 @@ pub fn reduce_at(
                 }
                 // M-orthogonal to the modes and the residual vectors before it.
                 let size = dot(&psi, &m_mul(&psi)).max(0.0).sqrt();
-                orthogonalise(&mut psi, &kept, &m_mul);
-                let left = dot(&psi, &m_mul(&psi)).max(0.0).sqrt();
+                let m_psi = orthogonalise_columns(
+                    faer::MatMut::from_column_major_slice_mut(&mut psi, ns, 1),
+                    &kept,
+                    &m_mul,
+                );
+                let left = dot(&psi, column(m_psi.as_ref(), 0)).max(0.0).sqrt();
                 if left <= 1e-8 * size {
                     break;
                 }
                 psi.iter_mut().for_each(|p| *p /= left);
                 // The next of the chain: the structure's response to this shape's inertia.
-                load = m_mul(&psi);
+                load = column(m_psi.as_ref(), 0).iter().map(|x| x / left).collect();
                 kept.push(&psi);
                 residual_count += 1;
             }
@@ -767,7 +775,7 @@ pub fn reduce_at(
         },
         flexibility_by_modes: by_modes / whole,
         flexibility_reduced: reduced_flexibility / whole,
-        lanczos_steps: pairs.steps,
+        lanczos_steps: pairs.lanczos_vectors,
         reduction_s: t0.elapsed().as_secs_f64(),
         modes_s: pairs.time.as_secs_f64(),
     };

@@ -78,7 +78,8 @@ pub struct ModalSolution {
     pub autospc: usize,
     /// The Lanczos shift σ (0, or below the rigid-body roots).
     pub shift: f64,
-    /// Lanczos steps taken.
+    /// Lanczos vectors formed (a step of the block recurrence forms four; the key keeps
+    /// its name from when a step formed one).
     pub lanczos_steps: usize,
     /// The roots found, ascending.
     pub modes: Vec<Mode>,
@@ -334,7 +335,7 @@ fn solve_for(
             dofs: kept.len(),
             autospc: n - kept.len(),
             shift: pairs.shift,
-            lanczos_steps: pairs.steps,
+            lanczos_steps: pairs.lanczos_vectors,
             modes,
             shapes,
             timing: ModalTiming {
