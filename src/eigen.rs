@@ -583,11 +583,6 @@ impl Columns {
         self.data.extend_from_slice(v);
     }
 
-    /// The last vector.
-    pub fn last(&self) -> Option<&[f64]> {
-        (!self.is_empty()).then(|| &self.data[self.data.len() - self.n..])
-    }
-
     /// Vector `i`.
     pub fn col(&self, i: usize) -> &[f64] {
         &self.data[i * self.n..(i + 1) * self.n]
