@@ -405,22 +405,14 @@ fn next_block(
     for c in 0..width {
         let (mut v, mut mv) = (column(w.as_ref(), c).to_vec(), column(mw.as_ref(), c).to_vec());
         let before = dot(&v, &mv);
-        let within = |v: &mut [f64], mv: &mut [f64], b: &mut DMatrix<f64>| {
-            for (r, (u, mu)) in out.iter().enumerate() {
-                let h = dot(u, mv);
-                b[(r, c)] += h;
-                v.iter_mut().zip(u).for_each(|(x, y)| *x -= h * y);
-                mv.iter_mut().zip(mu).for_each(|(x, y)| *x -= h * y);
-            }
-        };
-        within(&mut v, &mut mv, &mut b);
+        remove_block(&mut v, &mut mv, &out, |r, h| b[(r, c)] += h);
         // Kahan's test over all vectors before this one: where the block's own
         // removed more than half of the squared norm, what is left is again made
         // orthogonal to the stored vectors (it has their round-off) and the block's.
         if dot(&v, &mv) < 0.5 * before {
             let m = orthogonalise_columns(faer::MatMut::from_column_major_slice_mut(&mut v, n, 1), q, m_mul);
             mv = column(m.as_ref(), 0).to_vec();
-            within(&mut v, &mut mv, &mut b);
+            remove_block(&mut v, &mut mv, &out, |r, h| b[(r, c)] += h);
         }
         let norm = dot(&v, &mv).max(0.0).sqrt();
         if norm > 1e-10 * norm_scale && norm_scale > 0.0 {
@@ -451,6 +443,23 @@ fn next_block(
     (block, b, taken)
 }
 
+/// Takes from v (with its M-image mv) its M-components along the block's vectors
+/// (each with its M-image), one after another (modified Gram-Schmidt), telling
+/// `coefficient` each one removed by the vector's index.
+fn remove_block(
+    v: &mut [f64],
+    mv: &mut [f64],
+    block: &[(Vec<f64>, Vec<f64>)],
+    mut coefficient: impl FnMut(usize, f64),
+) {
+    for (r, (u, mu)) in block.iter().enumerate() {
+        let h = dot(u, mv);
+        coefficient(r, h);
+        v.iter_mut().zip(u).for_each(|(x, y)| *x -= h * y);
+        mv.iter_mut().zip(mu).for_each(|(x, y)| *x -= h * y);
+    }
+}
+
 /// A fresh start vector M-orthonormal to `q` and `block`, with its M-image, or `None`
 /// when three in turn have nothing left (see [`next_block`]).
 fn fresh_vector(
@@ -471,11 +480,7 @@ fn fresh_vector(
         for _ in 0..2 {
             let m = orthogonalise_columns(faer::MatMut::from_column_major_slice_mut(&mut v, n, 1), q, m_mul);
             mv = column(m.as_ref(), 0).to_vec();
-            for (u, mu) in block {
-                let h = dot(u, &mv);
-                v.iter_mut().zip(u).for_each(|(x, y)| *x -= h * y);
-                mv.iter_mut().zip(mu).for_each(|(x, y)| *x -= h * y);
-            }
+            remove_block(&mut v, &mut mv, block, |_, _| {});
         }
         let left = dot(&v, &mv).max(0.0).sqrt();
         if left > 1e-8 * size {
