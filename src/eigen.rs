@@ -49,13 +49,19 @@
 //! eigenvalue is then exact to about the square of that (Parlett, The Symmetric
 //! Eigenvalue Problem, 13-2). The roots asked for are taken when every Ritz value below
 //! them has been accepted, and again at the next test (ten or more vectors later) with
-//! the same values, since a root the start block hardly excites may converge late. A
-//! test reduces the band T to tridiagonal by rotations (O(j² p), p the block's width)
-//! and takes the values by implicit QL, both applied to the last block's rows of the
-//! eigenvectors only. The Ritz vectors need their last components to round-off of θ:
-//! they are those of the same tridiagonal (its eigenvectors by implicit QR) rotated
-//! back; a dense solver on T gave vectors as accurate in norm but residuals no better
-//! than 1e-8 of θ, under which it accepted 102 of the paper's plate's 163 roots. Cost:
+//! the same values, since a root the start block hardly excites may converge late. The
+//! next test comes no sooner than as many vectors as Ritz values in the range are not
+//! yet accepted (each needs a vector or more: the paper's plate's 372 vectors take 12
+//! tests, not 31). A test reduces the band T to tridiagonal by rotations (O(j² p), p
+//! the block's width) and takes the values by implicit QL, both applied to the last
+//! block's rows of the eigenvectors only. The Ritz vectors need their last components
+//! to round-off of θ: they are those of the same tridiagonal (its eigenvectors by
+//! implicit QR) rotated back; a dense solver on T gave vectors as accurate in norm but
+//! residuals no better than 1e-8 of θ, under which it accepted 102 of the paper's
+//! plate's 163 roots. The vectors of the first block sample the orthogonality that
+//! full re-orthogonalisation keeps: each new block is checked against them, and past
+//! √ε the extraction stops with an error (a fault in the re-orthogonalisation: without
+//! it, it ran on without end, forming copies of the converged roots). Cost:
 //! one block solve and the block's M products a step, 4 n j operations to
 //! re-orthogonalise a block at j vectors (as two matrix products), the tests, the Ritz
 //! vectors as one matrix product at the end, and the j vectors of n stored. Blocks
@@ -91,7 +97,8 @@ pub struct LanczosParams {
     pub tolerance: f64,
     /// Lanczos vectors between convergence tests, at least (a test costs O(j² p) at j
     /// vectors in blocks of p, against the O(n j p) of the block's
-    /// re-orthogonalisation).
+    /// re-orthogonalisation), and at least as many as the Ritz values that may be
+    /// wanted roots and are not yet accepted ([`pending`]).
     pub test_every: usize,
     /// At most this many Lanczos vectors stored (n doubles each): an extraction that
     /// has not converged when it reaches them fails ([`SolveError::Memory`]).
@@ -256,12 +263,27 @@ pub fn lanczos_with(
         sub.push(b);
         block = next;
         let j = q.len();
+        // The new block against the first, a sample of the orthogonality that full
+        // re-orthogonalisation keeps at round-off (at most 3e-16 on every model of the
+        // tests): past √ε (Simon's semi-orthogonality, under which the Ritz values are
+        // still as accurate) the recurrence has lost it, and would run on forming
+        // copies of the roots it has converged.
+        let loss = (0..block.q.ncols())
+            .flat_map(|c| (0..first.min(j)).map(move |i| (i, c)))
+            .map(|(i, c)| dot(q.col(i), column(block.mq.as_ref(), c)).abs())
+            .fold(0.0_f64, f64::max);
+        if loss > f64::EPSILON.sqrt() {
+            return Err(SolveError::Orthogonality { vectors: j, loss });
+        }
         let spanned = block.q.ncols() == 0;
         let full = params.max_vectors.is_some_and(|m| j + block.q.ncols() > m) && !spanned;
         if j >= next_test || full || spanned {
-            next_test = j + params.test_every.max(1);
             let (theta, residual) = block_ritz_values(&diag, &sub);
             let (values, accepted) = ritz_values(&theta, &residual, spanned, shift, roots, params);
+            next_test = j + params
+                .test_every
+                .max(1)
+                .max(pending(&theta, &residual, shift, roots, params, &accepted));
             seen = seen.max(accepted.len());
             if let Some(v) = values {
                 if spanned || last.as_ref().is_some_and(|l| same(l, &v, params.tolerance)) {
@@ -666,6 +688,27 @@ pub fn orthogonalise_columns(
         before = after;
     }
     mw
+}
+
+/// The Ritz values that may yet be wanted roots (in the range asked for, not more than
+/// the count asked for less those `accepted`) and are not accepted. Each needs a Lanczos
+/// vector or more to converge (the paper's plate: two a root near its end), and there
+/// are no more of them than roots in the range (Cauchy's interlacing: T's k-th largest
+/// θ is at most A's), so a test that many vectors on, and no sooner, skips tests that
+/// cannot succeed and comes at most that many vectors after the extraction converged.
+fn pending(
+    theta: &[f64],
+    residual: &[f64],
+    shift: f64,
+    roots: &Roots,
+    params: &LanczosParams,
+    accepted: &[(f64, usize)],
+) -> usize {
+    let floor = roots.below.map_or(0.0, |b| 1.0 / (b - shift));
+    let left = (0..theta.len())
+        .filter(|&i| theta[i] > 0.0 && theta[i] >= floor && residual[i] > params.tolerance * theta[i])
+        .count();
+    roots.count.map_or(left, |c| left.min(c.saturating_sub(accepted.len())))
 }
 
 /// The same wanted roots, to `tol` relative.

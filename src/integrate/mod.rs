@@ -172,6 +172,19 @@ pub enum SolveError {
         /// The most roots in the range accepted at an earlier test.
         seen: usize,
     },
+    /// A Lanczos extraction's vectors are no longer M-orthogonal: a fault in its
+    /// re-orthogonalisation, not a hard model.
+    #[error(
+        "the Lanczos vectors have lost their orthogonality: after {vectors} Lanczos vectors the newest is {loss:.1e} \
+         off M-orthogonal to the first (full re-orthogonalisation keeps it at round-off), so copies of the converged \
+         roots would follow"
+    )]
+    Orthogonality {
+        /// Lanczos vectors formed.
+        vectors: usize,
+        /// The largest |q_iᵀ M q_j| of the newest vectors against the first.
+        loss: f64,
+    },
 }
 
 /// The state after a step, as observers see it.
