@@ -468,7 +468,7 @@ fn next_block(
 /// Takes from v (with its M-image mv) its M-components along the block's vectors
 /// (each with its M-image), one after another (modified Gram-Schmidt), telling
 /// `coefficient` each one removed by the vector's index.
-fn remove_block(
+pub fn remove_block(
     v: &mut [f64],
     mv: &mut [f64],
     block: &[(Vec<f64>, Vec<f64>)],
