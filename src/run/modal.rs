@@ -597,8 +597,9 @@ pub fn reduce_at(
     };
     let (mut k_r, mut m_r, mut c_r) = (own_block(&sys.k), own_block(&sys.m), own_block(&sys.c));
     // TᵀKT and TᵀMT: the sparse products of a block of columns, then a matrix product
-    // each (symmetrised: the two triangles of a product differ by round-off). Blocks
-    // of 32 columns keep the products' storage small beside T's.
+    // each for the lower triangle only (the block's rows from its first column down),
+    // mirrored: half the products of the whole, and symmetric. Blocks of 32 columns
+    // keep the products' storage small beside T's.
     let o = own.len();
     // TᵀCT likewise, for a damped structure (an empty p × 0 product otherwise).
     let damped = s_sys.damped();
@@ -623,9 +624,9 @@ pub fn reduce_at(
         }
         for (x, xt) in products {
             matmul(
-                x.as_mut().subcols_mut(first, width),
+                x.as_mut().submatrix_mut(first, first, p - first, width),
                 faer::Accum::Replace,
-                columns.mat().transpose(),
+                columns.mat().subcols(first, p - first).transpose(),
                 xt.mat(),
                 1.0,
                 faer::Par::Seq,
@@ -639,7 +640,7 @@ pub fn reduce_at(
     for (x_r, x) in reduced {
         for a in 0..p {
             for b in 0..=a {
-                let v = 0.5 * (x[(a, b)] + x[(b, a)]);
+                let v = x[(a, b)];
                 x_r[(o + a, o + b)] = v;
                 x_r[(o + b, o + a)] = v;
             }
