@@ -54,14 +54,15 @@
 //! yet accepted (each needs a vector or more: the paper's plate's 372 vectors take 12
 //! tests, not 31). A test reduces the band T to tridiagonal by rotations (O(j² p), p
 //! the block's width) and takes the values by implicit QL, both applied to the last
-//! block's rows of the eigenvectors only. The Ritz vectors need their last components
-//! to round-off of θ: they are those of the same tridiagonal (its eigenvectors by
-//! implicit QR) rotated back; a dense solver on T gave vectors as accurate in norm but
-//! residuals no better than 1e-8 of θ, under which it accepted 102 of the paper's
-//! plate's 163 roots. The vectors of the first block sample the orthogonality that
-//! full re-orthogonalisation keeps: each new block is checked against them, and past
-//! √ε the extraction stops with an error (a fault in the re-orthogonalisation: without
-//! it, it ran on without end, forming copies of the converged roots). Cost:
+//! block's rows of the eigenvectors only; the roots taken at the end are those the
+//! last test accepted. Their vectors of T are the tridiagonal's, by inverse iteration
+//! for the wanted values alone (O(j) a vector, clusters kept orthogonal), rotated
+//! back; nalgebra's dense QR formed all j of them (O(j³), 6 % of the plate's modal
+//! run). Each root's vector is returned with its largest entry positive. The vectors
+//! of the first block sample the orthogonality that full re-orthogonalisation keeps:
+//! each new block is checked against them, and past √ε the extraction stops with an
+//! error (a fault in the re-orthogonalisation: without it, it ran on without end,
+//! forming copies of the converged roots). Cost:
 //! one block solve and the block's M products a step, 4 n j operations to
 //! re-orthogonalise a block at j vectors (as two matrix products), the tests, the Ritz
 //! vectors as one matrix product at the end, and the j vectors of n stored. Blocks
@@ -120,7 +121,8 @@ impl Default for LanczosParams {
 pub struct Eigenpairs {
     /// The eigenvalues λ = ω², ascending.
     pub values: Vec<f64>,
-    /// Their eigenvectors over the solved DOFs, each of unit generalised mass φᵀMφ.
+    /// Their eigenvectors over the solved DOFs, each of unit generalised mass φᵀMφ and
+    /// its largest entry positive.
     pub vectors: Vec<Vec<f64>>,
     /// The backward error of each: ‖Kφ − λMφ‖ / ((‖K‖ + |λ|‖M‖)‖φ‖), the norms
     /// estimated by the largest diagonal terms (a rigid-body root's is not divided by
@@ -278,7 +280,7 @@ pub fn lanczos_with(
         let spanned = block.q.ncols() == 0;
         let full = params.max_vectors.is_some_and(|m| j + block.q.ncols() > m) && !spanned;
         if j >= next_test || full || spanned {
-            let (theta, residual) = block_ritz_values(&diag, &sub);
+            let (theta, residual, _) = block_ritz_values(&diag, &sub, false);
             let (values, accepted) = ritz_values(&theta, &residual, spanned, shift, roots, params);
             next_test = j + params
                 .test_every
@@ -355,7 +357,10 @@ pub fn lanczos_with(
         }
         let mut x: Vec<f64> = column(ritz.as_ref(), c % 32).to_vec();
         let mx = m_mul(&x);
-        let g = dot(&x, &mx).sqrt();
+        // Its largest entry (the first of equal size) positive: a root's vector does
+        // not depend on the start vectors or the solver's internals, but for round-off.
+        let largest = x.iter().fold(0.0_f64, |a, &b| if b.abs() > a.abs() { b } else { a });
+        let g = dot(&x, &mx).sqrt().copysign(largest);
         x.iter_mut().for_each(|v| *v /= g);
         let mut kx = vec![0.0; n];
         sys.k_mul(&x, &mut kx);
@@ -781,12 +786,21 @@ fn block_tridiagonal(diag: &[DMatrix<f64>], sub: &[DMatrix<f64>]) -> Band {
     t
 }
 
+/// T's reduction to tridiagonal: its diagonal, its sub-diagonal and (when asked) the
+/// rotations of [`band_to_tridiagonal`].
+struct Reduced {
+    alpha: Vec<f64>,
+    beta: Vec<f64>,
+    rotations: Vec<(usize, f64, f64)>,
+}
+
 /// The Ritz values θ of T and the residual of each Ritz pair, ‖B_{k+1} s_k‖ (s_k the
 /// last block's components of its unit eigenvector of T): T reduced to tridiagonal by
 /// [`band_to_tridiagonal`], then [`tridiagonal_values`], with the reductions'
 /// rotations applied to the last block's rows of the eigenvector matrix only. O(j² p)
-/// for j vectors in blocks of p, where a dense solve is O(j³).
-fn block_ritz_values(diag: &[DMatrix<f64>], sub: &[DMatrix<f64>]) -> (Vec<f64>, Vec<f64>) {
+/// for j vectors in blocks of p, where a dense solve is O(j³). Also the reduction,
+/// its rotations recorded when `record`.
+fn block_ritz_values(diag: &[DMatrix<f64>], sub: &[DMatrix<f64>], record: bool) -> (Vec<f64>, Vec<f64>, Reduced) {
     let mut t = block_tridiagonal(diag, sub);
     let j = t.j;
     let p = diag.last().map_or(0, |a| a.nrows());
@@ -797,7 +811,8 @@ fn block_ritz_values(diag: &[DMatrix<f64>], sub: &[DMatrix<f64>]) -> (Vec<f64>, 
             e
         })
         .collect();
-    let (alpha, beta) = band_to_tridiagonal(&mut t, &mut rows, None);
+    let mut rotations = Vec::new();
+    let (alpha, beta) = band_to_tridiagonal(&mut t, &mut rows, record.then_some(&mut rotations));
     let theta = tridiagonal_values(&alpha, &beta, &mut rows);
     let b = sub.last().expect("a block was taken");
     let residual = (0..j)
@@ -808,15 +823,17 @@ fn block_ritz_values(diag: &[DMatrix<f64>], sub: &[DMatrix<f64>]) -> (Vec<f64>, 
                 .sqrt()
         })
         .collect();
-    (theta, residual)
+    (theta, residual, Reduced { alpha, beta, rotations })
 }
 
-/// The wanted roots λ = σ + 1/θ of T, each with its unit eigenvector of T, taken as
-/// [`ritz_values`] takes them: T reduced to tridiagonal ([`band_to_tridiagonal`]), the
-/// tridiagonal's eigenvectors by nalgebra's implicit QR, and the reduction's rotations
-/// applied to them. (faer's dense solver on T itself gives vectors as accurate in
-/// norm, but their last components, which the residual reads, only to about 1e-8 of
-/// θ on the paper's plate: it accepted 102 of its 163 converged roots.)
+/// The wanted roots λ = σ + 1/θ of T, each with its unit eigenvector of T: the Ritz
+/// values and residuals of [`block_ritz_values`] (those the last test read), taken as
+/// [`ritz_values`] takes them; the tridiagonal's eigenvectors for the wanted θ alone by
+/// [`tridiagonal_vectors`], and the reduction's rotations applied to them. (nalgebra's
+/// dense solver on the tridiagonal formed all j eigenvectors, O(j³), for the wanted
+/// ones; faer's dense solver on T itself gave vectors as accurate in norm, but their
+/// last components, which the residual reads, only to about 1e-8 of θ on the paper's
+/// plate: it accepted 102 of its 163 converged roots.)
 fn ritz_pairs(
     diag: &[DMatrix<f64>],
     sub: &[DMatrix<f64>],
@@ -825,55 +842,132 @@ fn ritz_pairs(
     roots: &Roots,
     params: &LanczosParams,
 ) -> Pairs {
-    let mut t = block_tridiagonal(diag, sub);
-    let j = t.j;
-    if j == 0 {
+    if diag.is_empty() {
         return Vec::new();
     }
-    let mut rotations = Vec::new();
-    let (alpha, beta) = band_to_tridiagonal(&mut t, &mut [], Some(&mut rotations));
-    let e = DMatrix::from_fn(j, j, |r, c| match r.abs_diff(c) {
-        0 => alpha[r],
-        1 => beta[r.min(c)],
-        _ => 0.0,
-    })
-    .symmetric_eigen();
-    let b = sub.last().expect("a block was taken");
-    let p = b.ncols();
-    // T's eigenvectors Z u: the reduction's rotations applied to u in reverse.
-    let vector = |i: usize| {
-        let mut s: Vec<f64> = e.eigenvectors.column(i).iter().copied().collect();
-        for &(p, c, sn) in rotations.iter().rev() {
-            let (x, y) = (s[p], s[p + 1]);
-            s[p] = c * x - sn * y;
-            s[p + 1] = sn * x + c * y;
-        }
-        s
-    };
-    let theta: Vec<f64> = e.eigenvalues.iter().copied().collect();
-    // The vectors and residuals of the Ritz values that can be wanted: those of roots
-    // up to the cutoff (θ at least its own), or all when there is none.
-    let floor = roots.below.map_or(0.0, |b| (1.0 - 1e-6) / (b - shift));
-    let mut vectors: Vec<Option<Vec<f64>>> = (0..j).map(|_| None).collect();
-    let residual: Vec<f64> = (0..j)
-        .map(|i| {
-            if theta[i] < floor {
-                return f64::INFINITY;
-            }
-            let s = vector(i);
-            let r = (0..b.nrows())
-                .map(|r| (0..p).map(|c| b[(r, c)] * s[j - p + c]).sum::<f64>().powi(2))
-                .sum::<f64>()
-                .sqrt();
-            vectors[i] = Some(s);
-            r
-        })
-        .collect();
+    let (theta, residual, t) = block_ritz_values(diag, sub, true);
     let (_, wanted) = ritz_values(&theta, &residual, exhausted, shift, roots, params);
+    let values: Vec<f64> = wanted.iter().map(|&(_, i)| theta[i]).collect();
+    let vectors = tridiagonal_vectors(&t.alpha, &t.beta, &values);
     wanted
         .into_iter()
-        .map(|(l, i)| (l, vectors[i].take().expect("a wanted root's vector was formed")))
+        .zip(vectors)
+        .map(|((lambda, _), mut s)| {
+            // T's eigenvector Z u: the reduction's rotations applied to u in reverse.
+            for &(p, c, sn) in t.rotations.iter().rev() {
+                let (x, y) = (s[p], s[p + 1]);
+                s[p] = c * x - sn * y;
+                s[p + 1] = sn * x + c * y;
+            }
+            (lambda, s)
+        })
         .collect()
+}
+
+/// Unit eigenvectors of the symmetric tridiagonal matrix with `alpha` on its diagonal
+/// and `beta` beside it, for its eigenvalues `values` (as [`tridiagonal_values`] gives
+/// them): inverse iteration, as LAPACK's dstein (Dhillon's survey, 1998; Wilkinson,
+/// The Algebraic Eigenvalue Problem, 5.54). T − θI is factorised by Gaussian
+/// elimination with partial pivoting (a pivot under ε‖T‖ taken as ε‖T‖), and three
+/// solves from a fixed pseudo-random start: with θ exact to round-off, the first
+/// already grows the wanted vector by about 1/ε against the rest, and the vector's
+/// residual is then about ε‖T‖, as QR's. Values closer than 1e-3‖T‖ to the one before
+/// form a cluster, whose vectors are kept orthogonal to each other at every solve
+/// (and a value equal to the one before moved by 10 ε|θ|, so that a repeated root's
+/// copies are solved apart): O(j) a vector, O(j k²) for a cluster of k.
+fn tridiagonal_vectors(alpha: &[f64], beta: &[f64], values: &[f64]) -> Vec<Vec<f64>> {
+    let j = alpha.len();
+    let norm = (0..j)
+        .map(|i| alpha[i].abs() + if i > 0 { beta[i - 1].abs() } else { 0.0 } + beta.get(i).map_or(0.0, |b| b.abs()))
+        .fold(0.0_f64, f64::max);
+    let tiny = f64::EPSILON * norm.max(f64::MIN_POSITIVE);
+    let mut order: Vec<usize> = (0..values.len()).collect();
+    order.sort_by(|&a, &b| values[a].total_cmp(&values[b]));
+    let mut out: Vec<Vec<f64>> = vec![Vec::new(); values.len()];
+    let mut rng = Start(0x5EED_7A1E);
+    let mut cluster: Vec<usize> = Vec::new();
+    let mut last: Option<f64> = None;
+    for &w in &order {
+        let mut theta = values[w];
+        if let Some(l) = last {
+            if theta - l > 1e-3 * norm {
+                cluster.clear();
+            }
+            if theta - l < 10.0 * f64::EPSILON * theta.abs() {
+                theta = l + 10.0 * f64::EPSILON * theta.abs().max(tiny);
+            }
+        }
+        last = Some(theta);
+        // T − θI = P L U: U's diagonal and two above it, L's multipliers, and whether
+        // each step swapped its two rows.
+        let (mut d, mut u1, mut u2) = (vec![0.0; j], vec![0.0; j], vec![0.0; j]);
+        let (mut l, mut swap) = (vec![0.0; j], vec![false; j]);
+        let mut diag = alpha[0] - theta;
+        let mut up = beta.first().copied().unwrap_or(0.0);
+        for i in 0..j {
+            if i + 1 == j {
+                d[i] = if diag.abs() < tiny { tiny.copysign(diag) } else { diag };
+                break;
+            }
+            let (below, next_diag, next_up) = (beta[i], alpha[i + 1] - theta, beta.get(i + 1).copied().unwrap_or(0.0));
+            if below.abs() > diag.abs() {
+                // Row i + 1 becomes the pivot row.
+                swap[i] = true;
+                d[i] = below;
+                u1[i] = next_diag;
+                u2[i] = next_up;
+                let m = diag / below;
+                l[i] = m;
+                diag = up - m * next_diag;
+                up = -m * next_up;
+            } else {
+                let pivot = if diag.abs() < tiny { tiny.copysign(diag) } else { diag };
+                d[i] = pivot;
+                u1[i] = up;
+                u2[i] = 0.0;
+                let m = below / pivot;
+                l[i] = m;
+                diag = next_diag - m * up;
+                up = next_up;
+            }
+        }
+        let mut x: Vec<f64> = (0..j).map(|_| rng.next()).collect();
+        for _ in 0..3 {
+            for &c in &cluster {
+                let h = dot(&out[c], &x);
+                x.iter_mut().zip(&out[c]).for_each(|(a, b)| *a -= h * b);
+            }
+            // Forward: L⁻¹ with the row swaps.
+            for i in 0..j.saturating_sub(1) {
+                if swap[i] {
+                    x.swap(i, i + 1);
+                }
+                x[i + 1] -= l[i] * x[i];
+            }
+            // Back: U⁻¹.
+            for i in (0..j).rev() {
+                let mut v = x[i];
+                if i + 1 < j {
+                    v -= u1[i] * x[i + 1];
+                }
+                if i + 2 < j {
+                    v -= u2[i] * x[i + 2];
+                }
+                x[i] = v / d[i];
+            }
+            let size = dot(&x, &x).sqrt();
+            x.iter_mut().for_each(|v| *v /= size);
+        }
+        for &c in &cluster {
+            let h = dot(&out[c], &x);
+            x.iter_mut().zip(&out[c]).for_each(|(a, b)| *a -= h * b);
+        }
+        let size = dot(&x, &x).sqrt();
+        x.iter_mut().for_each(|v| *v /= size);
+        out[w] = x;
+        cluster.push(w);
+    }
+    out
 }
 
 /// The wanted roots λ = σ + 1/θ from the Ritz values θ of T and the residual of each
@@ -1079,7 +1173,7 @@ mod tests {
                 DMatrix::from_fn(r, c, |i, j| if i <= j && k != 5 { rng.next() } else { 0.0 })
             })
             .collect();
-        let (theta, residual) = block_ritz_values(&diag, &sub);
+        let (theta, residual, _) = block_ritz_values(&diag, &sub, false);
         let band = block_tridiagonal(&diag, &sub);
         assert_eq!(band.band, 4);
         let j = band.j;
@@ -1134,6 +1228,60 @@ mod tests {
         for (a, b) in ours.iter().zip(&dense) {
             assert!((a.0 - b.0).abs() <= 1e-13 * top, "{a:?} vs {b:?}");
             assert!((a.1 - b.1).abs() <= 1e-10, "{a:?} vs {b:?}");
+        }
+    }
+
+    /// Goal: inverse iteration gives unit eigenvectors with residuals ‖T x − θ x‖ of
+    /// round-off (1e-13 of ‖T‖) and orthogonal to 1e-12, on a tridiagonal matrix of 60
+    /// rows made of two identical blocks (β zero between them: every root twice, as
+    /// two identical free structures give), a third block whose roots are 1e-6 of the
+    /// largest and closer than 1e-3 of it to each other (one cluster, as a Lanczos T's
+    /// high roots are), and a nearly repeated pair; the values from the QL.
+    #[test]
+    fn inverse_iteration_gives_orthogonal_vectors_of_repeated_and_clustered_roots() {
+        let block: Vec<f64> = (0..20)
+            .map(|i| ((i * 7) % 11) as f64 + 0.5 * (i as f64).sin())
+            .collect();
+        let off: Vec<f64> = (0..19).map(|i| 0.3 + ((i * 5) % 7) as f64 * 0.1).collect();
+        let mut alpha = block.clone();
+        alpha.extend(&block);
+        alpha.extend((0..20).map(|i| 1e-6 * (1.0 + 0.1 * i as f64)));
+        let mut beta = off.clone();
+        beta.push(0.0);
+        beta.extend(&off);
+        beta.push(1e-12);
+        beta.extend((0..19).map(|i| if i == 9 { 1e-14 } else { 1e-8 }));
+        let n = alpha.len();
+        let values = tridiagonal_values(&alpha, &beta, &mut []);
+        let vectors = tridiagonal_vectors(&alpha, &beta, &values);
+        let norm = 11.5 + 2.0;
+        for (theta, x) in values.iter().zip(&vectors) {
+            assert!((dot(x, x) - 1.0).abs() < 1e-14);
+            let r: f64 = (0..n)
+                .map(|i| {
+                    let mut tx = alpha[i] * x[i];
+                    if i > 0 {
+                        tx += beta[i - 1] * x[i - 1];
+                    }
+                    if i + 1 < n {
+                        tx += beta[i] * x[i + 1];
+                    }
+                    (tx - theta * x[i]).powi(2)
+                })
+                .sum::<f64>()
+                .sqrt();
+            assert!(r <= 1e-13 * norm, "θ {theta:e}: residual {r:e}");
+        }
+        for a in 0..n {
+            for b in 0..a {
+                let c = dot(&vectors[a], &vectors[b]).abs();
+                assert!(
+                    c <= 1e-12,
+                    "vectors {a} and {b} ({:e}, {:e}): {c:e}",
+                    values[a],
+                    values[b]
+                );
+            }
         }
     }
 }
