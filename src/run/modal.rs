@@ -493,7 +493,7 @@ pub fn reduce_at(
                 // (a chain's next vector lies mostly along its last ones), then to the
                 // modes and them all at once, where only round-off is left (F M ψ is
                 // M-orthogonal to the modes when ψ is, to their accuracy): one pass of
-                // the matrix products, where the Kahan test asked for a second for 31
+                // the matrix products, where the Kahan test asked for a second for 30
                 // of the paper's plate's 32 vectors without the first step.
                 let mut m_psi = m_mul(&psi);
                 let size = dot(&psi, &m_psi).max(0.0).sqrt();
