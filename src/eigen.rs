@@ -99,7 +99,7 @@ pub struct LanczosParams {
     /// Lanczos vectors between convergence tests, at least (a test costs O(j² p) at j
     /// vectors in blocks of p, against the O(n j p) of the block's
     /// re-orthogonalisation), and at least as many as the Ritz values that may be
-    /// wanted roots and are not yet accepted ([`pending`]).
+    /// wanted roots and are not yet accepted.
     pub test_every: usize,
     /// At most this many Lanczos vectors stored (n doubles each): an extraction that
     /// has not converged when it reaches them fails ([`SolveError::Memory`]).
