@@ -432,14 +432,14 @@ fn next_block(
     for c in 0..width {
         let (mut v, mut mv) = (column(w.as_ref(), c).to_vec(), column(mw.as_ref(), c).to_vec());
         let before = dot(&v, &mv);
-        remove_block(&mut v, &mut mv, &out, |r, h| b[(r, c)] += h);
+        remove_block(&mut v, &mut mv, pairs(&out), |r, h| b[(r, c)] += h);
         // Kahan's test over all vectors before this one: where the block's own
         // removed more than half of the squared norm, what is left is again made
         // orthogonal to the stored vectors (it has their round-off) and the block's.
         if dot(&v, &mv) < 0.5 * before {
             let m = orthogonalise_columns(faer::MatMut::from_column_major_slice_mut(&mut v, n, 1), q, m_mul);
             mv = column(m.as_ref(), 0).to_vec();
-            remove_block(&mut v, &mut mv, &out, |r, h| b[(r, c)] += h);
+            remove_block(&mut v, &mut mv, pairs(&out), |r, h| b[(r, c)] += h);
         }
         let norm = dot(&v, &mv).max(0.0).sqrt();
         if norm > 1e-10 * norm_scale && norm_scale > 0.0 {
@@ -473,18 +473,23 @@ fn next_block(
 /// Takes from v (with its M-image mv) its M-components along the block's vectors
 /// (each with its M-image), one after another (modified Gram-Schmidt), telling
 /// `coefficient` each one removed by the vector's index.
-pub fn remove_block(
+pub fn remove_block<'a>(
     v: &mut [f64],
     mv: &mut [f64],
-    block: &[(Vec<f64>, Vec<f64>)],
+    block: impl IntoIterator<Item = (&'a [f64], &'a [f64])>,
     mut coefficient: impl FnMut(usize, f64),
 ) {
-    for (r, (u, mu)) in block.iter().enumerate() {
+    for (r, (u, mu)) in block.into_iter().enumerate() {
         let h = dot(u, mv);
         coefficient(r, h);
         v.iter_mut().zip(u).for_each(|(x, y)| *x -= h * y);
         mv.iter_mut().zip(mu).for_each(|(x, y)| *x -= h * y);
     }
+}
+
+/// Vectors with their M-images, as slices.
+fn pairs(block: &[(Vec<f64>, Vec<f64>)]) -> impl Iterator<Item = (&[f64], &[f64])> {
+    block.iter().map(|(u, mu)| (u.as_slice(), mu.as_slice()))
 }
 
 /// A fresh start vector M-orthonormal to `q` and `block`, with its M-image, or `None`
@@ -507,7 +512,7 @@ fn fresh_vector(
         for _ in 0..2 {
             let m = orthogonalise_columns(faer::MatMut::from_column_major_slice_mut(&mut v, n, 1), q, m_mul);
             mv = column(m.as_ref(), 0).to_vec();
-            remove_block(&mut v, &mut mv, block, |_, _| {});
+            remove_block(&mut v, &mut mv, pairs(block), |_, _| {});
         }
         let left = dot(&v, &mv).max(0.0).sqrt();
         if left > 1e-8 * size {
@@ -902,11 +907,12 @@ fn tridiagonal_vectors(alpha: &[f64], beta: &[f64], values: &[f64]) -> Vec<Vec<f
         // each step swapped its two rows.
         let (mut d, mut u1, mut u2) = (vec![0.0; j], vec![0.0; j], vec![0.0; j]);
         let (mut l, mut swap) = (vec![0.0; j], vec![false; j]);
+        let guard = |v: f64| if v.abs() < tiny { tiny.copysign(v) } else { v };
         let mut diag = alpha[0] - theta;
         let mut up = beta.first().copied().unwrap_or(0.0);
         for i in 0..j {
             if i + 1 == j {
-                d[i] = if diag.abs() < tiny { tiny.copysign(diag) } else { diag };
+                d[i] = guard(diag);
                 break;
             }
             let (below, next_diag, next_up) = (beta[i], alpha[i + 1] - theta, beta.get(i + 1).copied().unwrap_or(0.0));
@@ -921,49 +927,46 @@ fn tridiagonal_vectors(alpha: &[f64], beta: &[f64], values: &[f64]) -> Vec<Vec<f
                 diag = up - m * next_diag;
                 up = -m * next_up;
             } else {
-                let pivot = if diag.abs() < tiny { tiny.copysign(diag) } else { diag };
+                let pivot = guard(diag);
                 d[i] = pivot;
                 u1[i] = up;
-                u2[i] = 0.0;
                 let m = below / pivot;
                 l[i] = m;
                 diag = next_diag - m * up;
                 up = next_up;
             }
         }
+        // Three solves, each from a vector orthogonal to the cluster's, and the last
+        // result made orthogonal to them once more; unit length after each.
         let mut x: Vec<f64> = (0..j).map(|_| rng.next()).collect();
-        for _ in 0..3 {
+        for solve in [true, true, true, false] {
             for &c in &cluster {
                 let h = dot(&out[c], &x);
                 x.iter_mut().zip(&out[c]).for_each(|(a, b)| *a -= h * b);
             }
-            // Forward: L⁻¹ with the row swaps.
-            for i in 0..j.saturating_sub(1) {
-                if swap[i] {
-                    x.swap(i, i + 1);
+            if solve {
+                // Forward: L⁻¹ with the row swaps.
+                for i in 0..j.saturating_sub(1) {
+                    if swap[i] {
+                        x.swap(i, i + 1);
+                    }
+                    x[i + 1] -= l[i] * x[i];
                 }
-                x[i + 1] -= l[i] * x[i];
-            }
-            // Back: U⁻¹.
-            for i in (0..j).rev() {
-                let mut v = x[i];
-                if i + 1 < j {
-                    v -= u1[i] * x[i + 1];
+                // Back: U⁻¹.
+                for i in (0..j).rev() {
+                    let mut v = x[i];
+                    if i + 1 < j {
+                        v -= u1[i] * x[i + 1];
+                    }
+                    if i + 2 < j {
+                        v -= u2[i] * x[i + 2];
+                    }
+                    x[i] = v / d[i];
                 }
-                if i + 2 < j {
-                    v -= u2[i] * x[i + 2];
-                }
-                x[i] = v / d[i];
             }
             let size = dot(&x, &x).sqrt();
             x.iter_mut().for_each(|v| *v /= size);
         }
-        for &c in &cluster {
-            let h = dot(&out[c], &x);
-            x.iter_mut().zip(&out[c]).for_each(|(a, b)| *a -= h * b);
-        }
-        let size = dot(&x, &x).sqrt();
-        x.iter_mut().for_each(|v| *v /= size);
         out[w] = x;
         cluster.push(w);
     }

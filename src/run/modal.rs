@@ -462,8 +462,8 @@ pub fn reduce_at(
     // is round-off (the modes up to a cutoff above the mesh's highest span them all).
     let with_mass = md.iter().filter(|&&m| m > 0.0).count();
     let modes = kept.len();
-    // The residual vectors with their M-images.
-    let mut residuals: Vec<(Vec<f64>, Vec<f64>)> = Vec::new();
+    // The M-images of the residual vectors (the vectors are `kept`'s after the modes).
+    let mut m_images: Vec<Vec<f64>> = Vec::new();
     {
         for &b in &boundary {
             let bl = local[b].expect("boundary DOFs are the structure's");
@@ -497,7 +497,8 @@ pub fn reduce_at(
                 // of the paper's plate's 32 vectors without the first step.
                 let mut m_psi = m_mul(&psi);
                 let size = dot(&psi, &m_psi).max(0.0).sqrt();
-                remove_block(&mut psi, &mut m_psi, &residuals, |_, _| {});
+                let residuals = kept.iter().skip(modes).zip(m_images.iter().map(Vec::as_slice));
+                remove_block(&mut psi, &mut m_psi, residuals, |_, _| {});
                 let m_psi = orthogonalise_columns(
                     faer::MatMut::from_column_major_slice_mut(&mut psi, ns, 1),
                     &kept,
@@ -511,7 +512,7 @@ pub fn reduce_at(
                 // The next of the chain: the structure's response to this shape's inertia.
                 load = column(m_psi.as_ref(), 0).iter().map(|x| x / left).collect();
                 kept.push(&psi);
-                residuals.push((psi, load.clone()));
+                m_images.push(load.clone());
                 residual_count += 1;
             }
         }
