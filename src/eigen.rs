@@ -39,10 +39,14 @@
 //! Jensen, Math. Comp. 48, 1987); the roots, from T, are not affected. With every root
 //! of a small plate kept, the modal engine is then the direct run to round-off
 //! (7e-13; 6e-8 in the rotations without). Where those DOFs have no term of M at all
-//! (lumped masses), nothing reads a Lanczos vector there, and the vectors are kept at
-//! zero there: the growth, left alone, overflowed after some hundreds of steps and
-//! turned the recurrence to NaN (a 19×19 curved panel lost its 568 converged roots by
-//! step 954; it now extracts 635 and its modal run is the direct run to 5e-8).
+//! (lumped masses), nothing reads a Lanczos vector there: the vectors are stored on
+//! the DOFs with mass alone, and A is applied as M's product there, the solve over
+//! every DOF, and the solution's rows with mass kept. A curved panel's rotations are
+//! half its DOFs: its re-orthogonalisation and Ritz vectors read half the storage.
+//! (Kept over every DOF, the round-off there grew by α/β a step, overflowed after
+//! some hundreds of steps and turned the recurrence to NaN: a 19×19 curved panel lost
+//! its 568 converged roots by step 954; it now extracts 635 and its modal run is the
+//! direct run to 5e-8.)
 //!
 //! A Ritz pair (θ, Q s) of T_j is accepted when its residual in the operator,
 //! ‖B_{k+1} s_k‖ (s_k the last block's components of s), is at most `tolerance`·θ; its
@@ -65,7 +69,8 @@
 //! forming copies of the converged roots). Cost:
 //! one block solve and the block's M products a step, 4 n j operations to
 //! re-orthogonalise a block at j vectors (as two matrix products), the tests, the Ritz
-//! vectors as one matrix product at the end, and the j vectors of n stored. Blocks
+//! vectors as one matrix product at the end, and the j vectors stored, n the DOFs with
+//! mass. Blocks
 //! need more vectors than one vector a step (the paper's plate: 372 against 320 for
 //! its 163 roots) but each costs less. It is meant for tens to a few hundred roots,
 //! not for all of a large model's.
@@ -101,8 +106,9 @@ pub struct LanczosParams {
     /// re-orthogonalisation), and at least as many as the Ritz values that may be
     /// wanted roots and are not yet accepted.
     pub test_every: usize,
-    /// At most this many Lanczos vectors stored (n doubles each): an extraction that
-    /// has not converged when it reaches them fails ([`SolveError::Memory`]).
+    /// At most this many Lanczos vectors stored (a double for each DOF with mass
+    /// each): an extraction that has not converged when it reaches them fails
+    /// ([`SolveError::Memory`]).
     pub max_vectors: Option<usize>,
 }
 
@@ -192,26 +198,21 @@ pub fn lanczos_with(
     let t0 = std::time::Instant::now();
     let n = sys.n;
     let solved_before = factor.solve_time;
-    let m_mul = |x: &[f64]| {
-        let mut y = vec![0.0; n];
-        sys.m_mul(x, &mut y);
-        y
-    };
     // DOFs with neither a row nor a column of M (a shell's massless rotations): no
     // M-product or M-inner product reads a vector there, nor A = (K − σM)⁻¹M, so
-    // nothing the extraction computes depends on a Lanczos vector's values there. The
-    // recurrence's round-off there grows by about α/β a step, unchecked (to 1e240 of
-    // the vectors after 550 steps on a curved panel), until it overflows and the
-    // products turn NaN: each Lanczos vector is kept at zero there. The Ritz vectors
-    // take their values there from the purification below.
-    let massless = massless_dofs(sys);
+    // nothing the extraction computes depends on a Lanczos vector's values there: the
+    // vectors are stored on the DOFs with mass alone (see the module's notes). The
+    // Ritz vectors take their values there from the purification below.
+    let rows = MassRows::new(sys);
+    let nm = rows.len();
+    let m_mul = |x: &[f64]| rows.m_mul(sys, x);
     let mut fresh = Fresh {
         rng: Start(0x1D_2C_3B_4A),
-        massless: &massless,
+        rows: &rows,
     };
     // The Lanczos vectors (M-orthonormal, block after block), and T's blocks: A_k on
     // the diagonal, B_{k+1} (upper trapezoidal, block k+1's width × block k's) below.
-    let mut q = Columns::new(n);
+    let mut q = Columns::new(nm);
     let mut diag: Vec<DMatrix<f64>> = Vec::new();
     let mut sub: Vec<DMatrix<f64>> = Vec::new();
     let mut restarts = 0;
@@ -221,10 +222,10 @@ pub fn lanczos_with(
     // The most roots in the range a test has accepted: the end must hold them all.
     let mut seen = 0;
     // The first block: BLOCK fresh vectors.
-    let first = BLOCK.min(n);
+    let first = BLOCK.min(nm);
     let (mut block, _, _) = next_block(
-        faer::Mat::zeros(n, first),
-        faer::Mat::zeros(n, first),
+        faer::Mat::zeros(nm, first),
+        faer::Mat::zeros(nm, first),
         &q,
         0.0,
         &mut fresh,
@@ -240,8 +241,7 @@ pub fn lanczos_with(
         }
         // W = A Q_k = (K − σM)⁻¹ M Q_k, one solve for the block's columns.
         let mq = &block.mq;
-        let mut w = mq.clone();
-        factor.solve_columns_in_place(w.as_mut());
+        let mut w = rows.solve_columns(factor, mq.as_ref());
         // A_k = Q_kᵀ M W, symmetric but for round-off.
         let mut a = faer::Mat::<f64>::zeros(width, width);
         matmul(a.as_mut(), Accum::Replace, mq.transpose(), w.as_ref(), 1.0, Par::Seq);
@@ -297,8 +297,8 @@ pub fn lanczos_with(
             }
             if full {
                 return Err(SolveError::Memory {
-                    what: format!("{j} Lanczos vectors of {n} DOFs, before the roots asked for converged"),
-                    bytes: (j * n * 8) as u64,
+                    what: format!("{j} Lanczos vectors of {nm} DOFs with mass, before the roots asked for converged"),
+                    bytes: (j * nm * 8) as u64,
                 });
             }
         }
@@ -329,19 +329,30 @@ pub fn lanczos_with(
     // Lanczos vectors and the roots' own, only a block's is stored twice).
     let j = q.len();
     let s = faer::Mat::<f64>::from_fn(j, pairs.len(), |r, c| pairs[c].1[r]);
+    let m_mul = |x: &[f64]| {
+        let mut y = vec![0.0; n];
+        sys.m_mul(x, &mut y);
+        y
+    };
     let mut ritz = faer::Mat::<f64>::zeros(n, 0);
     for (c, (lambda, _)) in pairs.into_iter().enumerate() {
         if c % 32 == 0 {
             let width = 32.min(s.ncols() - c);
-            ritz = faer::Mat::<f64>::zeros(n, width);
+            let mut stored = faer::Mat::<f64>::zeros(nm, width);
             matmul(
-                ritz.as_mut(),
+                stored.as_mut(),
                 Accum::Replace,
                 q.mat(),
                 s.as_ref().subcols(c, width),
                 1.0,
                 Par::Seq,
             );
+            ritz = faer::Mat::<f64>::zeros(n, width);
+            let mut x = vec![0.0; n];
+            for k in 0..width {
+                rows.scatter(column(stored.as_ref(), k), &mut x);
+                ritz.col_mut(k).iter_mut().zip(&x).for_each(|(r, v)| *r = *v);
+            }
             // Purification: Q s carries a component along M's null space, which the
             // M-inner product does not see: the recurrence's round-off there grows by
             // about α/β a step (on a curved panel's massless rotations, to 1e240 of
@@ -391,10 +402,80 @@ pub fn column(m: faer::MatRef<'_, f64>, c: usize) -> &[f64] {
 }
 
 /// New start vectors: A applied to a fixed pseudo-random vector, so that it has no
-/// component along M's null space, zero on the massless DOFs.
+/// component along M's null space, on the DOFs with mass.
 struct Fresh<'a> {
     rng: Start,
-    massless: &'a [usize],
+    rows: &'a MassRows,
+}
+
+/// The DOFs with a term of M in their row or column, on which the Lanczos vectors are
+/// stored: every product and inner product with M reads them alone.
+struct MassRows {
+    /// The solved DOFs.
+    n: usize,
+    /// The DOFs with mass, ascending.
+    rows: Vec<usize>,
+    /// M's diagonal on them, when M is diagonal.
+    lumped: Option<Vec<f64>>,
+}
+
+impl MassRows {
+    fn new(sys: &System) -> Self {
+        let mut has_mass = vec![false; sys.n];
+        for t in sys.m.iter().filter(|t| t.val != 0.0) {
+            has_mass[t.row] = true;
+            has_mass[t.col] = true;
+        }
+        let rows: Vec<usize> = (0..sys.n).filter(|&i| has_mass[i]).collect();
+        let lumped = sys.m_lumped.as_ref().map(|d| rows.iter().map(|&i| d[i]).collect());
+        MassRows { n: sys.n, rows, lumped }
+    }
+
+    /// How many.
+    fn len(&self) -> usize {
+        self.rows.len()
+    }
+
+    /// A vector over every DOF on these.
+    fn gather(&self, x: &[f64]) -> Vec<f64> {
+        self.rows.iter().map(|&i| x[i]).collect()
+    }
+
+    /// `full` ← the vector `x` on these, zero elsewhere.
+    fn scatter(&self, x: &[f64], full: &mut [f64]) {
+        full.fill(0.0);
+        self.rows.iter().zip(x).for_each(|(&i, &v)| full[i] = v);
+    }
+
+    /// M x, both on these.
+    fn m_mul(&self, sys: &System, x: &[f64]) -> Vec<f64> {
+        match &self.lumped {
+            Some(d) => d.iter().zip(x).map(|(d, x)| d * x).collect(),
+            None => {
+                let mut full = vec![0.0; self.n];
+                self.scatter(x, &mut full);
+                let mut y = vec![0.0; self.n];
+                sys.m_mul(&full, &mut y);
+                self.gather(&y)
+            }
+        }
+    }
+
+    /// (K − σM)⁻¹ applied to the columns of `mx` (M-images on these), on these: one
+    /// solve over every DOF for them all.
+    fn solve_columns(&self, factor: &mut Factor, mx: faer::MatRef<'_, f64>) -> faer::Mat<f64> {
+        let mut full = faer::Mat::<f64>::zeros(self.n, mx.ncols());
+        for c in 0..mx.ncols() {
+            let x = full
+                .col_mut(c)
+                .try_as_col_major_mut()
+                .expect("a column of a Mat")
+                .as_slice_mut();
+            self.scatter(column(mx, c), x);
+        }
+        factor.solve_columns_in_place(full.as_mut());
+        faer::Mat::from_fn(self.len(), mx.ncols(), |r, c| full[(self.rows[r], c)])
+    }
 }
 
 /// A block of Lanczos vectors (the columns of `q`) with their M-images.
@@ -459,7 +540,6 @@ fn next_block(
                 taken += 1;
             }
         }
-        fresh.massless.iter().for_each(|&i| v[i] = 0.0);
         out.push((v, mv));
     }
     let block = Block {
@@ -501,11 +581,13 @@ fn fresh_vector(
     factor: &mut Factor,
     m_mul: &impl Fn(&[f64]) -> Vec<f64>,
 ) -> Option<(Vec<f64>, Vec<f64>)> {
-    let n = q.n;
+    let (rows, n) = (fresh.rows, q.n);
     for _ in 0..3 {
-        let x: Vec<f64> = (0..n).map(|_| fresh.rng.next()).collect();
-        let mut v = m_mul(&x);
-        factor.solve_in_place(&mut v);
+        let x: Vec<f64> = (0..rows.n).map(|_| fresh.rng.next()).collect();
+        let mut full = vec![0.0; rows.n];
+        rows.scatter(&m_mul(&rows.gather(&x)), &mut full);
+        factor.solve_in_place(&mut full);
+        let mut v = rows.gather(&full);
         let size = dot(&v, &m_mul(&v)).max(0.0).sqrt();
         // Against the stored vectors and the block's, twice over ("twice is enough").
         let mut mv = Vec::new();
@@ -521,16 +603,6 @@ fn fresh_vector(
         }
     }
     None
-}
-
-/// The DOFs M has no nonzero term in the row or column of.
-fn massless_dofs(sys: &System) -> Vec<usize> {
-    let mut has_mass = vec![false; sys.n];
-    for t in sys.m.iter().filter(|t| t.val != 0.0) {
-        has_mass[t.row] = true;
-        has_mass[t.col] = true;
-    }
-    (0..sys.n).filter(|&i| !has_mass[i]).collect()
 }
 
 /// The lowest `count` natural frequencies ω = √λ (radians per the deck's time unit) of

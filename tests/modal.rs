@@ -212,10 +212,11 @@ fn run_engine_modal_reports_its_truncation() {
 }
 
 /// Goal: `--max-memory` holds the modal reduction too: every mode of the paper's plate
-/// (--modes-up-to 1e6 cycles/s, about 6 900 Lanczos vectors of 6 912 DOFs, 0.36 GiB)
+/// (--modes-up-to 1e6 cycles/s: every root of its 2 304 DOFs with mass, of 6 912)
 /// under a limit of 0.07 GiB (the run's system and records take 0.025 GiB of it) stops
-/// the extraction before its Lanczos vectors pass half of the rest (433: 432, the
-/// next block of four would pass it), exit 2, with what to lower; the default cutoff
+/// the extraction before it forms more Lanczos vectors than half the rest holds
+/// vectors of its 6 912 DOFs (433: 432, the next block of four would pass it; the
+/// modes and the basis are that long), exit 2, with what to lower; the default cutoff
 /// (372 vectors, 163 modes) runs under it.
 #[test]
 fn max_memory_holds_the_modal_reduction() {
@@ -243,7 +244,8 @@ fn max_memory_holds_the_modal_reduction() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{err}");
     assert!(
-        err.contains("over the memory limit: 432 Lanczos vectors of 6912 DOFs") && err.contains("--modes-up-to"),
+        err.contains("over the memory limit: 432 Lanczos vectors of 2304 DOFs with mass")
+            && err.contains("--modes-up-to"),
         "{err}"
     );
     assert!(!out.exists(), "a refused run writes nothing");

@@ -356,9 +356,10 @@ pub fn cutoff(model: &Model, params: &ModalParams) -> Result<(f64, String), RunE
 
 /// Reduces a prepared model (see the module's text), in at most `budget` bytes
 /// besides the run's system and records. Its storage is vectors over the structure's
-/// DOFs: j Lanczos vectors, with the m modes as they are formed (j + m), then T as it
-/// is reordered and turned, two copies at a time (2p, p = m + residual vectors,
-/// m ≤ j); so the extraction may store half the budget in Lanczos vectors.
+/// DOFs: j Lanczos vectors (over its DOFs with mass alone), with the m modes as they
+/// are formed (j + m), then T as it is reordered and turned, two copies at a time (2p,
+/// p = m + residual vectors, m ≤ j); so the extraction may form as many Lanczos
+/// vectors as half the budget holds vectors over the structure's DOFs.
 pub fn reduce(model: &Model, sys: &System, params: &ModalParams, budget: Option<u64>) -> Result<Reduction, RunError> {
     reduce_at(model, sys, params, cutoff(model, params)?, budget)
 }
@@ -411,11 +412,12 @@ pub fn reduce_at(
     // K − σM, factorised once for the extraction and the residual vectors.
     let (mut factor, shift) = factorise(&s_sys, &labels)?;
     let mut pairs = lanczos_with(&s_sys, &mut factor, shift, &roots, &lanczos_params).map_err(|e| match e {
-        crate::integrate::SolveError::Memory { what, bytes } => RunError::Input(format!(
+        crate::integrate::SolveError::Memory { what, .. } => RunError::Input(format!(
             "the modal reduction (modes up to {cut:.4e} cycles per the deck's time unit) is over the memory \
-             limit: {what}, {:.2} GiB, half of what the limit leaves beside the system and the records; lower \
-             the cutoff (--modes-up-to) or raise --max-memory",
-            bytes as f64 / (1u64 << 30) as f64
+             limit: {what}; with as many modes over the structure's {ns} DOFs and the basis made of them, more \
+             than the {:.2} GiB the limit leaves beside the system and the records; lower the cutoff \
+             (--modes-up-to) or raise --max-memory",
+            budget.unwrap_or(0) as f64 / (1u64 << 30) as f64
         )),
         e => e.into(),
     })?;
