@@ -8,9 +8,11 @@
 //! shifted block Lanczos (SIAM J. Matrix Anal. Appl. 15, 1994), the method of MSC's
 //! Lanczos (here with one shift and unrestarted). A step is A Q_k = Q_{k−1} B_kᵀ +
 //! Q_k A_k + Q_{k+1} B_{k+1}: one solve with the factor for the block's four columns
-//! (faer's supernodal solve reads the factor once for them: about two single solves)
-//! and a re-orthogonalisation that reads the stored vectors once for all four, where
-//! one vector a step read them once a vector; T is block tridiagonal, a band matrix.
+//! (faer's supernodal solve reads the factor once for them; two columns on each of
+//! two cores, [`Factor::solve_columns_in_place`]) and a re-orthogonalisation that
+//! reads the stored vectors once for all four (each half of their rows on its own
+//! core, [`tall_gram`], [`tall_update`]), where one vector a step read them once a
+//! vector; T is block tridiagonal, a band matrix.
 //! The eigenvalues θ of A are 1/(λ − σ): the roots nearest σ converge first. K − σM is
 //! factorised once by the sparse Cholesky factorisation the implicit schemes use, so
 //! σ lies below every root: σ = 0 when K is positive definite, and a small negative
@@ -339,14 +341,7 @@ pub fn lanczos_with(
         if c % 32 == 0 {
             let width = 32.min(s.ncols() - c);
             let mut stored = faer::Mat::<f64>::zeros(nm, width);
-            matmul(
-                stored.as_mut(),
-                Accum::Replace,
-                q.mat(),
-                s.as_ref().subcols(c, width),
-                1.0,
-                Par::Seq,
-            );
+            tall_update(stored.as_mut(), q.mat(), s.as_ref().subcols(c, width), 1.0);
             ritz = faer::Mat::<f64>::zeros(n, width);
             let mut x = vec![0.0; n];
             for k in 0..width {
@@ -676,6 +671,14 @@ impl Columns {
         Columns { n, data: Vec::new() }
     }
 
+    /// No vectors yet, each of length `n`, with room for `count` of them.
+    pub fn with_capacity(n: usize, count: usize) -> Self {
+        Columns {
+            n,
+            data: Vec::with_capacity(n * count),
+        }
+    }
+
     /// How many vectors.
     pub fn len(&self) -> usize {
         self.data.len() / self.n.max(1)
@@ -713,6 +716,61 @@ impl Columns {
     }
 }
 
+/// Row halves of tall products: below this many multiply-adds a product is one.
+const HALVES_FROM: usize = 1 << 20;
+
+/// Where a product over n rows splits: in two halves from [`HALVES_FROM`]
+/// multiply-adds, whatever the machine, so that its round-off does not depend on the
+/// cores it runs on.
+fn halves(n: usize, work: usize) -> usize {
+    if work >= HALVES_FROM {
+        n / 2
+    } else {
+        n
+    }
+}
+
+/// Aᵀ B for tall A (n × k) and B (n × j), as the sum of the two row halves' products,
+/// the second half's on a second thread: the stored Lanczos vectors are read by two
+/// cores at once.
+pub fn tall_gram(a: faer::MatRef<'_, f64>, b: faer::MatRef<'_, f64>) -> faer::Mat<f64> {
+    let (n, k, j) = (a.nrows(), a.ncols(), b.ncols());
+    let h = halves(n, n * k * j);
+    let product = |a: faer::MatRef<'_, f64>, b: faer::MatRef<'_, f64>| {
+        let mut c = faer::Mat::<f64>::zeros(k, j);
+        matmul(c.as_mut(), Accum::Replace, a.transpose(), b, 1.0, Par::Seq);
+        c
+    };
+    if h == n {
+        return product(a, b);
+    }
+    let (top, bottom) = std::thread::scope(|s| {
+        let bottom = s.spawn(|| product(a.subrows(h, n - h), b.subrows(h, n - h)));
+        (
+            product(a.subrows(0, h), b.subrows(0, h)),
+            bottom.join().expect("a product's thread"),
+        )
+    });
+    top + bottom
+}
+
+/// W ← W + α Q C for tall W (n × k) and Q (n × j), each row half on its own thread.
+pub fn tall_update(w: faer::MatMut<'_, f64>, q: faer::MatRef<'_, f64>, c: faer::MatRef<'_, f64>, alpha: f64) {
+    let n = w.nrows();
+    let h = halves(n, n * q.ncols() * c.ncols());
+    let product = |w: faer::MatMut<'_, f64>, q: faer::MatRef<'_, f64>| {
+        matmul(w, Accum::Add, q, c, alpha, Par::Seq);
+    };
+    if h == n {
+        return product(w, q);
+    }
+    let (top, bottom) = w.split_at_row_mut(h);
+    std::thread::scope(|s| {
+        s.spawn(|| product(bottom, q.subrows(h, n - h)));
+        product(top, q.subrows(0, h));
+    });
+}
+
 /// Makes the columns of `w` M-orthogonal to every vector of `q`, and returns their
 /// M-image: classical Gram-Schmidt as two matrix products (C = Qᵀ M W, W ← W − Q C),
 /// a second pass only when the first removed more than half of a column's squared
@@ -744,24 +802,9 @@ pub fn orthogonalise_columns(
     }
     let mut before = norms(w.as_ref(), &mw);
     // Cᵀ = (MW)ᵀ Q, so that the product packs the small factor, not Q.
-    let mut coefficients = faer::Mat::<f64>::zeros(k, q.len());
     for _ in 0..2 {
-        matmul(
-            coefficients.as_mut(),
-            Accum::Replace,
-            mw.transpose(),
-            q.mat(),
-            1.0,
-            Par::Seq,
-        );
-        matmul(
-            w.as_mut(),
-            Accum::Add,
-            q.mat(),
-            coefficients.transpose(),
-            -1.0,
-            Par::Seq,
-        );
+        let coefficients = tall_gram(mw.as_ref(), q.mat());
+        tall_update(w.as_mut(), q.mat(), coefficients.transpose(), -1.0);
         mw = m_of(w.as_ref());
         let after = norms(w.as_ref(), &mw);
         if after.iter().zip(&before).all(|(a, b)| *a >= 0.5 * b) {

@@ -40,8 +40,8 @@ use super::direct::{record, Fields};
 use super::{linear_outputs, Engine, RunError, RunOptions, RunResult};
 use crate::assembly::System;
 use crate::eigen::{
-    column, factorise, highest_root_scale, lanczos_with, orthogonalise_columns, remove_block, Columns, LanczosParams,
-    Roots,
+    column, factorise, highest_root_scale, lanczos_with, orthogonalise_columns, remove_block, tall_gram, tall_update,
+    Columns, LanczosParams, Roots,
 };
 use crate::integrate::Scheme;
 use crate::ledger::Ledger;
@@ -456,7 +456,7 @@ pub fn reduce_at(
     let mut residual_count = 0;
     let mut residual_flexibility = f64::NAN;
     // The basis, modes then residual vectors, as one matrix (the modes moved in).
-    let mut kept = Columns::new(ns);
+    let mut kept = Columns::with_capacity(ns, pairs.vectors.len() + boundary.len() * RESIDUAL_ORDER);
     for phi in std::mem::take(&mut pairs.vectors) {
         kept.push(&phi);
     }
@@ -574,7 +574,7 @@ pub fn reduce_at(
         .collect();
     let mut columns = {
         let v = columns;
-        let mut t = Columns::new(ns);
+        let mut t = Columns::with_capacity(ns, p);
         order.iter().for_each(|&j| t.push(v.col(j)));
         t
     };
@@ -610,30 +610,40 @@ pub fn reduce_at(
     let mut ct_t = faer::Mat::<f64>::zeros(p, if damped { p } else { 0 });
     for first in (0..p).step_by(32) {
         let width = 32.min(p - first);
-        let (mut kt, mut mt, mut ct) = (Columns::new(ns), Columns::new(ns), Columns::new(ns));
-        for c in first..first + width {
-            let mut k = vec![0.0; ns];
-            s_sys.k_mul(columns.col(c), &mut k);
-            kt.push(&k);
-            mt.push(&m_mul(columns.col(c)));
-            if damped {
-                s_sys.c_mul(columns.col(c), &mut k);
-                ct.push(&k);
+        // The block's sparse products, its second half's on a second thread.
+        let products_of = |cs: std::ops::Range<usize>| {
+            let (mut kt, mut mt, mut ct) = (Columns::new(ns), Columns::new(ns), Columns::new(ns));
+            for c in cs {
+                let mut k = vec![0.0; ns];
+                s_sys.k_mul(columns.col(c), &mut k);
+                kt.push(&k);
+                mt.push(&m_mul(columns.col(c)));
+                if damped {
+                    s_sys.c_mul(columns.col(c), &mut k);
+                    ct.push(&k);
+                }
             }
-        }
-        let mut products = vec![(&mut kt_t, &kt), (&mut mt_t, &mt)];
+            [kt, mt, ct]
+        };
+        let half = first + width / 2;
+        let [top, bottom] = std::thread::scope(|s| {
+            let bottom = s.spawn(|| products_of(half..first + width));
+            [products_of(first..half), bottom.join().expect("a product's thread")]
+        });
+        let mut products = vec![(&mut kt_t, 0), (&mut mt_t, 1)];
         if damped {
-            products.push((&mut ct_t, &ct));
+            products.push((&mut ct_t, 2));
         }
-        for (x, xt) in products {
-            matmul(
-                x.as_mut().submatrix_mut(first, first, p - first, width),
-                faer::Accum::Replace,
-                columns.mat().subcols(first, p - first).transpose(),
-                xt.mat(),
-                1.0,
-                faer::Par::Seq,
-            );
+        for (x, which) in products {
+            for (at, xt) in [(first, &top[which]), (half, &bottom[which])] {
+                if xt.is_empty() {
+                    continue;
+                }
+                let g = tall_gram(columns.mat().subcols(first, p - first), xt.mat());
+                x.as_mut()
+                    .submatrix_mut(first, at, p - first, xt.len())
+                    .copy_from(g.as_ref());
+            }
         }
     }
     let mut reduced = vec![(&mut k_r, &kt_t), (&mut m_r, &mt_t)];
@@ -665,13 +675,11 @@ pub fn reduce_at(
     let ni = nr - first;
     {
         let mut turned = faer::Mat::<f64>::zeros(ns, ni);
-        matmul(
+        tall_update(
             turned.as_mut(),
-            faer::Accum::Replace,
             columns.mat().subcols(first - o, ni),
             faer::MatRef::from_column_major_slice(x.as_slice(), ni, ni),
             1.0,
-            faer::Par::Seq,
         );
         for c in 0..ni {
             columns
