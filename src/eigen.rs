@@ -1268,6 +1268,31 @@ fn tridiagonal_values(alpha: &[f64], beta: &[f64], rows: &mut [Vec<f64>]) -> Vec
 mod tests {
     use super::*;
 
+    /// Goal: the products in row halves are the whole products, to round-off (1e-14
+    /// of the largest term's size), on an odd number of rows (the halves unequal),
+    /// above and below the size where they split; and each half is computed (a
+    /// fault that drops the second half's rows or its share of the sum fails).
+    #[test]
+    fn products_in_row_halves_are_the_whole_products() {
+        let mut rng = Start(7);
+        for (n, k, j) in [(20_001, 4, 30), (31, 4, 5)] {
+            let a = faer::Mat::<f64>::from_fn(n, k, |_, _| rng.next());
+            let q = faer::Mat::<f64>::from_fn(n, j, |_, _| rng.next());
+            let c = faer::Mat::<f64>::from_fn(j, k, |_, _| rng.next());
+            assert_eq!(halves(n, n * k * j) < n, n > 1000, "where the products split");
+            let mut whole = faer::Mat::<f64>::zeros(k, j);
+            matmul(whole.as_mut(), Accum::Replace, a.transpose(), q.as_ref(), 1.0, Par::Seq);
+            let gram = tall_gram(a.as_ref(), q.as_ref());
+            let scale = n as f64;
+            assert!((&gram - &whole).norm_max() <= 1e-14 * scale, "AᵀQ");
+            let mut w = a.clone();
+            let mut expected = a.clone();
+            matmul(expected.as_mut(), Accum::Add, q.as_ref(), c.as_ref(), -0.5, Par::Seq);
+            tall_update(w.as_mut(), q.as_ref(), c.as_ref(), -0.5);
+            assert!((&w - &expected).norm_max() <= 1e-14 * j as f64, "W − ½QC");
+        }
+    }
+
     /// Goal: the band reduction and QL give a block tridiagonal T's values and the
     /// residuals ‖B s_k‖ of the dense solver, on three blocks of four and seven of
     /// three (a block narrowing, as where the space runs out), with upper-trapezoidal
