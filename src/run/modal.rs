@@ -600,9 +600,9 @@ pub fn reduce_at(
     };
     let (mut k_r, mut m_r, mut c_r) = (own_block(&sys.k), own_block(&sys.m), own_block(&sys.c));
     // TᵀKT and TᵀMT: the sparse products of a block of columns, then a matrix product
-    // each for the lower triangle only (the block's rows from its first column down),
-    // mirrored: half the products of the whole, and symmetric. Blocks of 32 columns
-    // keep the products' storage small beside T's.
+    // each for the lower triangle only (each half block's rows from its first column
+    // down), mirrored: half the products of the whole, and symmetric. Blocks of 32
+    // columns keep the products' storage small beside T's.
     let o = own.len();
     // TᵀCT likewise, for a damped structure (an empty p × 0 product otherwise).
     let damped = s_sys.damped();
@@ -639,10 +639,8 @@ pub fn reduce_at(
                 if xt.is_empty() {
                     continue;
                 }
-                let g = tall_gram(columns.mat().subcols(first, p - first), xt.mat());
-                x.as_mut()
-                    .submatrix_mut(first, at, p - first, xt.len())
-                    .copy_from(g.as_ref());
+                let g = tall_gram(columns.mat().subcols(at, p - at), xt.mat());
+                x.as_mut().submatrix_mut(at, at, p - at, xt.len()).copy_from(g.as_ref());
             }
         }
     }
