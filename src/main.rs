@@ -341,7 +341,8 @@ pub struct RunArgs {
     #[arg(long)]
     pub all_dofs: bool,
     /// Report progress on standard error even when it is not a terminal (a line every
-    /// 10 s, for logs); on a terminal a progress bar is always drawn.
+    /// 10 s, for logs: the steps done, or before the first step what the run is doing,
+    /// as the modal engine's reduction); on a terminal a progress bar is always drawn.
     #[arg(long)]
     pub progress: bool,
 }

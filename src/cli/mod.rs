@@ -85,7 +85,9 @@ const ANNOUNCE_AFTER: std::time::Duration = std::time::Duration::from_secs(10);
 /// Watches a run's progress bar from its own thread: once a second of stepping has
 /// passed, prints the estimate of the whole run (time and memory) if it exceeds
 /// [`ANNOUNCE_AFTER`]; with `log_every`, also a line at that interval (for standard
-/// error that is not a terminal, where no bar is drawn). Ends when the bar finishes.
+/// error that is not a terminal, where no bar is drawn), before the first step the
+/// bar's message (the modal engine's reduction says itself there). Ends when the bar
+/// finishes.
 /// The bar counts the run's `steps`, or twice as many for the convolution engine
 /// (its kernel pass, then the run): time is projected from the fraction done.
 fn watch_run(
@@ -101,6 +103,15 @@ fn watch_run(
             std::thread::sleep(Duration::from_millis(100));
             let (done, len) = (bar.position(), bar.length().unwrap_or(0));
             if done == 0 || len == 0 {
+                // Before the first step (a modal reduction): what the bar says.
+                if log_every.is_some_and(|every| logged.elapsed() >= every) {
+                    logged = Instant::now();
+                    say_err(&format!(
+                        "progress: {}, {:.0} s elapsed",
+                        bar.message(),
+                        bar.elapsed().as_secs_f64()
+                    ));
+                }
                 continue;
             }
             let elapsed = bar.elapsed();
@@ -219,7 +230,11 @@ pub fn run(a: RunArgs) -> Result<u8, Error> {
         steps: a.steps.or(opts.steps),
         max_energy_error: a.max_energy_error.0,
         max_memory: Some((a.max_memory.max(0.0) * (1u64 << 30) as f64) as u64),
-        progress: Some(progress(format!("{} {}", model.name, opts.scheme)).unwrap_or_else(ProgressBar::hidden)),
+        progress: Some({
+            // Not drawn off a terminal, but its message is what `--progress` logs there.
+            let label = format!("{} {}", model.name, opts.scheme);
+            progress(label.clone()).unwrap_or_else(|| ProgressBar::hidden().with_message(label))
+        }),
         engine: a.engine,
         modal: impactlab::run::modal::ModalParams {
             cutoff: a.modes_up_to,
