@@ -342,22 +342,19 @@ pub fn lanczos_with(
             let width = 32.min(s.ncols() - c);
             let mut stored = faer::Mat::<f64>::zeros(nm, width);
             tall_update(stored.as_mut(), q.mat(), s.as_ref().subcols(c, width), 1.0);
-            ritz = faer::Mat::<f64>::zeros(n, width);
-            let mut x = vec![0.0; n];
-            for k in 0..width {
-                rows.scatter(column(stored.as_ref(), k), &mut x);
-                ritz.col_mut(k).iter_mut().zip(&x).for_each(|(r, v)| *r = *v);
-            }
             // Purification: Q s carries a component along M's null space, which the
             // M-inner product does not see: the recurrence's round-off there grows by
             // about α/β a step (on a curved panel's massless rotations, to 1e240 of
             // the vector in 550 steps). A = (K − σM)⁻¹M maps it to zero, so each Ritz
-            // vector is A Q s/θ, solved for the block's roots at once (Nour-Omid,
-            // Parlett, Ericsson and Jensen, Math. Comp. 48, 1987); θ goes with the
-            // M-normalisation below.
+            // vector is A Q s/θ, solved for the block's roots at once over every DOF
+            // (Nour-Omid, Parlett, Ericsson and Jensen, Math. Comp. 48, 1987); θ goes
+            // with the M-normalisation below.
+            ritz = faer::Mat::<f64>::zeros(n, width);
             for k in 0..width {
-                let mx = m_mul(column(ritz.as_ref(), k));
-                ritz.col_mut(k).iter_mut().zip(mx).for_each(|(b, m)| *b = m);
+                rows.scatter(
+                    &rows.m_mul(sys, column(stored.as_ref(), k)),
+                    column_mut(ritz.as_mut(), k),
+                );
             }
             factor.solve_columns_in_place(ritz.as_mut());
         }
@@ -394,6 +391,14 @@ const BLOCK: usize = 4;
 /// Column `c` of a matrix as a slice.
 pub fn column(m: faer::MatRef<'_, f64>, c: usize) -> &[f64] {
     m.col(c).try_as_col_major().expect("a column of a Mat").as_slice()
+}
+
+/// Column `c` of a matrix as a slice, to change.
+fn column_mut(m: faer::MatMut<'_, f64>, c: usize) -> &mut [f64] {
+    m.col_mut(c)
+        .try_as_col_major_mut()
+        .expect("a column of a Mat")
+        .as_slice_mut()
 }
 
 /// New start vectors: A applied to a fixed pseudo-random vector, so that it has no
@@ -461,15 +466,18 @@ impl MassRows {
     fn solve_columns(&self, factor: &mut Factor, mx: faer::MatRef<'_, f64>) -> faer::Mat<f64> {
         let mut full = faer::Mat::<f64>::zeros(self.n, mx.ncols());
         for c in 0..mx.ncols() {
-            let x = full
-                .col_mut(c)
-                .try_as_col_major_mut()
-                .expect("a column of a Mat")
-                .as_slice_mut();
-            self.scatter(column(mx, c), x);
+            self.scatter(column(mx, c), column_mut(full.as_mut(), c));
         }
         factor.solve_columns_in_place(full.as_mut());
         faer::Mat::from_fn(self.len(), mx.ncols(), |r, c| full[(self.rows[r], c)])
+    }
+
+    /// [`MassRows::solve_columns`] for one vector.
+    fn solve(&self, factor: &mut Factor, mx: &[f64]) -> Vec<f64> {
+        let mut full = vec![0.0; self.n];
+        self.scatter(mx, &mut full);
+        factor.solve_in_place(&mut full);
+        self.gather(&full)
     }
 }
 
@@ -578,11 +586,9 @@ fn fresh_vector(
 ) -> Option<(Vec<f64>, Vec<f64>)> {
     let (rows, n) = (fresh.rows, q.n);
     for _ in 0..3 {
+        // Drawn over every DOF, as the sequence always was; M reads those with mass.
         let x: Vec<f64> = (0..rows.n).map(|_| fresh.rng.next()).collect();
-        let mut full = vec![0.0; rows.n];
-        rows.scatter(&m_mul(&rows.gather(&x)), &mut full);
-        factor.solve_in_place(&mut full);
-        let mut v = rows.gather(&full);
+        let mut v = rows.solve(factor, &m_mul(&rows.gather(&x)));
         let size = dot(&v, &m_mul(&v)).max(0.0).sqrt();
         // Against the stored vectors and the block's, twice over ("twice is enough").
         let mut mv = Vec::new();
