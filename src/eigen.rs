@@ -185,21 +185,32 @@ pub fn lanczos(
         });
     }
     let (mut factor, shift) = factorise(sys, labels)?;
-    lanczos_with(sys, &mut factor, shift, roots, params)
+    lanczos_with(sys, &mut factor, shift, roots, params, &|_| {})
 }
 
 /// [`lanczos`] with K − σM factorised by [`factorise`] (a system of at least one DOF),
-/// so that a caller keeps the factor for its own solves.
+/// so that a caller keeps the factor for its own solves, and is told at each
+/// convergence test how far it has come (`report`).
 pub fn lanczos_with(
     sys: &System,
     factor: &mut Factor,
     shift: f64,
     roots: &Roots,
     params: &LanczosParams,
+    report: &dyn Fn(Extracted),
 ) -> Result<Eigenpairs, SolveError> {
-    extract(sys, factor, shift, roots, params, |w, q, m_mul| {
+    extract(sys, factor, shift, roots, params, report, |w, q, m_mul| {
         orthogonalise_columns(w, q, &m_mul)
     })
+}
+
+/// How far an extraction has come, told at each convergence test.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Extracted {
+    /// Lanczos vectors formed.
+    pub vectors: usize,
+    /// Roots in the range asked for that the test accepted.
+    pub roots: usize,
 }
 
 /// How a step's new block is made M-orthogonal to the stored Lanczos vectors, and its
@@ -213,6 +224,7 @@ fn extract(
     shift: f64,
     roots: &Roots,
     params: &LanczosParams,
+    report: &dyn Fn(Extracted),
     reorthogonalise: Reorthogonalise,
 ) -> Result<Eigenpairs, SolveError> {
     let t0 = std::time::Instant::now();
@@ -307,6 +319,10 @@ fn extract(
                 .max(1)
                 .max(pending(&theta, &residual, shift, roots, params, &accepted));
             seen = seen.max(accepted.len());
+            report(Extracted {
+                vectors: j,
+                roots: accepted.len(),
+            });
             if let Some(v) = values {
                 if spanned || last.as_ref().is_some_and(|l| same(l, &v, params.tolerance)) {
                     break;
@@ -1342,7 +1358,7 @@ mod tests {
         };
         let params = LanczosParams::default();
         let (mut factor, shift) = factorise(&sys, &labels).unwrap();
-        let sound = lanczos_with(&sys, &mut factor, shift, &roots, &params).unwrap();
+        let sound = lanczos_with(&sys, &mut factor, shift, &roots, &params, &|_| {}).unwrap();
         assert_eq!(sound.values.len(), 200);
         let worst = sound
             .values
@@ -1357,7 +1373,7 @@ mod tests {
             max_vectors: Some(4 * sound.lanczos_vectors),
             ..params
         };
-        match extract(&sys, &mut factor, shift, &roots, &bounded, none) {
+        match extract(&sys, &mut factor, shift, &roots, &bounded, &|_| {}, none) {
             Err(SolveError::Orthogonality { vectors, loss }) => {
                 assert!(loss > f64::EPSILON.sqrt(), "{vectors} vectors, loss {loss:e}")
             }

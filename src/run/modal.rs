@@ -41,7 +41,7 @@ use super::{linear_outputs, Engine, RunError, RunOptions, RunResult};
 use crate::assembly::System;
 use crate::eigen::{
     column, factorise, highest_root_scale, lanczos_with, orthogonalise_columns, remove_block, tall_gram, tall_update,
-    Columns, LanczosParams, Roots,
+    Columns, Extracted, LanczosParams, Roots,
 };
 use crate::integrate::Scheme;
 use crate::ledger::Ledger;
@@ -289,7 +289,13 @@ pub fn run(model: &Model, sys: &System, opts: &RunOptions) -> Result<RunResult, 
         b.enable_steady_tick(std::time::Duration::from_millis(250));
         label
     });
-    let reduced = reduce(model, sys, &opts.modal, budget);
+    // Then what it is at: the Lanczos vectors and modes so far, the residual vectors.
+    let say = |detail: &str| {
+        if let (Some(b), Some(label)) = (&bar, &label) {
+            b.set_message(format!("{label}, reducing to modes and residual vectors: {detail}"));
+        }
+    };
+    let reduced = reduce(model, sys, &opts.modal, budget, &say);
     if let (Some(b), Some(label)) = (&bar, label) {
         b.disable_steady_tick();
         b.set_message(label);
@@ -373,9 +379,18 @@ pub fn cutoff(model: &Model, params: &ModalParams) -> Result<(f64, String), RunE
 /// DOFs: j Lanczos vectors (over its DOFs with mass alone), with the m modes as they
 /// are formed (j + m), then T as it is reordered and turned, two copies at a time (2p,
 /// p = m + residual vectors, m ≤ j); so the extraction may form as many Lanczos
-/// vectors as half the budget holds vectors over the structure's DOFs.
-pub fn reduce(model: &Model, sys: &System, params: &ModalParams, budget: Option<u64>) -> Result<Reduction, RunError> {
-    reduce_at(model, sys, params, cutoff(model, params)?, budget)
+/// vectors as half the budget holds vectors over the structure's DOFs. It tells `say`
+/// what it is at, for a progress bar: the factorisation, the Lanczos vectors and the
+/// modes converged at each convergence test, the residual vector it is forming, the
+/// reduced matrices.
+pub fn reduce(
+    model: &Model,
+    sys: &System,
+    params: &ModalParams,
+    budget: Option<u64>,
+    say: &dyn Fn(&str),
+) -> Result<Reduction, RunError> {
+    reduce_at(model, sys, params, cutoff(model, params)?, budget, say)
 }
 
 /// [`reduce`] with the cutoff frequency and where it came from given: the cutoff of a
@@ -386,6 +401,7 @@ pub fn reduce_at(
     params: &ModalParams,
     (cut, cutoff_from): (f64, String),
     budget: Option<u64>,
+    say: &dyn Fn(&str),
 ) -> Result<Reduction, RunError> {
     let t0 = std::time::Instant::now();
     let n = model.n();
@@ -424,17 +440,20 @@ pub fn reduce_at(
         ..Default::default()
     };
     // K − σM, factorised once for the extraction and the residual vectors.
+    say(&format!("factorising the structure's {ns} DOFs"));
     let (mut factor, shift) = factorise(&s_sys, &labels)?;
-    let mut pairs = lanczos_with(&s_sys, &mut factor, shift, &roots, &lanczos_params).map_err(|e| match e {
-        crate::integrate::SolveError::Memory { what, .. } => RunError::Input(format!(
-            "the modal reduction (modes up to {cut:.4e} cycles per the deck's time unit) is over the memory \
+    let extracted = |e: Extracted| say(&format!("{} Lanczos vectors, {} modes converged", e.vectors, e.roots));
+    let mut pairs =
+        lanczos_with(&s_sys, &mut factor, shift, &roots, &lanczos_params, &extracted).map_err(|e| match e {
+            crate::integrate::SolveError::Memory { what, .. } => RunError::Input(format!(
+                "the modal reduction (modes up to {cut:.4e} cycles per the deck's time unit) is over the memory \
              limit: {what}; with as many modes over the structure's {ns} DOFs and the basis made of them, more \
              than the {:.2} GiB the limit leaves beside the system and the records; lower the cutoff \
              (--modes-up-to) or raise --max-memory",
-            budget.unwrap_or(0) as f64 / (1u64 << 30) as f64
-        )),
-        e => e.into(),
-    })?;
+                budget.unwrap_or(0) as f64 / (1u64 << 30) as f64
+            )),
+            e => e.into(),
+        })?;
     let m_mul = |x: &[f64]| {
         let mut y = vec![0.0; ns];
         s_sys.m_mul(x, &mut y);
@@ -497,6 +516,11 @@ pub fn reduce_at(
             let mut load: Vec<f64> = m_mul(&share).iter().map(|x| -x).collect();
             load[bl] += 1.0;
             for order in 0..if params.residual_vectors { RESIDUAL_ORDER } else { 1 } {
+                say(&format!(
+                    "{modes} modes; residual vector {} of at most {}",
+                    residual_count + 1,
+                    boundary.len() * RESIDUAL_ORDER
+                ));
                 factor.solve_in_place(&mut load);
                 let mut psi = load;
                 if order == 0 && Some(bl) == contact_dof {
@@ -533,6 +557,10 @@ pub fn reduce_at(
             }
         }
     }
+    say(&format!(
+        "the reduced matrices over {} basis vectors",
+        modes + residual_count
+    ));
     // V = [Φ Ψ], then T: boundary rows [I 0].
     let mut columns = kept;
     let p = columns.len();

@@ -499,7 +499,7 @@ pub fn sweep(base: &Model, run: &RunOptions, opts: &SweepOptions) -> Result<Swee
     let reduction = std::sync::OnceLock::new();
     let reduced = |cut: &(f64, String)| {
         reduction
-            .get_or_init(|| modal::reduce_at(model, sys, &run.modal, cut.clone(), None))
+            .get_or_init(|| modal::reduce_at(model, sys, &run.modal, cut.clone(), None, &|_| {}))
             .as_ref()
             .map_err(RunError::clone)
     };

@@ -187,7 +187,14 @@ pub fn find_velocity(base: &Model, run: &RunOptions, until: Until, bar: &Progres
                 ));
             }
             let cut = crate::run::modal::cutoff(model, &run.modal)?;
-            Some(crate::run::modal::reduce_at(model, sys, &run.modal, cut, None)?)
+            Some(crate::run::modal::reduce_at(
+                model,
+                sys,
+                &run.modal,
+                cut,
+                None,
+                &|_| {},
+            )?)
         }
         _ => None,
     };
