@@ -561,7 +561,10 @@ pub fn check(a: CheckArgs) -> Result<u8, Error> {
     let mut r = impactlab::model::check::check(&d);
     if let (Some(n), true) = (a.modes, r.takes) {
         match impactlab::run::modes::lowest(&d, n) {
-            Ok((s, _)) => r.lowest_frequencies = Some(s.modes.iter().map(|m| m.cycles).collect()),
+            Ok((s, _)) => {
+                r.warnings.extend(impactlab::run::modes::inaccurate_roots(&s.modes));
+                r.lowest_frequencies = Some(s.modes.iter().map(|m| m.cycles).collect());
+            }
             Err(e) => r.warnings.push(format!("the lowest frequencies were not found: {e}")),
         }
     }
