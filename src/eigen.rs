@@ -370,32 +370,13 @@ fn extract(
         sys.m_mul(x, &mut y);
         y
     };
-    let mut ritz = faer::Mat::<f64>::zeros(n, 0);
-    for (c, (lambda, _)) in pairs.into_iter().enumerate() {
-        if c % 32 == 0 {
-            let width = 32.min(s.ncols() - c);
-            let mut stored = faer::Mat::<f64>::zeros(nm, width);
-            tall_update(stored.as_mut(), q.mat(), s.as_ref().subcols(c, width), 1.0);
-            // Purification: Q s carries a component along M's null space, which the
-            // M-inner product does not see: the recurrence's round-off there grows by
-            // about α/β a step (on a curved panel's massless rotations, to 1e240 of
-            // the vector in 550 steps). A = (K − σM)⁻¹M maps it to zero, so each Ritz
-            // vector is A Q s/θ, solved for the block's roots at once over every DOF
-            // (Nour-Omid, Parlett, Ericsson and Jensen, Math. Comp. 48, 1987); θ goes
-            // with the M-normalisation below.
-            ritz = faer::Mat::<f64>::zeros(n, width);
-            for k in 0..width {
-                rows.scatter(
-                    &rows.m_mul(sys, column(stored.as_ref(), k)),
-                    column_mut(ritz.as_mut(), k),
-                );
-            }
-            factor.solve_columns_in_place(ritz.as_mut());
-        }
-        let mut x: Vec<f64> = column(ritz.as_ref(), c % 32).to_vec();
+    // A root's vector M-normalised, its largest entry (the first of equal size)
+    // positive (a root's vector does not depend on the start vectors or the solver's
+    // internals, but for round-off), and its backward error; x comes as A Q s, so
+    // that its θ goes with the normalisation.
+    let finish = |lambda: f64, x: &[f64]| -> (Vec<f64>, f64) {
+        let mut x = x.to_vec();
         let mx = m_mul(&x);
-        // Its largest entry (the first of equal size) positive: a root's vector does
-        // not depend on the start vectors or the solver's internals, but for round-off.
         let largest = x.iter().fold(0.0_f64, |a, &b| if b.abs() > a.abs() { b } else { a });
         let g = dot(&x, &mx).sqrt().copysign(largest);
         x.iter_mut().for_each(|v| *v /= g);
@@ -408,9 +389,42 @@ fn extract(
             .sum::<f64>()
             .sqrt();
         let scale = (k_norm + lambda.abs() * m_norm) * dot(&x, &x).sqrt();
-        out.residuals.push(if scale > 0.0 { r / scale } else { r });
-        out.values.push(lambda);
-        out.vectors.push(x);
+        (x, if scale > 0.0 { r / scale } else { r })
+    };
+    for first in (0..pairs.len()).step_by(32) {
+        let width = 32.min(pairs.len() - first);
+        let mut stored = faer::Mat::<f64>::zeros(nm, width);
+        tall_update(stored.as_mut(), q.mat(), s.as_ref().subcols(first, width), 1.0);
+        // Purification: Q s carries a component along M's null space, which the
+        // M-inner product does not see: the recurrence's round-off there grows by
+        // about α/β a step (on a curved panel's massless rotations, to 1e240 of
+        // the vector in 550 steps). A = (K − σM)⁻¹M maps it to zero, so each Ritz
+        // vector is A Q s/θ, solved for the block's roots at once over every DOF
+        // (Nour-Omid, Parlett, Ericsson and Jensen, Math. Comp. 48, 1987); θ goes
+        // with the M-normalisation.
+        let mut ritz = faer::Mat::<f64>::zeros(n, width);
+        for k in 0..width {
+            rows.scatter(
+                &rows.m_mul(sys, column(stored.as_ref(), k)),
+                column_mut(ritz.as_mut(), k),
+            );
+        }
+        factor.solve_columns_in_place(ritz.as_mut());
+        // Each half of the block's roots finished on its own core.
+        let finished = |ks: std::ops::Range<usize>| -> Vec<(Vec<f64>, f64)> {
+            ks.map(|k| finish(pairs[first + k].0, column(ritz.as_ref(), k)))
+                .collect()
+        };
+        let half = width / 2;
+        let (top, bottom) = std::thread::scope(|t| {
+            let bottom = t.spawn(|| finished(half..width));
+            (finished(0..half), bottom.join().expect("a root's thread"))
+        });
+        for (k, (x, residual)) in top.into_iter().chain(bottom).enumerate() {
+            out.residuals.push(residual);
+            out.values.push(pairs[first + k].0);
+            out.vectors.push(x);
+        }
     }
     out.solve_time = factor.solve_time - solved_before;
     out.time = t0.elapsed() + factor.factor_time;
