@@ -516,11 +516,15 @@ pub fn reduce_at(
             let mut load: Vec<f64> = m_mul(&share).iter().map(|x| -x).collect();
             load[bl] += 1.0;
             for order in 0..if params.residual_vectors { RESIDUAL_ORDER } else { 1 } {
-                say(&format!(
-                    "{modes} modes; residual vector {} of at most {}",
-                    residual_count + 1,
-                    boundary.len() * RESIDUAL_ORDER
-                ));
+                say(&if params.residual_vectors {
+                    format!(
+                        "{modes} modes; residual vector {} of at most {}",
+                        residual_count + 1,
+                        boundary.len() * RESIDUAL_ORDER
+                    )
+                } else {
+                    format!("{modes} modes; the static flexibility they leave out")
+                });
                 factor.solve_in_place(&mut load);
                 let mut psi = load;
                 if order == 0 && Some(bl) == contact_dof {
