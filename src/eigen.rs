@@ -204,13 +204,16 @@ pub fn lanczos_with(
     })
 }
 
-/// How far an extraction has come, told at each convergence test.
+/// How far an extraction has come, told at each convergence test and once more when it
+/// has converged.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Extracted {
     /// Lanczos vectors formed.
     pub vectors: usize,
     /// Roots in the range asked for that the test accepted.
     pub roots: usize,
+    /// The extraction has converged: these are the roots, whose vectors it forms now.
+    pub converged: bool,
 }
 
 /// How a step's new block is made M-orthogonal to the stored Lanczos vectors, and its
@@ -322,6 +325,7 @@ fn extract(
             report(Extracted {
                 vectors: j,
                 roots: accepted.len(),
+                converged: false,
             });
             if let Some(v) = values {
                 if spanned || last.as_ref().is_some_and(|l| same(l, &v, params.tolerance)) {
@@ -350,6 +354,11 @@ fn extract(
             seen,
         });
     }
+    report(Extracted {
+        vectors: q.len(),
+        roots: pairs.len(),
+        converged: true,
+    });
     let mut out = Eigenpairs {
         values: Vec::new(),
         vectors: Vec::new(),

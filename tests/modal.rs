@@ -256,10 +256,10 @@ fn max_memory_holds_the_modal_reduction() {
 /// Goal: the run's progress bar says when the modal engine is reducing (most of a
 /// large model's run, all before its first step: 45 s of the 199 × 199 panel's 49 s)
 /// and what it is at: the Lanczos vectors formed and the modes converged at each
-/// convergence test, rising, then the residual vector it is at; and has its own message back
-/// for the stepping. Model: the paper's plate, its bar's message read every
-/// millisecond while it runs (its reduction takes about 0.4 s, its extraction's
-/// convergence tests come some 10 to 60 Lanczos vectors apart).
+/// convergence test, rising, then the modes' vectors and the residual vector it is at;
+/// and has its own message back for the stepping. Model: the paper's plate, its bar's
+/// message read every millisecond while it runs (its reduction takes about 0.4 s, its
+/// extraction's convergence tests come some 10 to 60 Lanczos vectors apart).
 #[test]
 fn the_progress_bar_says_when_the_modal_engine_reduces() {
     let model = plate();
@@ -306,6 +306,12 @@ fn the_progress_bar_says_when_the_modal_engine_reduces() {
         "{counts:?}"
     );
     assert!(counts.last().unwrap().1 > 0, "{counts:?}");
+    assert!(
+        details
+            .iter()
+            .any(|d| d.starts_with("163 modes from ") && d.ends_with(" Lanczos vectors, forming their vectors")),
+        "{said:?}"
+    );
     assert!(
         details.iter().any(|d| d.starts_with("163 modes; residual vector ")),
         "{said:?}"

@@ -381,8 +381,8 @@ pub fn cutoff(model: &Model, params: &ModalParams) -> Result<(f64, String), RunE
 /// p = m + residual vectors, m ≤ j); so the extraction may form as many Lanczos
 /// vectors as half the budget holds vectors over the structure's DOFs. It tells `say`
 /// what it is at, for a progress bar: the factorisation, the Lanczos vectors and the
-/// modes converged at each convergence test, the residual vector it is forming, the
-/// reduced matrices.
+/// modes converged at each convergence test, the modes' vectors, the residual vector
+/// it is forming, the reduced matrices.
 pub fn reduce(
     model: &Model,
     sys: &System,
@@ -442,7 +442,16 @@ pub fn reduce_at(
     // K − σM, factorised once for the extraction and the residual vectors.
     say(&format!("factorising the structure's {ns} DOFs"));
     let (mut factor, shift) = factorise(&s_sys, &labels)?;
-    let extracted = |e: Extracted| say(&format!("{} Lanczos vectors, {} modes converged", e.vectors, e.roots));
+    let extracted = |e: Extracted| {
+        say(&if e.converged {
+            format!(
+                "{} modes from {} Lanczos vectors, forming their vectors",
+                e.roots, e.vectors
+            )
+        } else {
+            format!("{} Lanczos vectors, {} modes converged", e.vectors, e.roots)
+        })
+    };
     let mut pairs =
         lanczos_with(&s_sys, &mut factor, shift, &roots, &lanczos_params, &extracted).map_err(|e| match e {
             crate::integrate::SolveError::Memory { what, .. } => RunError::Input(format!(
