@@ -81,7 +81,7 @@ use crate::assembly::System;
 use crate::integrate::linear::Factor;
 use crate::integrate::SolveError;
 use crate::model::DofLabel;
-use crate::numerics::dot;
+use crate::numerics::{both, dot};
 use faer::linalg::matmul::matmul;
 use faer::{Accum, Par};
 use nalgebra::DMatrix;
@@ -425,10 +425,7 @@ fn extract(
                 .collect()
         };
         let half = width / 2;
-        let (top, bottom) = std::thread::scope(|t| {
-            let bottom = t.spawn(|| finished(half..width));
-            (finished(0..half), bottom.join().expect("a root's thread"))
-        });
+        let (top, bottom) = both(|| finished(0..half), || finished(half..width));
         for (k, (x, residual)) in top.into_iter().chain(bottom).enumerate() {
             out.residuals.push(residual);
             out.values.push(pairs[first + k].0);
@@ -807,13 +804,10 @@ pub fn tall_gram(a: faer::MatRef<'_, f64>, b: faer::MatRef<'_, f64>) -> faer::Ma
     if h == n {
         return product(a, b);
     }
-    let (top, bottom) = std::thread::scope(|s| {
-        let bottom = s.spawn(|| product(a.subrows(h, n - h), b.subrows(h, n - h)));
-        (
-            product(a.subrows(0, h), b.subrows(0, h)),
-            bottom.join().expect("a product's thread"),
-        )
-    });
+    let (top, bottom) = both(
+        || product(a.subrows(0, h), b.subrows(0, h)),
+        || product(a.subrows(h, n - h), b.subrows(h, n - h)),
+    );
     top + bottom
 }
 
@@ -828,10 +822,10 @@ pub fn tall_update(w: faer::MatMut<'_, f64>, q: faer::MatRef<'_, f64>, c: faer::
         return product(w, q);
     }
     let (top, bottom) = w.split_at_row_mut(h);
-    std::thread::scope(|s| {
-        s.spawn(|| product(bottom, q.subrows(h, n - h)));
-        product(top, q.subrows(0, h));
-    });
+    both(
+        || product(top, q.subrows(0, h)),
+        || product(bottom, q.subrows(h, n - h)),
+    );
 }
 
 /// Makes the columns of `w` M-orthogonal to every vector of `q`, and returns their

@@ -86,6 +86,17 @@ pub fn argmax(it: impl Iterator<Item = f64>) -> (usize, f64) {
         .fold((0, f64::NEG_INFINITY), |a, (k, v)| if v > a.1 { (k, v) } else { a })
 }
 
+/// Runs `first` on this thread and `second` on a second one at once, and returns
+/// both results: how a stage splits its work over the machine's two cores. The
+/// split is the caller's, fixed by the sizes (never by the cores there are), so
+/// that the round-off is the same on any machine.
+pub fn both<A, B: Send>(first: impl FnOnce() -> A, second: impl FnOnce() -> B + Send) -> (A, B) {
+    std::thread::scope(|s| {
+        let second = s.spawn(second);
+        (first(), second.join().expect("the second core's share"))
+    })
+}
+
 /// Σ a_i·b_i over the shorter length, in eight partial sums (lane i mod 8) added
 /// pairwise at the end: eight independent chains of additions instead of one, which
 /// the compiler vectorises. Its round-off is that of eight sums of N/8 terms.

@@ -131,10 +131,7 @@ impl Factor {
         };
         if k >= 2 {
             let (a, b) = x.split_at_col_mut(k / 2);
-            std::thread::scope(|s| {
-                s.spawn(|| solve(b));
-                solve(a);
-            });
+            crate::numerics::both(|| solve(a), || solve(b));
         } else {
             solve(x);
         }

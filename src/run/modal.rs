@@ -681,10 +681,7 @@ pub fn reduce_at(
             [kt, mt, ct]
         };
         let half = first + width / 2;
-        let [top, bottom] = std::thread::scope(|s| {
-            let bottom = s.spawn(|| products_of(half..first + width));
-            [products_of(first..half), bottom.join().expect("a product's thread")]
-        });
+        let (top, bottom) = crate::numerics::both(|| products_of(first..half), || products_of(half..first + width));
         let mut products = vec![(&mut kt_t, 0), (&mut mt_t, 1)];
         if damped {
             products.push((&mut ct_t, 2));
