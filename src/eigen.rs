@@ -1359,7 +1359,7 @@ mod tests {
     /// chain of 2 000 beads, its lowest 200 roots asked for, against the closed form.
     /// Sound, they are found to 1e-12 of the largest asked for (measured 4.2e-13: an
     /// accepted root is exact to about the square of the 1e-10 acceptance, and what is
-    /// left is round-off, ε‖K‖ ≈ 9e-16 being 3.6e-14 of the 200th root, 0.0245). With each step's
+    /// left is round-off, ε‖K‖ ≈ 9e-16 being 9e-15 of the 200th root, 0.0974). With each step's
     /// block only given its M-image (no re-orthogonalisation against the stored
     /// vectors: the three-term recurrence alone, which loses orthogonality as Ritz
     /// values converge, Paige 1971), the newest block's overlap with the first passes
