@@ -29,6 +29,7 @@ mod contact;
 pub mod law;
 pub mod convolution;
 pub mod linear;
+mod subtrees;
 pub mod nastran;
 pub mod newmark;
 #[cfg(test)]

@@ -1,0 +1,251 @@
+//! A supernodal Cholesky solve on two cores by subtrees of the elimination tree.
+//!
+//! L y = b and Lᵀ x = y are solved supernode by supernode, as faer's supernodal solve
+//! does: forward, each supernode's diagonal block solve then the update of the rows
+//! of its pattern (its ancestors' columns); backward, the reverse. Two subtrees with
+//! no ancestor in common touch disjoint rows, but for those of their common
+//! ancestors. So the supernodes are split into two sides, each a union of whole
+//! subtrees of about half the factor's terms, and the rest (the top: every ancestor
+//! of both, with a nested-dissection ordering the last separators). Forward, each
+//! side runs on its own core, its updates of the top's rows summed into a buffer of
+//! its own, both buffers added to the top's rows after; then the top alone. Backward,
+//! the top alone, then the two sides at once, each reading the top's finished rows.
+//!
+//! Each core streams its side's share of the factor once for all the columns, where
+//! splitting the columns between the cores has each stream all of it. The factor's
+//! reads bound the solve of a large factor, so the two-core solve of one column takes
+//! about half the time of one core's. Every dense operation is faer's on the same
+//! blocks in the same order as in its own solve; only the sums into the top's rows
+//! are associated differently (the two sides' shares added last), so a result
+//! differs from faer's in round-off there, and is the same on any machine.
+
+use faer::linalg::matmul::matmul;
+use faer::linalg::triangular_solve::{solve_lower_triangular_in_place, solve_upper_triangular_in_place};
+use faer::reborrow::{Reborrow, ReborrowMut};
+use faer::sparse::linalg::cholesky::supernodal::{SupernodalLltRef, SymbolicSupernodalCholesky};
+use faer::{Accum, Mat, MatMut, Par};
+
+/// The supernodes of a factor in the two sides and the top (each ascending: the
+/// factor's order, children before their parents).
+#[derive(Debug)]
+pub struct Subtrees {
+    sides: [Vec<usize>; 2],
+    top: Vec<usize>,
+    /// The rows (of the permuted matrix) of each side's supernodes' columns.
+    side_rows: [Vec<usize>; 2],
+    /// The rows of the top's supernodes' columns.
+    top_rows: Vec<usize>,
+    /// The longest pattern of a supernode (the rows of its update).
+    widest: usize,
+}
+
+/// A side holds at most this share of the two sides' terms once split: past it a
+/// heavier subtree is split into its children (whose root goes to the top).
+const BALANCE: f64 = 0.55;
+
+impl Subtrees {
+    /// Splits the supernodes of `symbolic`: starting from the roots' subtrees, the
+    /// heaviest subtree (by its terms) is replaced by its children, its root going to
+    /// the top, until the subtrees dealt heaviest first to the lighter side leave
+    /// neither side with more than [`BALANCE`] of their terms (or no subtree is left
+    /// to split). None when the factor has a single chain of supernodes.
+    pub fn new(symbolic: &SymbolicSupernodalCholesky<usize>) -> Option<Subtrees> {
+        let ns = symbolic.n_supernodes();
+        let begin = symbolic.supernode_begin();
+        let end = symbolic.supernode_end();
+        let mut supernode_of = vec![0; symbolic.nrows()];
+        for s in 0..ns {
+            supernode_of[begin[s]..end[s]].iter_mut().for_each(|x| *x = s);
+        }
+        let (mut children, mut roots) = (vec![Vec::new(); ns], Vec::new());
+        let mut weight = vec![0usize; ns];
+        for s in 0..ns {
+            let pattern = symbolic.supernode(s).pattern();
+            let cols = end[s] - begin[s];
+            weight[s] += (cols + pattern.len()) * cols;
+            match pattern.first() {
+                Some(&row) => children[supernode_of[row]].push(s),
+                None => roots.push(s),
+            }
+        }
+        // Subtree weights: children come before their parents.
+        let mut subtree = weight.clone();
+        for s in 0..ns {
+            if let Some(&row) = symbolic.supernode(s).pattern().first() {
+                subtree[supernode_of[row]] += subtree[s];
+            }
+        }
+        let mut candidates = roots;
+        let deal = |candidates: &[usize]| {
+            let mut order = candidates.to_vec();
+            order.sort_by_key(|&s| std::cmp::Reverse((subtree[s], s)));
+            let mut sides: [(usize, Vec<usize>); 2] = [(0, Vec::new()), (0, Vec::new())];
+            for s in order {
+                let lighter = if sides[0].0 <= sides[1].0 { 0 } else { 1 };
+                sides[lighter].0 += subtree[s];
+                sides[lighter].1.push(s);
+            }
+            sides
+        };
+        let sides = loop {
+            let sides = deal(&candidates);
+            let total = sides[0].0 + sides[1].0;
+            let heaviest = candidates.iter().copied().max_by_key(|&s| (subtree[s], s));
+            let balanced = sides[0].0.max(sides[1].0) as f64 <= BALANCE * total as f64;
+            match heaviest {
+                Some(h) if !balanced && !children[h].is_empty() => {
+                    candidates.retain(|&s| s != h);
+                    candidates.extend(&children[h]);
+                }
+                _ => break sides,
+            }
+        };
+        if sides.iter().any(|(w, _)| *w == 0) {
+            return None;
+        }
+        // Every supernode of each side's subtrees.
+        let mut side_of = vec![usize::MAX; ns];
+        for (k, (_, rs)) in sides.iter().enumerate() {
+            for &r in rs {
+                side_of[r] = k;
+            }
+        }
+        for s in (0..ns).rev() {
+            if side_of[s] != usize::MAX {
+                for &c in &children[s] {
+                    side_of[c] = side_of[s];
+                }
+            }
+        }
+        let (mut split, mut rows) = ([Vec::new(), Vec::new()], [Vec::new(), Vec::new()]);
+        let (mut top, mut top_rows) = (Vec::new(), Vec::new());
+        for s in 0..ns {
+            match side_of[s] {
+                usize::MAX => {
+                    top.push(s);
+                    top_rows.extend(begin[s]..end[s]);
+                }
+                k => {
+                    split[k].push(s);
+                    rows[k].extend(begin[s]..end[s]);
+                }
+            }
+        }
+        Some(Subtrees {
+            sides: split,
+            top,
+            side_rows: rows,
+            top_rows,
+            widest: (0..ns)
+                .map(|s| symbolic.supernode(s).pattern().len())
+                .max()
+                .unwrap_or(0),
+        })
+    }
+
+    /// X ← L⁻ᵀL⁻¹X for X in the factor's own (permuted) order, the sides on two cores.
+    pub fn solve_in_place(&self, llt: SupernodalLltRef<'_, usize, f64>, mut x: MatMut<'_, f64>) {
+        let (n, k) = (x.nrows(), x.ncols());
+        // Forward: each side on its own copy, its own rows taken from X and the top's
+        // starting at zero, so that they gather the side's share of the updates.
+        let forward = |side: usize| {
+            let mut y = Mat::<f64>::zeros(n, k);
+            let mut work = Mat::<f64>::zeros(self.widest, k);
+            for &r in &self.side_rows[side] {
+                for j in 0..k {
+                    y[(r, j)] = x[(r, j)];
+                }
+            }
+            for &s in &self.sides[side] {
+                forward_supernode(llt, s, y.as_mut(), &mut work);
+            }
+            y
+        };
+        let (mut a, mut b) = crate::numerics::both(|| forward(0), || forward(1));
+        for (side, y) in [&a, &b].into_iter().enumerate() {
+            for &r in &self.side_rows[side] {
+                for j in 0..k {
+                    x[(r, j)] = y[(r, j)];
+                }
+            }
+        }
+        for &r in &self.top_rows {
+            for j in 0..k {
+                x[(r, j)] += a[(r, j)] + b[(r, j)];
+            }
+        }
+        let mut work = Mat::<f64>::zeros(self.widest, k);
+        for &s in &self.top {
+            forward_supernode(llt, s, x.as_mut(), &mut work);
+        }
+        for &s in self.top.iter().rev() {
+            backward_supernode(llt, s, x.as_mut(), &mut work);
+        }
+        // Backward: each side on its copy, the top's rows now final.
+        for y in [&mut a, &mut b] {
+            for &r in &self.top_rows {
+                for j in 0..k {
+                    y[(r, j)] = x[(r, j)];
+                }
+            }
+        }
+        let backward = |side: usize, mut y: Mat<f64>| {
+            let mut work = Mat::<f64>::zeros(self.widest, k);
+            for &s in self.sides[side].iter().rev() {
+                backward_supernode(llt, s, y.as_mut(), &mut work);
+            }
+            y
+        };
+        let (a, b) = crate::numerics::both(|| backward(0, a), || backward(1, b));
+        for (side, y) in [a, b].into_iter().enumerate() {
+            for &r in &self.side_rows[side] {
+                for j in 0..k {
+                    x[(r, j)] = y[(r, j)];
+                }
+            }
+        }
+    }
+}
+
+/// Supernode s's forward step, as faer's: x_s ← L_ss⁻¹ x_s, then x_P −= L_Ps x_s for
+/// the rows P of its pattern.
+fn forward_supernode(llt: SupernodalLltRef<'_, usize, f64>, s: usize, mut x: MatMut<'_, f64>, work: &mut Mat<f64>) {
+    let node = llt.supernode(s);
+    let l = node.val();
+    let size = l.ncols();
+    let (top, bottom) = l.split_at_row(size);
+    let mut xs = x.rb_mut().subrows_mut(node.start(), size);
+    solve_lower_triangular_in_place(top, xs.rb_mut(), Par::Seq);
+    let mut update = work.as_mut().subrows_mut(0, node.pattern().len());
+    matmul(update.rb_mut(), Accum::Replace, bottom, xs.rb(), 1.0, Par::Seq);
+    for j in 0..x.ncols() {
+        for (p, &i) in node.pattern().iter().enumerate() {
+            x[(i, j)] -= update[(p, j)];
+        }
+    }
+}
+
+/// Supernode s's backward step, as faer's: x_s −= L_Psᵀ x_P, then x_s ← L_ss⁻ᵀ x_s.
+fn backward_supernode(llt: SupernodalLltRef<'_, usize, f64>, s: usize, mut x: MatMut<'_, f64>, work: &mut Mat<f64>) {
+    let node = llt.supernode(s);
+    let l = node.val();
+    let size = l.ncols();
+    let (top, bottom) = l.split_at_row(size);
+    let pattern = node.pattern();
+    let mut gathered = work.as_mut().subrows_mut(0, pattern.len());
+    for j in 0..x.ncols() {
+        for (p, &i) in pattern.iter().enumerate() {
+            gathered[(p, j)] = x[(i, j)];
+        }
+    }
+    let mut xs = x.rb_mut().subrows_mut(node.start(), size);
+    matmul(
+        xs.rb_mut(),
+        Accum::Add,
+        bottom.transpose(),
+        gathered.rb(),
+        -1.0,
+        Par::Seq,
+    );
+    solve_upper_triangular_in_place(top.transpose(), xs.rb_mut(), Par::Seq);
+}
