@@ -2,12 +2,13 @@
 //! step without allocating (faer's supernodal LLᵀ, workspace kept), its fill-reducing
 //! ordering AMD or, for a large factor, METIS's nested dissection when it fills less.
 
-use super::subtrees::Subtrees;
+use super::subtrees::{Buffers, Subtrees};
 use super::SolveError;
 use crate::assembly::{Combination, System};
 use crate::model::DofLabel;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::solvers::LltError;
+use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, supernodal::SupernodalLltRef, CholeskySymbolicParams, LltRef, SymbolicCholesky,
     SymbolicCholeskyRaw, SymmetricOrdering,
@@ -132,6 +133,8 @@ pub struct Factor {
     work: MemBuffer,
     /// For a large supernodal factor, its split for the two-core solve.
     subtrees: Option<Subtrees>,
+    /// The split solve's storage, and X in the factor's order.
+    split_buffers: (Buffers, Vec<f64>),
     /// Time spent factorising.
     pub factor_time: Duration,
     /// Time spent in solves.
@@ -215,6 +218,7 @@ impl Factor {
             values,
             work,
             subtrees,
+            split_buffers: Default::default(),
             factor_time: t0.elapsed(),
             solve_time: Duration::ZERO,
             solves: 0,
@@ -242,22 +246,28 @@ impl Factor {
 
     /// X ← A⁻¹ X by [`Subtrees::solve_in_place`]: X permuted into the factor's order,
     /// solved, and permuted back, as faer's solve does.
-    fn split_solve(&self, mut x: MatMut<'_, f64>) {
+    fn split_solve(&mut self, mut x: MatMut<'_, f64>) {
         let (SymbolicCholeskyRaw::Supernodal(symbolic), Some(subtrees)) = (self.symbolic.raw(), &self.subtrees) else {
             unreachable!("a split factor is supernodal")
         };
         let (n, k) = (x.nrows(), x.ncols());
-        let mut y = faer::Mat::<f64>::zeros(n, k);
+        let (buffers, permuted) = &mut self.split_buffers;
+        permuted.resize(n * k, 0.0);
         let perm = self.symbolic.perm().map(|p| p.arrays());
-        for j in 0..k {
-            for i in 0..n {
-                y[(i, j)] = x[(perm.map_or(i, |(fwd, _)| fwd[i]), j)];
+        for (j, y) in permuted.chunks_exact_mut(n).enumerate() {
+            let xj = crate::eigen::column(x.rb(), j);
+            match perm {
+                Some((forward, _)) => y.iter_mut().zip(forward).for_each(|(y, &f)| *y = xj[f]),
+                None => y.copy_from_slice(xj),
             }
         }
-        subtrees.solve_in_place(SupernodalLltRef::new(symbolic, &self.values), y.as_mut());
-        for j in 0..k {
-            for i in 0..n {
-                x[(i, j)] = y[(perm.map_or(i, |(_, inv)| inv[i]), j)];
+        let y = MatMut::from_column_major_slice_mut(permuted, n, k);
+        subtrees.solve_in_place(SupernodalLltRef::new(symbolic, &self.values), y, buffers);
+        for (j, y) in permuted.chunks_exact(n).enumerate() {
+            let xj = crate::eigen::column_mut(x.rb_mut(), j);
+            match perm {
+                Some((_, inverse)) => xj.iter_mut().zip(inverse).for_each(|(x, &i)| *x = y[i]),
+                None => xj.copy_from_slice(y),
             }
         }
     }

@@ -23,7 +23,8 @@ use faer::linalg::matmul::matmul;
 use faer::linalg::triangular_solve::{solve_lower_triangular_in_place, solve_upper_triangular_in_place};
 use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::sparse::linalg::cholesky::supernodal::{SupernodalLltRef, SymbolicSupernodalCholesky};
-use faer::{Accum, Mat, MatMut, Par};
+use faer::{Accum, MatMut, MatRef, Par};
+use std::ops::Range;
 
 /// The supernodes of a factor in the two sides and the top (each ascending: the
 /// factor's order, children before their parents).
@@ -31,10 +32,10 @@ use faer::{Accum, Mat, MatMut, Par};
 pub struct Subtrees {
     sides: [Vec<usize>; 2],
     top: Vec<usize>,
-    /// The rows (of the permuted matrix) of each side's supernodes' columns.
-    side_rows: [Vec<usize>; 2],
-    /// The rows of the top's supernodes' columns.
-    top_rows: Vec<usize>,
+    /// The rows (of the permuted matrix) of each side's supernodes' columns, as ranges.
+    side_rows: [Vec<Range<usize>>; 2],
+    /// The rows of the top's supernodes' columns, as ranges.
+    top_rows: Vec<Range<usize>>,
     /// The longest pattern of a supernode (the rows of its update).
     widest: usize,
 }
@@ -117,25 +118,19 @@ impl Subtrees {
                 }
             }
         }
-        let (mut split, mut rows) = ([Vec::new(), Vec::new()], [Vec::new(), Vec::new()]);
-        let (mut top, mut top_rows) = (Vec::new(), Vec::new());
-        for s in 0..ns {
-            match side_of[s] {
-                usize::MAX => {
-                    top.push(s);
-                    top_rows.extend(begin[s]..end[s]);
-                }
-                k => {
-                    split[k].push(s);
-                    rows[k].extend(begin[s]..end[s]);
-                }
+        let (mut split, mut top) = ([Vec::new(), Vec::new()], Vec::new());
+        for (s, &side) in side_of.iter().enumerate() {
+            match side {
+                usize::MAX => top.push(s),
+                k => split[k].push(s),
             }
         }
+        let rows = |set: &[usize]| merged(set.iter().map(|&s| begin[s]..end[s]));
         Some(Subtrees {
+            side_rows: [rows(&split[0]), rows(&split[1])],
+            top_rows: rows(&top),
             sides: split,
             top,
-            side_rows: rows,
-            top_rows,
             widest: (0..ns)
                 .map(|s| symbolic.supernode(s).pattern().len())
                 .max()
@@ -143,99 +138,163 @@ impl Subtrees {
         })
     }
 
-    /// X ← L⁻ᵀL⁻¹X for X in the factor's own (permuted) order, the sides on two cores.
-    pub fn solve_in_place(&self, llt: SupernodalLltRef<'_, usize, f64>, mut x: MatMut<'_, f64>) {
+    /// X ← L⁻ᵀL⁻¹X for X in the factor's own (permuted) order, the sides on two cores;
+    /// `buffers` kept from one solve to the next.
+    pub fn solve_in_place(&self, llt: SupernodalLltRef<'_, usize, f64>, mut x: MatMut<'_, f64>, buffers: &mut Buffers) {
         let (n, k) = (x.nrows(), x.ncols());
+        let [a, b] = &mut buffers.sides;
+        for y in [&mut *a, &mut *b] {
+            y.resize(n * k, 0.0);
+        }
+        let mut works = std::mem::take(&mut buffers.works);
+        for w in works.iter_mut() {
+            w.resize(self.widest * k, 0.0);
+        }
+        let [work_a, work_b, work_top] = &mut works;
         // Forward: each side on its own copy, its own rows taken from X and the top's
         // starting at zero, so that they gather the side's share of the updates.
-        let forward = |side: usize| {
-            let mut y = Mat::<f64>::zeros(n, k);
-            let mut work = Mat::<f64>::zeros(self.widest, k);
-            for &r in &self.side_rows[side] {
-                for j in 0..k {
-                    y[(r, j)] = x[(r, j)];
-                }
+        let forward = |side: usize, y: &mut [f64], work: &mut [f64]| {
+            let mut y = MatMut::from_column_major_slice_mut(y, n, k);
+            copy_rows(&self.side_rows[side], x.rb(), y.rb_mut());
+            for j in 0..k {
+                let column = y
+                    .rb_mut()
+                    .col_mut(j)
+                    .try_as_col_major_mut()
+                    .expect("a column of a Mat")
+                    .as_slice_mut();
+                self.top_rows.iter().for_each(|r| column[r.clone()].fill(0.0));
             }
             for &s in &self.sides[side] {
-                forward_supernode(llt, s, y.as_mut(), &mut work);
+                forward_supernode(llt, s, y.rb_mut(), work);
             }
-            y
         };
-        let (mut a, mut b) = crate::numerics::both(|| forward(0), || forward(1));
-        for (side, y) in [&a, &b].into_iter().enumerate() {
-            for &r in &self.side_rows[side] {
-                for j in 0..k {
-                    x[(r, j)] = y[(r, j)];
-                }
+        crate::numerics::both(|| forward(0, a, work_a), || forward(1, b, work_b));
+        let (ya, yb) = (
+            MatMut::from_column_major_slice_mut(a, n, k),
+            MatMut::from_column_major_slice_mut(b, n, k),
+        );
+        copy_rows(&self.side_rows[0], ya.rb(), x.rb_mut());
+        copy_rows(&self.side_rows[1], yb.rb(), x.rb_mut());
+        for j in 0..k {
+            let (xj, aj, bj) = (
+                x.rb_mut()
+                    .col_mut(j)
+                    .try_as_col_major_mut()
+                    .expect("a column of a Mat")
+                    .as_slice_mut(),
+                ya.rb().col(j).try_as_col_major().expect("a column of a Mat").as_slice(),
+                yb.rb().col(j).try_as_col_major().expect("a column of a Mat").as_slice(),
+            );
+            for r in self.top_rows.iter().flat_map(|r| r.clone()) {
+                xj[r] += aj[r] + bj[r];
             }
         }
-        for &r in &self.top_rows {
-            for j in 0..k {
-                x[(r, j)] += a[(r, j)] + b[(r, j)];
-            }
-        }
-        let mut work = Mat::<f64>::zeros(self.widest, k);
         for &s in &self.top {
-            forward_supernode(llt, s, x.as_mut(), &mut work);
+            forward_supernode(llt, s, x.rb_mut(), work_top);
         }
         for &s in self.top.iter().rev() {
-            backward_supernode(llt, s, x.as_mut(), &mut work);
+            backward_supernode(llt, s, x.rb_mut(), work_top);
         }
         // Backward: each side on its copy, the top's rows now final.
-        for y in [&mut a, &mut b] {
-            for &r in &self.top_rows {
-                for j in 0..k {
-                    y[(r, j)] = x[(r, j)];
-                }
-            }
-        }
-        let backward = |side: usize, mut y: Mat<f64>| {
-            let mut work = Mat::<f64>::zeros(self.widest, k);
+        let backward = |side: usize, y: &mut [f64], work: &mut [f64]| {
+            let mut y = MatMut::from_column_major_slice_mut(y, n, k);
+            copy_rows(&self.top_rows, x.rb(), y.rb_mut());
             for &s in self.sides[side].iter().rev() {
-                backward_supernode(llt, s, y.as_mut(), &mut work);
+                backward_supernode(llt, s, y.rb_mut(), work);
             }
-            y
         };
-        let (a, b) = crate::numerics::both(|| backward(0, a), || backward(1, b));
-        for (side, y) in [a, b].into_iter().enumerate() {
-            for &r in &self.side_rows[side] {
-                for j in 0..k {
-                    x[(r, j)] = y[(r, j)];
-                }
-            }
+        crate::numerics::both(|| backward(0, a, work_a), || backward(1, b, work_b));
+        copy_rows(&self.side_rows[0], MatRef::from_column_major_slice(a, n, k), x.rb_mut());
+        copy_rows(&self.side_rows[1], MatRef::from_column_major_slice(b, n, k), x.rb_mut());
+        buffers.works = works;
+    }
+}
+
+/// The storage a split solve works in: each side's copy of X, and each core's
+/// updates of a supernode's pattern.
+#[derive(Debug, Default)]
+pub struct Buffers {
+    sides: [Vec<f64>; 2],
+    works: [Vec<f64>; 3],
+}
+
+/// `to`'s rows in `rows` ← `from`'s, column by column.
+fn copy_rows(rows: &[Range<usize>], from: MatRef<'_, f64>, mut to: MatMut<'_, f64>) {
+    for j in 0..from.ncols() {
+        let f = from.col(j).try_as_col_major().expect("a column of a Mat").as_slice();
+        let t = to
+            .rb_mut()
+            .col_mut(j)
+            .try_as_col_major_mut()
+            .expect("a column of a Mat")
+            .as_slice_mut();
+        for r in rows {
+            t[r.clone()].copy_from_slice(&f[r.clone()]);
         }
     }
+}
+
+/// Consecutive ranges merged.
+fn merged(ranges: impl Iterator<Item = Range<usize>>) -> Vec<Range<usize>> {
+    let mut out: Vec<Range<usize>> = Vec::new();
+    for r in ranges {
+        match out.last_mut() {
+            Some(last) if last.end == r.start => last.end = r.end,
+            _ => out.push(r),
+        }
+    }
+    out
 }
 
 /// Supernode s's forward step, as faer's: x_s ← L_ss⁻¹ x_s, then x_P −= L_Ps x_s for
-/// the rows P of its pattern.
-fn forward_supernode(llt: SupernodalLltRef<'_, usize, f64>, s: usize, mut x: MatMut<'_, f64>, work: &mut Mat<f64>) {
+/// the rows P of its pattern (`work` holds L_Ps x_s).
+fn forward_supernode(llt: SupernodalLltRef<'_, usize, f64>, s: usize, mut x: MatMut<'_, f64>, work: &mut [f64]) {
     let node = llt.supernode(s);
     let l = node.val();
-    let size = l.ncols();
+    let (size, pattern, k) = (l.ncols(), node.pattern(), x.ncols());
     let (top, bottom) = l.split_at_row(size);
     let mut xs = x.rb_mut().subrows_mut(node.start(), size);
     solve_lower_triangular_in_place(top, xs.rb_mut(), Par::Seq);
-    let mut update = work.as_mut().subrows_mut(0, node.pattern().len());
+    let mut update = MatMut::from_column_major_slice_mut(&mut work[..pattern.len() * k], pattern.len(), k);
     matmul(update.rb_mut(), Accum::Replace, bottom, xs.rb(), 1.0, Par::Seq);
-    for j in 0..x.ncols() {
-        for (p, &i) in node.pattern().iter().enumerate() {
-            x[(i, j)] -= update[(p, j)];
+    for j in 0..k {
+        let xj = x
+            .rb_mut()
+            .col_mut(j)
+            .try_as_col_major_mut()
+            .expect("a column of a Mat")
+            .as_slice_mut();
+        let uj = update
+            .rb()
+            .col(j)
+            .try_as_col_major()
+            .expect("a column of a Mat")
+            .as_slice();
+        for (&i, u) in pattern.iter().zip(uj) {
+            xj[i] -= u;
         }
     }
 }
 
-/// Supernode s's backward step, as faer's: x_s −= L_Psᵀ x_P, then x_s ← L_ss⁻ᵀ x_s.
-fn backward_supernode(llt: SupernodalLltRef<'_, usize, f64>, s: usize, mut x: MatMut<'_, f64>, work: &mut Mat<f64>) {
+/// Supernode s's backward step, as faer's: x_s −= L_Psᵀ x_P, then x_s ← L_ss⁻ᵀ x_s
+/// (`work` holds x_P).
+fn backward_supernode(llt: SupernodalLltRef<'_, usize, f64>, s: usize, mut x: MatMut<'_, f64>, work: &mut [f64]) {
     let node = llt.supernode(s);
     let l = node.val();
-    let size = l.ncols();
+    let (size, pattern, k) = (l.ncols(), node.pattern(), x.ncols());
     let (top, bottom) = l.split_at_row(size);
-    let pattern = node.pattern();
-    let mut gathered = work.as_mut().subrows_mut(0, pattern.len());
-    for j in 0..x.ncols() {
-        for (p, &i) in pattern.iter().enumerate() {
-            gathered[(p, j)] = x[(i, j)];
+    let mut gathered = MatMut::from_column_major_slice_mut(&mut work[..pattern.len() * k], pattern.len(), k);
+    for j in 0..k {
+        let xj = x.rb().col(j).try_as_col_major().expect("a column of a Mat").as_slice();
+        let gj = gathered
+            .rb_mut()
+            .col_mut(j)
+            .try_as_col_major_mut()
+            .expect("a column of a Mat")
+            .as_slice_mut();
+        for (g, &i) in gj.iter_mut().zip(pattern) {
+            *g = xj[i];
         }
     }
     let mut xs = x.rb_mut().subrows_mut(node.start(), size);
