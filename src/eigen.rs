@@ -374,31 +374,41 @@ fn extract(
     // Lanczos vectors and the roots' own, only a block's is stored twice).
     let j = q.len();
     let s = faer::Mat::<f64>::from_fn(j, pairs.len(), |r, c| pairs[c].1[r]);
-    let m_mul = |x: &[f64]| {
-        let mut y = vec![0.0; n];
-        sys.m_mul(x, &mut y);
-        y
-    };
-    // A root's vector M-normalised, its largest entry (the first of equal size)
+    // Roots' vectors M-normalised, each one's largest entry (the first of equal size)
     // positive (a root's vector does not depend on the start vectors or the solver's
-    // internals, but for round-off), and its backward error; x comes as A Q s, so
-    // that its θ goes with the normalisation.
-    let finish = |lambda: f64, x: &[f64]| -> (Vec<f64>, f64) {
-        let mut x = x.to_vec();
-        let mx = m_mul(&x);
-        let largest = x.iter().fold(0.0_f64, |a, &b| if b.abs() > a.abs() { b } else { a });
-        let g = dot(&x, &mx).sqrt().copysign(largest);
-        x.iter_mut().for_each(|v| *v /= g);
-        let mut kx = vec![0.0; n];
-        sys.k_mul(&x, &mut kx);
-        let r: f64 = kx
-            .iter()
-            .zip(&mx)
-            .map(|(k, m)| (k - lambda * m / g).powi(2))
-            .sum::<f64>()
-            .sqrt();
-        let scale = (k_norm + lambda.abs() * m_norm) * dot(&x, &x).sqrt();
-        (x, if scale > 0.0 { r / scale } else { r })
+    // internals, but for round-off), and their backward errors; x comes as A Q s, so
+    // that its θ goes with the normalisation. The products with M and K are made for
+    // the columns at once (each column's as alone).
+    let finish = |lambdas: &[f64], x: faer::MatRef<'_, f64>| -> Vec<(Vec<f64>, f64)> {
+        let w = x.ncols();
+        let mut x = x.to_owned();
+        let mut mx = faer::Mat::<f64>::zeros(n, w);
+        sys.m_mul_columns(x.as_ref(), mx.as_mut());
+        let g: Vec<f64> = (0..w)
+            .map(|c| {
+                let xc = column(x.as_ref(), c);
+                let largest = xc.iter().fold(0.0_f64, |a, &b| if b.abs() > a.abs() { b } else { a });
+                dot(xc, column(mx.as_ref(), c)).sqrt().copysign(largest)
+            })
+            .collect();
+        for (c, g) in g.iter().enumerate() {
+            column_mut(x.as_mut(), c).iter_mut().for_each(|v| *v /= g);
+        }
+        let mut kx = faer::Mat::<f64>::zeros(n, w);
+        sys.k_mul_columns(x.as_ref(), kx.as_mut());
+        (0..w)
+            .map(|c| {
+                let (lambda, g, xc) = (lambdas[c], g[c], column(x.as_ref(), c));
+                let r: f64 = column(kx.as_ref(), c)
+                    .iter()
+                    .zip(column(mx.as_ref(), c))
+                    .map(|(k, m)| (k - lambda * m / g).powi(2))
+                    .sum::<f64>()
+                    .sqrt();
+                let scale = (k_norm + lambda.abs() * m_norm) * dot(xc, xc).sqrt();
+                (xc.to_vec(), if scale > 0.0 { r / scale } else { r })
+            })
+            .collect()
     };
     for first in (0..pairs.len()).step_by(32) {
         let width = 32.min(pairs.len() - first);
@@ -421,8 +431,8 @@ fn extract(
         factor.solve_columns_in_place(ritz.as_mut());
         // Each half of the block's roots finished on its own core.
         let finished = |ks: std::ops::Range<usize>| -> Vec<(Vec<f64>, f64)> {
-            ks.map(|k| finish(pairs[first + k].0, column(ritz.as_ref(), k)))
-                .collect()
+            let lambdas: Vec<f64> = ks.clone().map(|k| pairs[first + k].0).collect();
+            finish(&lambdas, ritz.as_ref().subcols(ks.start, ks.len()))
         };
         let half = width / 2;
         let (top, bottom) = both(|| finished(0..half), || finished(half..width));
@@ -448,7 +458,7 @@ pub fn column(m: faer::MatRef<'_, f64>, c: usize) -> &[f64] {
 }
 
 /// Column `c` of a matrix as a slice, to change.
-fn column_mut(m: faer::MatMut<'_, f64>, c: usize) -> &mut [f64] {
+pub(crate) fn column_mut(m: faer::MatMut<'_, f64>, c: usize) -> &mut [f64] {
     m.col_mut(c)
         .try_as_col_major_mut()
         .expect("a column of a Mat")

@@ -667,16 +667,13 @@ pub fn reduce_at(
         let width = 32.min(p - first);
         // The block's sparse products, its second half's on a second thread.
         let products_of = |cs: std::ops::Range<usize>| {
-            let (mut kt, mut mt, mut ct) = (Columns::new(ns), Columns::new(ns), Columns::new(ns));
-            for c in cs {
-                let mut k = vec![0.0; ns];
-                s_sys.k_mul(columns.col(c), &mut k);
-                kt.push(&k);
-                mt.push(&m_mul(columns.col(c)));
-                if damped {
-                    s_sys.c_mul(columns.col(c), &mut k);
-                    ct.push(&k);
-                }
+            let x = columns.mat().subcols(cs.start, cs.len());
+            let (mut kt, mut mt) = (faer::Mat::zeros(ns, cs.len()), faer::Mat::zeros(ns, cs.len()));
+            let mut ct = faer::Mat::zeros(ns, if damped { cs.len() } else { 0 });
+            s_sys.k_mul_columns(x, kt.as_mut());
+            s_sys.m_mul_columns(x, mt.as_mut());
+            if damped {
+                s_sys.c_mul_columns(x, ct.as_mut());
             }
             [kt, mt, ct]
         };
@@ -688,11 +685,13 @@ pub fn reduce_at(
         }
         for (x, which) in products {
             for (at, xt) in [(first, &top[which]), (half, &bottom[which])] {
-                if xt.is_empty() {
+                if xt.ncols() == 0 {
                     continue;
                 }
-                let g = tall_gram(columns.mat().subcols(at, p - at), xt.mat());
-                x.as_mut().submatrix_mut(at, at, p - at, xt.len()).copy_from(g.as_ref());
+                let g = tall_gram(columns.mat().subcols(at, p - at), xt.as_ref());
+                x.as_mut()
+                    .submatrix_mut(at, at, p - at, xt.ncols())
+                    .copy_from(g.as_ref());
             }
         }
     }
