@@ -13,6 +13,7 @@ use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, supernodal::SupernodalLltRef, CholeskySymbolicParams, LltRef, SymbolicCholesky,
     SymbolicCholeskyRaw, SymmetricOrdering,
 };
+use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::SparseColMat;
 use faer::{Conj, MatMut, Par, Side};
 use std::time::{Duration, Instant};
@@ -37,40 +38,86 @@ fn ordered(
     labels: &[DofLabel],
     nd_from: usize,
 ) -> Result<(SymbolicCholesky<usize>, bool), SolveError> {
-    let symbolic = |ordering| {
-        factorize_symbolic_cholesky(a.symbolic(), Side::Lower, ordering, CholeskySymbolicParams::default())
-            .map_err(|e| SolveError::Linear(format!("{e:?}")))
-    };
-    let amd = symbolic(SymmetricOrdering::Amd)?;
+    let amd = factorize_symbolic_cholesky(
+        a.symbolic(),
+        Side::Lower,
+        SymmetricOrdering::Amd,
+        CholeskySymbolicParams::default(),
+    )
+    .map_err(|e| SolveError::Linear(format!("{e:?}")))?;
     if amd.len_val() < nd_from {
         return Ok((amd, false));
     }
-    let (forward, inverse) = nested_dissection(a, labels)?;
-    let nd = symbolic(SymmetricOrdering::Custom(faer::perm::PermRef::new_checked(
-        &forward,
-        &inverse,
-        a.nrows(),
-    )))?;
+    let nd = nested_dissection_symbolic(a, labels)?;
     Ok((if nd.len_val() < amd.len_val() { nd } else { amd }, true))
 }
 
+/// The symbolic factorisation of `a` under [`nested_dissection`], supernodal whatever
+/// its flops a term (faer's default takes a simplicial factor below 40), so that it is
+/// solved by subtrees.
+fn nested_dissection_symbolic(
+    a: &SparseColMat<usize, f64>,
+    labels: &[DofLabel],
+) -> Result<SymbolicCholesky<usize>, SolveError> {
+    let (forward, inverse) = nested_dissection(a, labels)?;
+    factorize_symbolic_cholesky(
+        a.symbolic(),
+        Side::Lower,
+        SymmetricOrdering::Custom(faer::perm::PermRef::new_checked(&forward, &inverse, a.nrows())),
+        CholeskySymbolicParams {
+            supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+            ..Default::default()
+        },
+    )
+    .map_err(|e| SolveError::Linear(format!("{e:?}")))
+}
+
 /// A nested-dissection ordering of `a` (George's, by METIS_NodeND's multilevel
-/// bisection): the graph of its points (a grid's DOFs are one vertex, weighted by
+/// bisection), each connected component of its graph on its own: the graph of a
+/// component's points (a point's DOFs in the component are one vertex, weighted by
 /// their count, so that METIS bisects points, not their components), the points in
-/// METIS's order, each point's DOFs together. Returns (forward, inverse): the
+/// METIS's order, each point's DOFs together. Ordered together, the two uncoupled
+/// halves of a flat plate (membrane, bending) would alternate within the points and
+/// leave no supernode wider than a point's bending DOFs: the 199 × 199 plate's
+/// structure was factorised in 3.2 s against 0.36 s. Returns (forward, inverse): the
 /// permuted matrix's row k is `a`'s row forward[k].
 fn nested_dissection(
     a: &SparseColMat<usize, f64>,
     labels: &[DofLabel],
 ) -> Result<(Vec<usize>, Vec<usize>), SolveError> {
     let n = a.nrows();
-    let mut vertex_of_point = rustc_hash::FxHashMap::default();
+    let ar = a.as_ref();
+    let neighbours = |j: usize| &ar.symbolic().row_idx()[ar.symbolic().col_ptr()[j]..ar.symbolic().col_ptr()[j + 1]];
+    // Connected components, by depth-first search.
+    let mut component = vec![usize::MAX; n];
+    let mut components = 0;
+    let mut stack = Vec::new();
+    for start in 0..n {
+        if component[start] != usize::MAX {
+            continue;
+        }
+        component[start] = components;
+        stack.push(start);
+        while let Some(j) = stack.pop() {
+            for &i in neighbours(j) {
+                if component[i] == usize::MAX {
+                    component[i] = components;
+                    stack.push(i);
+                }
+            }
+        }
+        components += 1;
+    }
+    // Vertices: a component's DOFs at one point.
+    let mut vertex_of = rustc_hash::FxHashMap::default();
     let mut dofs_of: Vec<Vec<usize>> = Vec::new();
+    let mut members: Vec<Vec<usize>> = vec![Vec::new(); components];
     let vertex: Vec<usize> = labels
         .iter()
         .enumerate()
         .map(|(i, l)| {
-            let v = *vertex_of_point.entry(l.point).or_insert_with(|| {
+            let v = *vertex_of.entry((component[i], l.point)).or_insert_with(|| {
+                members[component[i]].push(dofs_of.len());
                 dofs_of.push(Vec::new());
                 dofs_of.len() - 1
             });
@@ -80,45 +127,59 @@ fn nested_dissection(
         .collect();
     let too_large = || SolveError::Linear("the matrix's graph is too large for METIS's 32-bit indices".into());
     let idx = |x: usize| i32::try_from(x).map_err(|_| too_large());
-    // The points' adjacency (each pair once per side, no loops).
-    let (ar, nv) = (a.as_ref(), dofs_of.len());
-    let mut seen = vec![usize::MAX; nv];
-    let (mut xadj, mut adjncy) = (vec![0i32], Vec::new());
-    for (v, dofs) in dofs_of.iter().enumerate() {
-        seen[v] = v;
-        for &j in dofs {
-            for &i in &ar.symbolic().row_idx()[ar.symbolic().col_ptr()[j]..ar.symbolic().col_ptr()[j + 1]] {
+    let mut forward = Vec::with_capacity(n);
+    let (mut local, mut seen) = (vec![usize::MAX; dofs_of.len()], vec![usize::MAX; dofs_of.len()]);
+    for vertices in &members {
+        if vertices.len() <= 2 {
+            forward.extend(vertices.iter().flat_map(|&v| dofs_of[v].iter().copied()));
+            continue;
+        }
+        for (k, &v) in vertices.iter().enumerate() {
+            local[v] = k;
+        }
+        // The points' adjacency (each pair once per side, no loops).
+        let (mut xadj, mut adjncy) = (vec![0i32], Vec::new());
+        for &v in vertices {
+            seen[v] = v;
+            for &i in dofs_of[v].iter().flat_map(|&j| neighbours(j)) {
                 let w = vertex[i];
                 if seen[w] != v {
                     seen[w] = v;
-                    adjncy.push(idx(w)?);
+                    adjncy.push(idx(local[w])?);
                 }
             }
+            xadj.push(idx(adjncy.len())?);
         }
-        xadj.push(idx(adjncy.len())?);
+        let mut weights = vertices
+            .iter()
+            .map(|&v| idx(dofs_of[v].len()))
+            .collect::<Result<Vec<_>, _>>()?;
+        let (mut nvtxs, mut perm, mut iperm) = (
+            idx(vertices.len())?,
+            vec![0i32; vertices.len()],
+            vec![0i32; vertices.len()],
+        );
+        // SAFETY: xadj holds nvtxs + 1 ascending offsets into adjncy, whose entries are
+        // vertices below nvtxs; weights, perm and iperm hold nvtxs entries each; METIS
+        // reads the graph and writes perm and iperm, and keeps no pointer past the call
+        // (null options: its defaults).
+        let status = unsafe {
+            metis_sys::METIS_NodeND(
+                &mut nvtxs,
+                xadj.as_mut_ptr(),
+                adjncy.as_mut_ptr(),
+                weights.as_mut_ptr(),
+                std::ptr::null_mut(),
+                perm.as_mut_ptr(),
+                iperm.as_mut_ptr(),
+            )
+        };
+        if status != metis_sys::rstatus_et_METIS_OK {
+            return Err(SolveError::Linear(format!("METIS_NodeND failed (status {status})")));
+        }
+        // METIS's perm[k] is the vertex eliminated k-th.
+        forward.extend(perm.iter().flat_map(|&k| dofs_of[vertices[k as usize]].iter().copied()));
     }
-    let mut weights = dofs_of.iter().map(|d| idx(d.len())).collect::<Result<Vec<_>, _>>()?;
-    let (mut nvtxs, mut perm, mut iperm) = (idx(nv)?, vec![0i32; nv], vec![0i32; nv]);
-    // SAFETY: xadj holds nv + 1 ascending offsets into adjncy, whose entries are
-    // vertices below nv; weights, perm and iperm hold nv entries each; METIS reads the
-    // graph and writes perm and iperm, and keeps no pointer past the call (null
-    // options: its defaults).
-    let status = unsafe {
-        metis_sys::METIS_NodeND(
-            &mut nvtxs,
-            xadj.as_mut_ptr(),
-            adjncy.as_mut_ptr(),
-            weights.as_mut_ptr(),
-            std::ptr::null_mut(),
-            perm.as_mut_ptr(),
-            iperm.as_mut_ptr(),
-        )
-    };
-    if status != metis_sys::rstatus_et_METIS_OK {
-        return Err(SolveError::Linear(format!("METIS_NodeND failed (status {status})")));
-    }
-    // METIS's perm[k] is the vertex eliminated k-th.
-    let forward: Vec<usize> = perm.iter().flat_map(|&v| dofs_of[v as usize].iter().copied()).collect();
     let mut inverse = vec![0; n];
     for (k, &i) in forward.iter().enumerate() {
         inverse[i] = k;
@@ -311,6 +372,13 @@ mod tests {
     /// (a 9-point stencil coupling both components of neighbours), diagonally
     /// dominant, so symmetric positive definite; and its labels (one point per node).
     fn grid(k: usize) -> (SparseColMat<usize, f64>, Vec<DofLabel>) {
+        grid_coupled(k, -0.25)
+    }
+
+    /// `grid` with `coupling` between a point's two components and their neighbours'
+    /// (zero: two uncoupled grids on the same points, as a flat plate's membrane and
+    /// bending DOFs are).
+    fn grid_coupled(k: usize, coupling: f64) -> (SparseColMat<usize, f64>, Vec<DofLabel>) {
         let node = |r: usize, c: usize| r * k + c;
         let mut t = Vec::new();
         for r in 0..k {
@@ -322,7 +390,10 @@ mod tests {
                     }
                     let (a, b) = (node(r, c), node(r2, c2));
                     for (p, q) in [(0, 0), (0, 1), (1, 0), (1, 1)] {
-                        let v = if p == q { -1.0 } else { -0.25 };
+                        let v = if p == q { -1.0 } else { coupling };
+                        if v == 0.0 {
+                            continue;
+                        }
                         t.push(Triplet::new(2 * a + p, 2 * b + q, v));
                         t.push(Triplet::new(2 * b + q, 2 * a + p, v));
                     }
@@ -369,6 +440,28 @@ mod tests {
             chosen.len_val(),
             amd.len_val()
         );
+    }
+
+    /// Goal: two uncoupled halves on the same points (a flat plate's membrane and
+    /// bending DOFs) are ordered each on its own, so that the last separator of each is
+    /// one supernode. Ordered together, their DOFs alternated within each point and no
+    /// supernode was wider than three columns (the 199 × 199 plate's structure took
+    /// 3.2 s to factorise against 0.36 s). Model: `grid_coupled` 120 × 120, uncoupled;
+    /// its last separator is a grid line of points (measured: 180 columns).
+    #[test]
+    fn uncoupled_halves_are_ordered_apart() {
+        let k = 120;
+        let (a, labels) = grid_coupled(k, 0.0);
+        let symbolic = nested_dissection_symbolic(&a, &labels).unwrap();
+        let SymbolicCholeskyRaw::Supernodal(s) = symbolic.raw() else {
+            panic!("nested dissection's factor is supernodal")
+        };
+        let widest = (0..s.n_supernodes())
+            .map(|i| s.supernode_end()[i] - s.supernode_begin()[i])
+            .max()
+            .unwrap();
+        eprintln!("widest supernode: {widest} columns");
+        assert!(widest >= k / 2, "widest supernode {widest} columns");
     }
 
     /// Goal: the two-core solve by subtrees is the solve: on the same matrix and
