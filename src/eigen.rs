@@ -81,7 +81,7 @@ use crate::assembly::System;
 use crate::integrate::linear::Factor;
 use crate::integrate::SolveError;
 use crate::model::DofLabel;
-use crate::numerics::{both, dot};
+use crate::numerics::{both, column, column_mut, dot};
 use faer::linalg::matmul::matmul;
 use faer::{Accum, Par};
 use nalgebra::DMatrix;
@@ -451,19 +451,6 @@ fn extract(
 /// single solves (faer's supernodal solve reads the factor once for them all), and
 /// whose re-orthogonalisation reads the stored vectors once for all four.
 const BLOCK: usize = 4;
-
-/// Column `c` of a matrix as a slice.
-pub fn column(m: faer::MatRef<'_, f64>, c: usize) -> &[f64] {
-    m.col(c).try_as_col_major().expect("a column of a Mat").as_slice()
-}
-
-/// Column `c` of a matrix as a slice, to change.
-pub(crate) fn column_mut(m: faer::MatMut<'_, f64>, c: usize) -> &mut [f64] {
-    m.col_mut(c)
-        .try_as_col_major_mut()
-        .expect("a column of a Mat")
-        .as_slice_mut()
-}
 
 /// New start vectors: A applied to a fixed pseudo-random vector, so that it has no
 /// component along M's null space, on the DOFs with mass.

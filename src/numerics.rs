@@ -97,6 +97,19 @@ pub fn both<A, B: Send>(first: impl FnOnce() -> A, second: impl FnOnce() -> B + 
     })
 }
 
+/// Column `c` of a matrix as a slice.
+pub fn column(m: faer::MatRef<'_, f64>, c: usize) -> &[f64] {
+    m.col(c).try_as_col_major().expect("a column of a Mat").as_slice()
+}
+
+/// Column `c` of a matrix as a slice, to change.
+pub fn column_mut(m: faer::MatMut<'_, f64>, c: usize) -> &mut [f64] {
+    m.col_mut(c)
+        .try_as_col_major_mut()
+        .expect("a column of a Mat")
+        .as_slice_mut()
+}
+
 /// Σ a_i·b_i over the shorter length, in eight partial sums (lane i mod 8) added
 /// pairwise at the end: eight independent chains of additions instead of one, which
 /// the compiler vectorises. Its round-off is that of eight sums of N/8 terms.

@@ -5,8 +5,8 @@ mod reduce;
 
 pub use reduce::drop_inert;
 
-use crate::eigen::{column, column_mut};
 use crate::model::Model;
+use crate::numerics::{column, column_mut};
 use faer::reborrow::ReborrowMut;
 use faer::sparse::{SparseColMat, SparseRowMat, SymbolicSparseColMat, Triplet};
 use faer::{MatMut, MatRef};

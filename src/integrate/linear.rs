@@ -316,7 +316,7 @@ impl Factor {
         permuted.resize(n * k, 0.0);
         let perm = self.symbolic.perm().map(|p| p.arrays());
         for (j, y) in permuted.chunks_exact_mut(n).enumerate() {
-            let xj = crate::eigen::column(x.rb(), j);
+            let xj = crate::numerics::column(x.rb(), j);
             match perm {
                 Some((forward, _)) => y.iter_mut().zip(forward).for_each(|(y, &f)| *y = xj[f]),
                 None => y.copy_from_slice(xj),
@@ -325,7 +325,7 @@ impl Factor {
         let y = MatMut::from_column_major_slice_mut(permuted, n, k);
         subtrees.solve_in_place(SupernodalLltRef::new(symbolic, &self.values), y, buffers);
         for (j, y) in permuted.chunks_exact(n).enumerate() {
-            let xj = crate::eigen::column_mut(x.rb_mut(), j);
+            let xj = crate::numerics::column_mut(x.rb_mut(), j);
             match perm {
                 Some((_, inverse)) => xj.iter_mut().zip(inverse).for_each(|(x, &i)| *x = y[i]),
                 None => xj.copy_from_slice(y),

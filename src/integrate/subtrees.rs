@@ -19,6 +19,7 @@
 //! are associated differently (the two sides' shares added last), so a result
 //! differs from faer's in round-off there, and is the same on any machine.
 
+use crate::numerics::{column, column_mut};
 use faer::linalg::matmul::matmul;
 use faer::linalg::triangular_solve::{solve_lower_triangular_in_place, solve_upper_triangular_in_place};
 use faer::reborrow::{Reborrow, ReborrowMut};
@@ -157,13 +158,8 @@ impl Subtrees {
             let mut y = MatMut::from_column_major_slice_mut(y, n, k);
             copy_rows(&self.side_rows[side], x.rb(), y.rb_mut());
             for j in 0..k {
-                let column = y
-                    .rb_mut()
-                    .col_mut(j)
-                    .try_as_col_major_mut()
-                    .expect("a column of a Mat")
-                    .as_slice_mut();
-                self.top_rows.iter().for_each(|r| column[r.clone()].fill(0.0));
+                let own = column_mut(y.rb_mut(), j);
+                self.top_rows.iter().for_each(|r| own[r.clone()].fill(0.0));
             }
             for &s in &self.sides[side] {
                 forward_supernode(llt, s, y.rb_mut(), work);
@@ -177,15 +173,7 @@ impl Subtrees {
         copy_rows(&self.side_rows[0], ya.rb(), x.rb_mut());
         copy_rows(&self.side_rows[1], yb.rb(), x.rb_mut());
         for j in 0..k {
-            let (xj, aj, bj) = (
-                x.rb_mut()
-                    .col_mut(j)
-                    .try_as_col_major_mut()
-                    .expect("a column of a Mat")
-                    .as_slice_mut(),
-                ya.rb().col(j).try_as_col_major().expect("a column of a Mat").as_slice(),
-                yb.rb().col(j).try_as_col_major().expect("a column of a Mat").as_slice(),
-            );
+            let (xj, aj, bj) = (column_mut(x.rb_mut(), j), column(ya.rb(), j), column(yb.rb(), j));
             for r in self.top_rows.iter().flat_map(|r| r.clone()) {
                 xj[r] += aj[r] + bj[r];
             }
@@ -222,13 +210,8 @@ pub struct Buffers {
 /// `to`'s rows in `rows` ← `from`'s, column by column.
 fn copy_rows(rows: &[Range<usize>], from: MatRef<'_, f64>, mut to: MatMut<'_, f64>) {
     for j in 0..from.ncols() {
-        let f = from.col(j).try_as_col_major().expect("a column of a Mat").as_slice();
-        let t = to
-            .rb_mut()
-            .col_mut(j)
-            .try_as_col_major_mut()
-            .expect("a column of a Mat")
-            .as_slice_mut();
+        let f = column(from, j);
+        let t = column_mut(to.rb_mut(), j);
         for r in rows {
             t[r.clone()].copy_from_slice(&f[r.clone()]);
         }
@@ -259,18 +242,8 @@ fn forward_supernode(llt: SupernodalLltRef<'_, usize, f64>, s: usize, mut x: Mat
     let mut update = MatMut::from_column_major_slice_mut(&mut work[..pattern.len() * k], pattern.len(), k);
     matmul(update.rb_mut(), Accum::Replace, bottom, xs.rb(), 1.0, Par::Seq);
     for j in 0..k {
-        let xj = x
-            .rb_mut()
-            .col_mut(j)
-            .try_as_col_major_mut()
-            .expect("a column of a Mat")
-            .as_slice_mut();
-        let uj = update
-            .rb()
-            .col(j)
-            .try_as_col_major()
-            .expect("a column of a Mat")
-            .as_slice();
+        let xj = column_mut(x.rb_mut(), j);
+        let uj = column(update.rb(), j);
         for (&i, u) in pattern.iter().zip(uj) {
             xj[i] -= u;
         }
@@ -286,13 +259,8 @@ fn backward_supernode(llt: SupernodalLltRef<'_, usize, f64>, s: usize, mut x: Ma
     let (top, bottom) = l.split_at_row(size);
     let mut gathered = MatMut::from_column_major_slice_mut(&mut work[..pattern.len() * k], pattern.len(), k);
     for j in 0..k {
-        let xj = x.rb().col(j).try_as_col_major().expect("a column of a Mat").as_slice();
-        let gj = gathered
-            .rb_mut()
-            .col_mut(j)
-            .try_as_col_major_mut()
-            .expect("a column of a Mat")
-            .as_slice_mut();
+        let xj = column(x.rb(), j);
+        let gj = column_mut(gathered.rb_mut(), j);
         for (g, &i) in gj.iter_mut().zip(pattern) {
             *g = xj[i];
         }

@@ -40,13 +40,13 @@ use super::direct::{record, Fields};
 use super::{linear_outputs, Engine, RunError, RunOptions, RunResult};
 use crate::assembly::System;
 use crate::eigen::{
-    column, factorise, highest_root_scale, lanczos_with, orthogonalise_columns, remove_block, tall_gram, tall_update,
-    Columns, Extracted, LanczosParams, Roots,
+    factorise, highest_root_scale, lanczos_with, orthogonalise_columns, remove_block, tall_gram, tall_update, Columns,
+    Extracted, LanczosParams, Roots,
 };
 use crate::integrate::Scheme;
 use crate::ledger::Ledger;
 use crate::model::{Contact, DofLabel, Model};
-use crate::numerics::dot;
+use crate::numerics::{column, dot};
 use faer::linalg::matmul::matmul;
 use nalgebra::{DMatrix, DVector};
 
