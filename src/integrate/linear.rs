@@ -29,6 +29,10 @@ use std::time::{Duration, Instant};
 /// as much as it saves.
 const NESTED_DISSECTION_FROM: usize = 8_000_000;
 
+/// The widest block whose split-solve storage a factor keeps for the next solve:
+/// the Lanczos blocks' width and more.
+const KEPT_COLUMNS: usize = 8;
+
 /// The symbolic factorisation of `a` under AMD, or under nested dissection
 /// ([`nested_dissection`]) when AMD's has at least `nd_from` terms and nested
 /// dissection's has fewer (CHOLMOD's choice between the two, by fill); and whether
@@ -330,6 +334,11 @@ impl Factor {
                 Some((_, inverse)) => xj.iter_mut().zip(inverse).for_each(|(x, &i)| *x = y[i]),
                 None => xj.copy_from_slice(y),
             }
+        }
+        // A wide block's storage (the Ritz vectors' 32 columns: three copies of X) is
+        // not kept for the narrow solves after it.
+        if k > KEPT_COLUMNS {
+            self.split_buffers = Default::default();
         }
     }
 
