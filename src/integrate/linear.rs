@@ -6,6 +6,7 @@ use super::subtrees::{Buffers, Subtrees};
 use super::SolveError;
 use crate::assembly::{Combination, System};
 use crate::model::DofLabel;
+use crate::numerics::{column, column_mut};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::solvers::LltError;
 use faer::reborrow::{Reborrow, ReborrowMut};
@@ -22,9 +23,9 @@ use std::time::{Duration, Instant};
 /// as well, and the ordering with fewer terms kept. Past some millions of terms the
 /// factor no longer fits a cache, every solve streams it from memory, and a solve's
 /// cost is its term count. AMD leaves these terms on `mesh panel --radius 10`
-/// (modal engine's K − σM), against nested dissection's: n 49, 2.40M against 2.25M
-/// (6 % fewer); n 99, 14.1M against 12.0M (15 %); n 149, 40.3M against 30.7M (24 %);
-/// n 199, 76.3M against 60.4M (21 %). Below 8M, the paper's decks and every
+/// (modal engine's K − σM), against nested dissection's: n 49, 2.40M against 2.18M
+/// (9 % fewer); n 99, 14.1M against 11.8M (16 %); n 149, 40.3M against 31.0M (23 %);
+/// n 199, 76.3M against 59.7M (22 %). Below 8M, the paper's decks and every
 /// verification model, AMD alone: the gain is a few per cent and the ordering costs
 /// as much as it saves.
 const NESTED_DISSECTION_FROM: usize = 8_000_000;
@@ -320,7 +321,7 @@ impl Factor {
         permuted.resize(n * k, 0.0);
         let perm = self.symbolic.perm().map(|p| p.arrays());
         for (j, y) in permuted.chunks_exact_mut(n).enumerate() {
-            let xj = crate::numerics::column(x.rb(), j);
+            let xj = column(x.rb(), j);
             match perm {
                 Some((forward, _)) => y.iter_mut().zip(forward).for_each(|(y, &f)| *y = xj[f]),
                 None => y.copy_from_slice(xj),
@@ -329,7 +330,7 @@ impl Factor {
         let y = MatMut::from_column_major_slice_mut(permuted, n, k);
         subtrees.solve_in_place(SupernodalLltRef::new(symbolic, &self.values), y, buffers);
         for (j, y) in permuted.chunks_exact(n).enumerate() {
-            let xj = crate::numerics::column_mut(x.rb_mut(), j);
+            let xj = column_mut(x.rb_mut(), j);
             match perm {
                 Some((_, inverse)) => xj.iter_mut().zip(inverse).for_each(|(x, &i)| *x = y[i]),
                 None => xj.copy_from_slice(y),
@@ -352,20 +353,18 @@ impl Factor {
         let k = x.ncols();
         if self.subtrees.is_some() {
             self.split_solve(x);
-            self.solves += k;
-            self.solve_time += t0.elapsed();
-            return;
-        }
-        let llt = LltRef::new(&self.symbolic, &self.values);
-        let solve = |x: MatMut<'_, f64>| {
-            let mut work = MemBuffer::new(self.symbolic.solve_in_place_scratch::<f64>(x.ncols(), Par::Seq));
-            llt.solve_in_place_with_conj(Conj::No, x, Par::Seq, MemStack::new(&mut work));
-        };
-        if k >= 2 {
-            let (a, b) = x.split_at_col_mut(k / 2);
-            crate::numerics::both(|| solve(a), || solve(b));
         } else {
-            solve(x);
+            let llt = LltRef::new(&self.symbolic, &self.values);
+            let solve = |x: MatMut<'_, f64>| {
+                let mut work = MemBuffer::new(self.symbolic.solve_in_place_scratch::<f64>(x.ncols(), Par::Seq));
+                llt.solve_in_place_with_conj(Conj::No, x, Par::Seq, MemStack::new(&mut work));
+            };
+            if k >= 2 {
+                let (a, b) = x.split_at_col_mut(k / 2);
+                crate::numerics::both(|| solve(a), || solve(b));
+            } else {
+                solve(x);
+            }
         }
         self.solves += k;
         self.solve_time += t0.elapsed();

@@ -59,22 +59,21 @@ impl Subtrees {
         for s in 0..ns {
             supernode_of[begin[s]..end[s]].iter_mut().for_each(|x| *x = s);
         }
+        // Each supernode's children, and its subtree's terms (its own and its
+        // children's, which come before it: complete when it is reached).
         let (mut children, mut roots) = (vec![Vec::new(); ns], Vec::new());
-        let mut weight = vec![0usize; ns];
+        let (mut subtree, mut widest) = (vec![0usize; ns], 0);
         for s in 0..ns {
             let pattern = symbolic.supernode(s).pattern();
             let cols = end[s] - begin[s];
-            weight[s] += (cols + pattern.len()) * cols;
+            subtree[s] += (cols + pattern.len()) * cols;
+            widest = widest.max(pattern.len());
             match pattern.first() {
-                Some(&row) => children[supernode_of[row]].push(s),
+                Some(&row) => {
+                    children[supernode_of[row]].push(s);
+                    subtree[supernode_of[row]] += subtree[s];
+                }
                 None => roots.push(s),
-            }
-        }
-        // Subtree weights: children come before their parents.
-        let mut subtree = weight.clone();
-        for s in 0..ns {
-            if let Some(&row) = symbolic.supernode(s).pattern().first() {
-                subtree[supernode_of[row]] += subtree[s];
             }
         }
         let mut candidates = roots;
@@ -132,10 +131,7 @@ impl Subtrees {
             top_rows: rows(&top),
             sides: split,
             top,
-            widest: (0..ns)
-                .map(|s| symbolic.supernode(s).pattern().len())
-                .max()
-                .unwrap_or(0),
+            widest,
         })
     }
 
