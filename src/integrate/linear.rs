@@ -428,8 +428,8 @@ mod tests {
     /// Goal: on George's problem, a regular grid, nested dissection fills less than
     /// AMD (on a 2-D grid of N points it leaves O(N log N) terms, the optimum's order),
     /// and a factor taken as large keeps the ordering with fewer terms. Model: the
-    /// 120 × 120 grid of two-DOF points (28 800 DOFs); measured 2.13M terms under
-    /// nested dissection against AMD's 2.29M.
+    /// 120 × 120 grid of two-DOF points (28 800 DOFs); asked for at least 5 % fewer
+    /// terms, measured 2.13M under nested dissection against AMD's 2.29M (7 %).
     #[test]
     fn nested_dissection_of_a_regular_grid_fills_less_than_amd() {
         let (a, labels) = grid(120);
@@ -455,7 +455,9 @@ mod tests {
     /// one supernode. Ordered together, their DOFs alternated within each point and no
     /// supernode was wider than three columns (the 199 × 199 plate's structure took
     /// 3.2 s to factorise against 0.36 s). Model: `grid_coupled` 120 × 120, uncoupled;
-    /// its last separator is a grid line of points (measured: 180 columns).
+    /// its last separator is a grid line of points, so the widest supernode is asked
+    /// to hold at least half a line's 120 points (measured: 180 columns; ordered
+    /// together, 1).
     #[test]
     fn uncoupled_halves_are_ordered_apart() {
         let k = 120;
@@ -473,9 +475,11 @@ mod tests {
     }
 
     /// Goal: the two-core solve by subtrees is the solve: on the same matrix and
-    /// ordering, its result is faer's own to round-off (1e-13 relative, the error
-    /// of the solve itself being about 1e-15 here), for one column (the direct
-    /// engine's steps) and for five (an odd block). A fault in the split (a side's
+    /// ordering, its result is faer's own to round-off, for one column (the direct
+    /// engine's steps) and for five (an odd block). Measured 8e-16 and 9e-16 of the
+    /// largest entry, the size of either solve's own residual (2e-15 of b); the
+    /// bound, 1e-13, leaves 100 times that for faer's kernels on another machine (it
+    /// picks its vector width by machine). A fault in the split (a side's
     /// share of the top's updates left out, a side solved against stale top rows)
     /// moves it by O(1). Model: the 60 × 60 grid of `grid` (7200 DOFs), taken as large.
     #[test]
