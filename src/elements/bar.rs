@@ -25,6 +25,18 @@
 //! the axis at each end, a CBAR none. The mass sits at the bar's ends (its offset
 //! ends), whatever the pin flags.
 //!
+//! Coupled mass (a CBAR under PARAM COUPMASS, or CPBAR under COUPMASS 0), as
+//! NASTRAN-95 builds it (its BAR routine's consistent mass, m = (ρA + NSM)·L): across
+//! the axis, the consistent mass of the cubic deflections of the stiffness, ∫(ρA + NSM)
+//! (v² + w²) dx, in both planes; along it, the mean of the lumped and the consistent
+//! linear masses, m/12 [5 1; 1 5], under which a chain of bars has its axial roots
+//! exact to fourth order in the element length (the lumped mass's error and the
+//! consistent one's cancel at second order); no torsional or rotary inertia. It sits
+//! at the offset ends, as the lumped mass does. With pin flags it is condensed as the
+//! stiffness is, Pᵀ M P. NASTRAN-95 condenses it one release at a time against the
+//! unreleased stiffness: the same for a single release and for releases the
+//! stiffness does not couple, not for two it does (both ends' θz; tests below).
+//!
 //! Recovery at ends A and B: the strains and stresses (σ = Eε) at the section's
 //! points C, D, E, F; and the resultants: axial force N = EA u′, torque T = GJ θx′,
 //! bending moments M1 = E(I1 v″ + I12 w″) (plane 1) and M2 = E(I12 v″ + I2 w″)
@@ -92,6 +104,8 @@ pub struct BarSpec {
     pub section: BarSection,
     /// Released components at end A and end B.
     pub released: [u8; 2],
+    /// NASTRAN-95's coupled mass (a CBAR's) in place of the lumped.
+    pub coupled_mass: bool,
 }
 
 /// A CBAR or CBEAM in its own axes.
@@ -109,6 +123,8 @@ pub struct Bar {
     pub release: M12,
     /// The stiffness, condensed: Pᵀ K P.
     pub k: M12,
+    /// The coupled mass, condensed (Pᵀ M P), when the deck asks for it.
+    pub coupled_mass: Option<M12>,
 }
 
 /// The generalised strains (u′, θx′, v″, w″) at ξ = x/L as rows over the 12 DOFs.
@@ -131,6 +147,47 @@ fn strain_rows(l: f64, xi: f64) -> SMatrix<f64, 4, 12> {
         b[(3, w)] = if k % 2 == 1 { -n[k] / l2 } else { n[k] / l2 };
     }
     b
+}
+
+/// The displacements (u, v, w) at ξ = x/L as rows over the 12 DOFs: u linear, v and
+/// w the cubic Hermite interpolation whose curvatures [`strain_rows`] gives.
+fn displacement_rows(l: f64, xi: f64) -> SMatrix<f64, 3, 12> {
+    let mut n = SMatrix::<f64, 3, 12>::zeros();
+    n[(0, 0)] = 1.0 - xi;
+    n[(0, 6)] = xi;
+    let (x2, x3) = (xi * xi, xi * xi * xi);
+    let h = [
+        1.0 - 3.0 * x2 + 2.0 * x3,
+        l * (xi - 2.0 * x2 + x3),
+        3.0 * x2 - 2.0 * x3,
+        l * (x3 - x2),
+    ];
+    for (k, (v, w)) in [(1, 2), (5, 4), (7, 8), (11, 10)].into_iter().enumerate() {
+        n[(1, v)] = h[k];
+        // θy = −w′.
+        n[(2, w)] = if k % 2 == 1 { -h[k] } else { h[k] };
+    }
+    n
+}
+
+/// NASTRAN-95's coupled mass of an unreleased bar (see the module's notes): the
+/// deflections' consistent mass by four-point Gauss (exact for their degree 6), the
+/// axial mean of lumped and consistent.
+pub fn coupled_mass(l: f64, s: &BarSection) -> M12 {
+    let per_length = s.rho * s.area + s.nsm;
+    let a = (3.0 - 2.0 * (6.0f64 / 5.0).sqrt()) / 7.0;
+    let b = (3.0 + 2.0 * (6.0f64 / 5.0).sqrt()) / 7.0;
+    let (wa, wb) = ((18.0 + 30f64.sqrt()) / 36.0, (18.0 - 30f64.sqrt()) / 36.0);
+    let mut m = M12::zeros();
+    for (x, w) in [(-a.sqrt(), wa), (-b.sqrt(), wb), (a.sqrt(), wa), (b.sqrt(), wb)] {
+        let n = displacement_rows(l, 0.5 * (1.0 + x)).remove_row(0);
+        m += n.transpose() * n * (per_length * w * 0.5 * l);
+    }
+    let total = per_length * l;
+    for (i, j, f) in [(0, 0, 5.0), (6, 6, 5.0), (0, 6, 1.0), (6, 0, 1.0)] {
+        m[(i, j)] = f * total / 12.0;
+    }
+    m
 }
 
 /// The section's rigidities: diag(EA, GJ) and E·[[I1, I12], [I12, I2]].
@@ -210,6 +267,7 @@ impl Bar {
             length: l,
             release: p,
             k: p.transpose() * k * p,
+            coupled_mass: spec.coupled_mass.then(|| p.transpose() * coupled_mass(l, &s) * p),
         })
     }
 
@@ -308,6 +366,12 @@ impl Kernel for Bar {
         }]
     }
     fn mass(&self) -> Vec<LocalMatrix> {
+        if let Some(m) = &self.coupled_mass {
+            return vec![LocalMatrix {
+                at: (0..12).map(|i| (i / 6, i % 6)).collect(),
+                values: DMatrix::from_fn(12, 12, |i, j| m[(i, j)]),
+            }];
+        }
         let s = &self.section;
         let m = 0.5 * (s.rho * s.area + s.nsm) * self.length;
         let it = 0.5 * s.torsional_inertia * self.length;
@@ -405,6 +469,7 @@ mod tests {
                     ..sample_section()
                 },
                 released,
+                coupled_mass: false,
             },
         )
     }
@@ -491,6 +556,7 @@ mod tests {
                     card: "CBAR",
                     section: sample_section(),
                     released,
+                    coupled_mass: false,
                 },
             )
             .unwrap();
@@ -533,5 +599,122 @@ mod tests {
         assert!(bar([1, 1]).is_err());
         assert!(bar([0b100, 0b100]).is_err(), "w free at both ends: the bar translates");
         assert!(bar([0b10000, 0b10000]).is_ok(), "pinned-pinned in plane 2");
+    }
+
+    /// A bar of the sample section (I12 = 0) with NASTRAN-95's coupled mass.
+    fn coupled(released: [u8; 2]) -> Bar {
+        Bar::build(
+            &[[0.0; 3], [2.5, 0.0, 0.0]],
+            BarSpec {
+                card: "CBAR",
+                section: BarSection {
+                    i12: 0.0,
+                    ..sample_section()
+                },
+                released,
+                coupled_mass: true,
+            },
+        )
+        .expect("a bar")
+    }
+
+    /// Goal: the coupled mass is NASTRAN-95's. Reference: the table of its BAR
+    /// routine's consistent mass (single-precision version, BARS), (ρA + NSM)L/420
+    /// times 175 and 35 along the axis, 156, ±22L, 54, ±13L, 4L² and −3L² across it in
+    /// each plane, nothing on the twist; it is derived here by quadrature of the
+    /// stiffness's shape functions, so the signs of the rotations are checked too.
+    /// Tolerance: round-off (1e-13 of the largest term).
+    #[test]
+    fn coupled_mass_is_nastran_95s_table() {
+        let b = coupled([0, 0]);
+        let l = b.length;
+        let s = &b.section;
+        let mut table = M12::zeros();
+        let upper = [
+            (0, 0, 175.0),
+            (0, 6, 35.0),
+            (1, 1, 156.0),
+            (1, 5, 22.0 * l),
+            (1, 7, 54.0),
+            (1, 11, -13.0 * l),
+            (2, 2, 156.0),
+            (2, 4, -22.0 * l),
+            (2, 8, 54.0),
+            (2, 10, 13.0 * l),
+            (4, 4, 4.0 * l * l),
+            (4, 8, -13.0 * l),
+            (4, 10, -3.0 * l * l),
+            (5, 5, 4.0 * l * l),
+            (5, 7, 13.0 * l),
+            (5, 11, -3.0 * l * l),
+            (6, 6, 175.0),
+            (7, 7, 156.0),
+            (7, 11, -22.0 * l),
+            (8, 8, 156.0),
+            (8, 10, 22.0 * l),
+            (10, 10, 4.0 * l * l),
+            (11, 11, 4.0 * l * l),
+        ];
+        for (i, j, v) in upper {
+            table[(i, j)] = v * (s.rho * s.area + s.nsm) * l / 420.0;
+            table[(j, i)] = table[(i, j)];
+        }
+        let m = b.coupled_mass.expect("asked for");
+        assert!((m - table).amax() <= 1e-13 * table.amax(), "{m} against {table}");
+    }
+
+    /// Goal: with pin flags the coupled mass is condensed as NASTRAN-95 condenses it
+    /// where the two ways agree. Reference: NASTRAN-95's BAR routine, which takes the
+    /// releases one at a time, M ← M − (K_lj M_ji + K_ji M_lj)/K_jj + K_lj K_ji M_jj/K_jj²
+    /// with the unreleased K, then zeroes row and column j. Model: θz released at B;
+    /// θz at A with θy at B (uncoupled in K, I12 = 0). Tolerance: round-off (1e-12 of
+    /// the largest term). Where the stiffness couples two releases (θz at both ends,
+    /// K_jk = 2EI1/L), one at a time is not the condensation of the stiffness, and the
+    /// two differ (by a fifth of the largest term): the bar is then a link in plane 1,
+    /// its deflection linear, and Pᵀ M P is that deflection's consistent mass,
+    /// m/6 [2 1; 1 2] on v (to round-off).
+    #[test]
+    fn released_coupled_mass_is_condensed_as_the_stiffness_is() {
+        let k = stiffness(2.5, &coupled([0, 0]).section);
+        let one_at_a_time = |released: &[usize]| {
+            let mut m = coupled([0, 0]).coupled_mass.expect("asked for");
+            for &j in released {
+                let mut next = m;
+                if k[(j, j)] != 0.0 {
+                    for i in 0..12 {
+                        for l in 0..12 {
+                            next[(i, l)] =
+                                m[(i, l)] - k[(l, j)] * m[(j, i)] / k[(j, j)] - k[(j, i)] * m[(l, j)] / k[(j, j)]
+                                    + k[(l, j)] * k[(j, i)] * m[(j, j)] / k[(j, j)].powi(2);
+                        }
+                    }
+                }
+                next.row_mut(j).fill(0.0);
+                next.column_mut(j).fill(0.0);
+                m = next;
+            }
+            m
+        };
+        for (released, dofs) in [([0, 0b100000], vec![11]), ([0b100000, 0b10000], vec![5, 10])] {
+            let ours = coupled(released).coupled_mass.expect("asked for");
+            let theirs = one_at_a_time(&dofs);
+            assert!(
+                (ours - theirs).amax() <= 1e-12 * theirs.amax(),
+                "{released:?}: {ours} against {theirs}"
+            );
+        }
+        let ours = coupled([0b100000, 0b100000]).coupled_mass.expect("asked for");
+        let theirs = one_at_a_time(&[5, 11]);
+        let apart = (ours - theirs).amax() / theirs.amax();
+        assert!(apart > 0.1, "{apart:e}");
+        let s = coupled([0, 0]).section;
+        let m = (s.rho * s.area + s.nsm) * 2.5;
+        for (i, j, v) in [(1, 1, m / 3.0), (7, 7, m / 3.0), (1, 7, m / 6.0)] {
+            assert!(
+                (ours[(i, j)] - v).abs() <= 1e-13 * m,
+                "{i} {j}: {} against {v}",
+                ours[(i, j)]
+            );
+        }
     }
 }

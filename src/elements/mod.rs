@@ -1027,6 +1027,7 @@ mod tests {
                             ..bar::sample_section()
                         },
                         released: [0, 0b100000],
+                        coupled_mass: false,
                     },
                 )
                 .expect("a bar"),

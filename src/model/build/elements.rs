@@ -181,9 +181,10 @@ pub(super) fn drilling_supports(num: &Numbering, geo: &Geometry, out: &mut Eleme
 
 /// What the deck's coupled-mass parameters do not do here, as warnings on their
 /// cards: a per-element parameter without COUPMASS = 0 is inactive (NASTRAN-95 reads
-/// it only then), and the coupled mass of a BAR (CBAR, CBEAM) or of COSMIC's QUAD1,
-/// QUAD2, TRIA1 and TRIA2 is not built: those keep their lumped mass, where NASTRAN
-/// would couple it. A rod's is built ([`crate::elements::rod`]).
+/// it only then), and the coupled mass of a CBEAM (MSC's, which NASTRAN-95 has no
+/// element for) or of COSMIC's QUAD1, QUAD2, TRIA1 and TRIA2 is not built: those keep
+/// their lumped mass, where NASTRAN would couple it. A rod's and a CBAR's are built
+/// ([`crate::elements::rod`], [`crate::elements::bar`]).
 fn coupled_mass_notes(cx: &mut Ctx, b: &crate::deck::cards::Bulk) {
     if b.mass_params.is_empty() {
         return;
@@ -202,7 +203,7 @@ fn coupled_mass_notes(cx: &mut Ctx, b: &crate::deck::cards::Bulk) {
     // The parameter governing each such element, and the card it was written as (a
     // COSMIC plate is read as a CQUAD4 or CTRIA3).
     let lumped_here = |c: &Connection| match (c.kind.build, c.property_card) {
-        (Build::Bar(_), _) => Some(("CPBAR", c.kind.card)),
+        (Build::Bar(_), _) if c.kind.card == "CBEAM" => Some(("CPBAR", "CBEAM")),
         (_, Some("PQUAD1")) => Some(("CPQUAD1", "CQUAD1")),
         (_, Some("PQUAD2")) => Some(("CPQUAD2", "CQUAD2")),
         (_, Some("PTRIA1")) => Some(("CPTRIA1", "CTRIA1")),
@@ -213,7 +214,7 @@ fn coupled_mass_notes(cx: &mut Ctx, b: &crate::deck::cards::Bulk) {
         let Some((param, card)) = lumped_here(c) else { continue };
         if let Some(at) = b.coupled_mass(param) {
             cx.warn(at.error(format!(
-                "coupled mass is asked for, and impactlab builds it for CROD, CONROD and CTUBE only: this deck's \
+                "coupled mass is asked for, and impactlab builds it for CROD, CONROD, CTUBE and CBAR only: this deck's \
                  {card} elements keep their lumped mass (NASTRAN would couple it)"
             )));
         }
@@ -272,6 +273,7 @@ pub(super) fn connected(cx: &mut Ctx, deck: &Deck, num: &Numbering, geo: &Geomet
                         card: kind.card,
                         section,
                         released: card.released.map(|r| r.0),
+                        coupled_mass: kind.card == "CBAR" && b.coupled_mass("CPBAR").is_some(),
                     };
                     (build(&placed.0, spec), Some(placed.1))
                 }
