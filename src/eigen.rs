@@ -32,7 +32,11 @@
 //! identical free chains side by side (tests/modes.rs), one vector a step with another
 //! rounding of its re-orthogonalisation left the exhaustion unseen and moved a repeated
 //! root by 5e-10 of the top root, five times the test's bound; blocks of four hold
-//! both copies from the start.
+//! both copies from the start. The same range of θ costs a free structure's highest
+//! roots their accuracy when most of its roots are asked for (the paper's rod, 143 of
+//! its 145: backward errors to 1.2e-3): [`lanczos`] then extracts them again from a
+//! second shift, half the lowest elastic root below zero, where no θ is more than
+//! twice the lowest elastic root's.
 //!
 //! Massless DOFs (a shell's rotations) make M singular, and the M-inner product does
 //! not see a vector's component along its null space: the recurrence's round-off there
@@ -164,7 +168,9 @@ impl Start {
     }
 }
 
-/// The roots of `sys` (K and M over the solved DOFs `labels`) that `roots` asks for.
+/// The roots of `sys` (K and M over the solved DOFs `labels`) that `roots` asks for;
+/// a free structure's again from a second shift where the first leaves some
+/// inaccurate (see the module's notes).
 pub fn lanczos(
     sys: &System,
     labels: &[DofLabel],
@@ -185,7 +191,33 @@ pub fn lanczos(
         });
     }
     let (mut factor, shift) = factorise(sys, labels)?;
-    lanczos_with(sys, &mut factor, shift, roots, params, &|_| {})
+    let first = lanczos_with(sys, &mut factor, shift, roots, params, &|_| {})?;
+    // A free structure's shift is tiny against its elastic roots ([`factorise`]): its
+    // rigid-body roots' θ is then up to 1e8 times its highest roots', and where most of
+    // its roots are asked for the highest come out inaccurate (the paper's rod, 143 of
+    // its 145: backward errors to 1.2e-3). The extraction is then made again from half
+    // its lowest elastic root below zero, where no θ is more than twice the lowest
+    // elastic root's, and kept when its worst root is better.
+    let worst = |p: &Eigenpairs| p.residuals.iter().copied().fold(0.0_f64, f64::max);
+    let elastic = first.values.iter().copied().find(|&l| l >= rigid_below(sys));
+    let (Some(elastic), true) = (elastic, shift < 0.0 && worst(&first) > INACCURATE) else {
+        return Ok(first);
+    };
+    drop(factor);
+    let again = -0.5 * elastic;
+    let second =
+        factor_at(sys, labels, again).and_then(|mut f| lanczos_with(sys, &mut f, again, roots, params, &|_| {}));
+    let (mut kept, other) = match second {
+        Ok(second) if worst(&second) < worst(&first) => (second, first),
+        Ok(second) => (first, second),
+        Err(_) => return Ok(first),
+    };
+    kept.lanczos_vectors += other.lanczos_vectors;
+    kept.restarts += other.restarts;
+    kept.factor_time += other.factor_time;
+    kept.solve_time += other.solve_time;
+    kept.time += other.time;
+    Ok(kept)
 }
 
 /// [`lanczos`] with K − σM factorised by [`factorise`] (a system of at least one DOF),
@@ -690,6 +722,18 @@ pub fn highest_root_scale(sys: &System) -> f64 {
         .fold(0.0_f64, f64::max)
 }
 
+/// Below this a root is a rigid-body root: zero to the round-off of the largest
+/// K_ii/M_ii ([`highest_root_scale`]), far below any elastic root of a mesh (the rod
+/// of 144 elements: its lowest is 1e-4 of it).
+pub fn rigid_below(sys: &System) -> f64 {
+    1e-12 * highest_root_scale(sys)
+}
+
+/// A root's backward error ([`Eigenpairs::residuals`]) past which it is inaccurate:
+/// 100 times what the acceptance test leaves (a Ritz pair's residual at most 1e-10 of
+/// θ; the demonstration decks' roots come out at 1e-16).
+pub const INACCURATE: f64 = 1e-8;
+
 /// K − σM factorised, and σ: σ = 0 when K is positive definite, else a shift below
 /// the rigid-body roots, small against the structure's highest roots
 /// ([`highest_root_scale`]).
@@ -698,21 +742,23 @@ pub fn factorise(sys: &System, labels: &[DofLabel]) -> Result<(Factor, f64), Sol
         Ok(f) => Ok((f, 0.0)),
         Err(SolveError::Mechanism { .. }) => {
             let shift = -1e-8 * highest_root_scale(sys).max(f64::MIN_POSITIVE);
-            Ok((
-                Factor::effective(
-                    sys,
-                    crate::assembly::Combination {
-                        mass: -shift,
-                        damping: 0.0,
-                        stiffness: 1.0,
-                    },
-                    labels,
-                )?,
-                shift,
-            ))
+            Ok((factor_at(sys, labels, shift)?, shift))
         }
         Err(e) => Err(e),
     }
+}
+
+/// K − σM factorised.
+fn factor_at(sys: &System, labels: &[DofLabel], shift: f64) -> Result<Factor, SolveError> {
+    Factor::effective(
+        sys,
+        crate::assembly::Combination {
+            mass: -shift,
+            damping: 0.0,
+            stiffness: 1.0,
+        },
+        labels,
+    )
 }
 
 /// Vectors of one length n stored one after another (column-major n × len), so that

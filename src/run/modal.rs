@@ -40,8 +40,8 @@ use super::direct::{record, Fields};
 use super::{linear_outputs, Engine, RunError, RunOptions, RunResult};
 use crate::assembly::System;
 use crate::eigen::{
-    factorise, highest_root_scale, lanczos_with, orthogonalise_columns, remove_block, tall_gram, tall_update, Columns,
-    Extracted, LanczosParams, Roots,
+    factorise, lanczos_with, orthogonalise_columns, remove_block, tall_gram, tall_update, Columns, Extracted,
+    LanczosParams, Roots,
 };
 use crate::integrate::Scheme;
 use crate::ledger::Ledger;
@@ -468,9 +468,7 @@ pub fn reduce_at(
         s_sys.m_mul(x, &mut y);
         y
     };
-    // A rigid-body root is zero to the round-off of the largest K_ii/M_ii, far below
-    // any elastic root of a mesh (the rod of 144 elements: 1e-4 of it).
-    let rigid_below = 1e-12 * highest_root_scale(&s_sys);
+    let rigid_below = crate::eigen::rigid_below(&s_sys);
     let md = s_sys.m_diag();
     let rigid_modes = pairs.values.iter().filter(|&&l| l < rigid_below).count();
     // Residual vectors, and the residual flexibility at the contact DOF.

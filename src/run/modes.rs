@@ -26,7 +26,7 @@ use super::UnitSystem;
 use crate::assembly::assemble_elements;
 use crate::deck::cards::{Eigr, Norm};
 use crate::deck::{Deck, Diagnostic};
-use crate::eigen::{lanczos, LanczosParams, Roots};
+use crate::eigen::{lanczos, LanczosParams, Roots, INACCURATE};
 use crate::model::{build_structure, DofLabel, ModelError};
 use serde::Serialize;
 
@@ -76,10 +76,11 @@ pub struct ModalSolution {
     pub dofs: usize,
     /// Free DOFs with neither stiffness nor mass, held (NASTRAN's AUTOSPC).
     pub autospc: usize,
-    /// The Lanczos shift σ (0, or below the rigid-body roots).
+    /// The Lanczos shift σ of the roots found (0, or below the rigid-body roots).
     pub shift: f64,
     /// Lanczos vectors formed (a step of the block recurrence forms four; the key keeps
-    /// its name from when a step formed one).
+    /// its name from when a step formed one), in both extractions where a free
+    /// structure's was made again from a second shift.
     pub lanczos_steps: usize,
     /// The roots found, ascending.
     pub modes: Vec<Mode>,
@@ -217,16 +218,11 @@ pub fn lowest(deck: &Deck, count: usize) -> Result<(ModalSolution, Vec<Diagnosti
     solve_for(deck, &roots, asked, Norm::Mass, "Lanczos (check --modes)".into())
 }
 
-/// A root's backward error (`Eigenpairs::residuals`) past which it is reported as
-/// inaccurate: 100 times what the extraction's acceptance test leaves (a Ritz pair's
-/// residual at most 1e-10 of θ; the demonstration decks' roots come out at 1e-16).
-const INACCURATE: f64 = 1e-8;
-
-/// What to warn of when some roots found have a backward error past 1e-8:
-/// the roots of a Krylov space that spans the whole space with mass are all taken as
-/// exact, and on a free structure (a tiny negative shift, its rigid-body roots' θ some
-/// 1e8 times the highest roots') the highest come out so (the paper's rod, 143 of its
-/// 145 roots asked for: 1.2e-3 at mode 128, 2.4e-5 with 100 asked; none with 80).
+/// What to warn of when some roots found have a backward error past
+/// [`INACCURATE`]: the roots of a Krylov space that spans the whole space with mass are
+/// all taken as exact, and on a free structure the highest come out so where the
+/// extraction from a second shift ([`crate::eigen::lanczos`]) has not made them
+/// accurate.
 pub fn inaccurate_roots(modes: &[Mode]) -> Option<String> {
     let bad: Vec<&Mode> = modes.iter().filter(|m| m.residual > INACCURATE).collect();
     let worst = bad.iter().max_by(|a, b| a.residual.total_cmp(&b.residual))?;
@@ -234,7 +230,7 @@ pub fn inaccurate_roots(modes: &[Mode]) -> Option<String> {
     Some(format!(
         "{} of the {} roots found have a backward error above {INACCURATE:e} (modes {} to {}, {:.4e} to {:.4e} \
          cycles per unit time; the largest {:.1e}, mode {}): they are not accurate to the digits written; the \
-         highest roots of a free structure come out so when most of its roots are asked for: ask for fewer",
+         highest roots can come out so when most of a structure's roots are asked for: ask for fewer",
         bad.len(),
         modes.len(),
         first.mode,
