@@ -459,7 +459,8 @@ pub(crate) fn sample_section() -> BarSection {
 mod tests {
     use super::*;
 
-    fn bar(released: [u8; 2]) -> Result<Bar, BadShape> {
+    /// A bar of the sample section with I12 = 0, lumped or coupled mass.
+    fn bar_of(released: [u8; 2], coupled_mass: bool) -> Result<Bar, BadShape> {
         Bar::build(
             &[[0.0; 3], [2.5, 0.0, 0.0]],
             BarSpec {
@@ -469,9 +470,13 @@ mod tests {
                     ..sample_section()
                 },
                 released,
-                coupled_mass: false,
+                coupled_mass,
             },
         )
+    }
+
+    fn bar(released: [u8; 2]) -> Result<Bar, BadShape> {
+        bar_of(released, false)
     }
 
     /// Goal: the stiffness is the textbook Euler-Bernoulli one. Model: one bar,
@@ -601,21 +606,9 @@ mod tests {
         assert!(bar([0b10000, 0b10000]).is_ok(), "pinned-pinned in plane 2");
     }
 
-    /// A bar of the sample section (I12 = 0) with NASTRAN-95's coupled mass.
+    /// [`bar`] with NASTRAN-95's coupled mass.
     fn coupled(released: [u8; 2]) -> Bar {
-        Bar::build(
-            &[[0.0; 3], [2.5, 0.0, 0.0]],
-            BarSpec {
-                card: "CBAR",
-                section: BarSection {
-                    i12: 0.0,
-                    ..sample_section()
-                },
-                released,
-                coupled_mass: true,
-            },
-        )
-        .expect("a bar")
+        bar_of(released, true).expect("a bar")
     }
 
     /// Goal: the coupled mass is NASTRAN-95's. Reference: the table of its BAR
