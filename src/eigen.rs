@@ -190,34 +190,48 @@ pub fn lanczos(
             time: Default::default(),
         });
     }
+    lanczos_factored(sys, labels, roots, params, &|_| {}).map(|(pairs, _)| pairs)
+}
+
+/// [`lanczos`] with the factor of K − σM the roots were found with (σ their
+/// [`Eigenpairs::shift`]), for a caller's own solves, telling `report` how far it has
+/// come at each convergence test. A system of at least one DOF.
+pub fn lanczos_factored(
+    sys: &System,
+    labels: &[DofLabel],
+    roots: &Roots,
+    params: &LanczosParams,
+    report: &dyn Fn(Extracted),
+) -> Result<(Eigenpairs, Factor), SolveError> {
     let (mut factor, shift) = factorise(sys, labels)?;
-    let first = lanczos_with(sys, &mut factor, shift, roots, params, &|_| {})?;
+    let first = lanczos_with(sys, &mut factor, shift, roots, params, report)?;
     // A free structure's shift is tiny against its elastic roots ([`factorise`]): its
     // rigid-body roots' θ is then up to 1e8 times its highest roots', and where most of
     // its roots are asked for the highest come out inaccurate (the paper's rod, 143 of
     // its 145: backward errors to 1.2e-3). The extraction is then made again from half
     // its lowest elastic root below zero, where no θ is more than twice the lowest
-    // elastic root's, and kept when its worst root is better.
+    // elastic root's, and kept when its worst root is better (the first's factor is
+    // dropped meanwhile, and made again if the first is kept).
     let worst = |p: &Eigenpairs| p.residuals.iter().copied().fold(0.0_f64, f64::max);
     let elastic = first.values.iter().copied().find(|&l| l >= rigid_below(sys));
     let (Some(elastic), true) = (elastic, shift < 0.0 && worst(&first) > INACCURATE) else {
-        return Ok(first);
+        return Ok((first, factor));
     };
     drop(factor);
     let again = -0.5 * elastic;
-    let second =
-        factor_at(sys, labels, again).and_then(|mut f| lanczos_with(sys, &mut f, again, roots, params, &|_| {}));
-    let (mut kept, other) = match second {
-        Ok(second) if worst(&second) < worst(&first) => (second, first),
-        Ok(second) => (first, second),
-        Err(_) => return Ok(first),
+    let second = factor_at(sys, labels, again)
+        .and_then(|mut f| lanczos_with(sys, &mut f, again, roots, params, report).map(|p| (p, f)));
+    let (mut kept, other, factor) = match second {
+        Ok((second, f)) if worst(&second) < worst(&first) => (second, first, f),
+        Ok((second, _)) => (first, second, factor_at(sys, labels, shift)?),
+        Err(_) => return Ok((first, factor_at(sys, labels, shift)?)),
     };
     kept.lanczos_vectors += other.lanczos_vectors;
     kept.restarts += other.restarts;
     kept.factor_time += other.factor_time;
     kept.solve_time += other.solve_time;
     kept.time += other.time;
-    Ok(kept)
+    Ok((kept, factor))
 }
 
 /// [`lanczos`] with K − σM factorised by [`factorise`] (a system of at least one DOF),

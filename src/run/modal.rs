@@ -9,7 +9,7 @@
 //! - Residual vectors Ψ: for each DOF the contact or a dynamic load acts on (the
 //!   boundary DOFs), the static response to a unit load there with the modes' share of
 //!   the load taken out first, ψ = (K − σM)⁻¹(I − MΦΦᵀ)e_b (σ = 0 unless the structure
-//!   is free, [`crate::eigen::factorise`]), then M-orthogonalised against the modes and
+//!   is free, [`crate::eigen::lanczos_factored`]), then M-orthogonalised against the modes and
 //!   each other: the static flexibility there that the modes miss.
 //! - Coordinates: the basis V = [Φ Ψ] is changed by Gauss-Jordan elimination on its
 //!   boundary rows (the largest entry as pivot) into T, whose boundary rows are
@@ -40,8 +40,8 @@ use super::direct::{record, Fields};
 use super::{linear_outputs, Engine, RunError, RunOptions, RunResult};
 use crate::assembly::System;
 use crate::eigen::{
-    factorise, lanczos_with, orthogonalise_columns, remove_block, tall_gram, tall_update, Columns, Extracted,
-    LanczosParams, Roots,
+    lanczos_factored, orthogonalise_columns, remove_block, tall_gram, tall_update, Columns, Extracted, LanczosParams,
+    Roots,
 };
 use crate::integrate::Scheme;
 use crate::ledger::Ledger;
@@ -439,9 +439,8 @@ pub fn reduce_at(
         max_vectors: budget.map(|b| (b / 2 / (8 * ns.max(1) as u64)) as usize),
         ..Default::default()
     };
-    // K − σM, factorised once for the extraction and the residual vectors.
+    // K − σM, factorised for the extraction and kept for the residual vectors.
     say(&format!("factorising the structure's {ns} DOFs"));
-    let (mut factor, shift) = factorise(&s_sys, &labels)?;
     let extracted = |e: Extracted| {
         say(&if e.converged {
             format!(
@@ -452,8 +451,8 @@ pub fn reduce_at(
             format!("{} Lanczos vectors, {} modes converged", e.vectors, e.roots)
         })
     };
-    let mut pairs =
-        lanczos_with(&s_sys, &mut factor, shift, &roots, &lanczos_params, &extracted).map_err(|e| match e {
+    let (mut pairs, mut factor) =
+        lanczos_factored(&s_sys, &labels, &roots, &lanczos_params, &extracted).map_err(|e| match e {
             crate::integrate::SolveError::Memory { what, .. } => RunError::Input(format!(
                 "the modal reduction (modes up to {cut:.4e} cycles per the deck's time unit) is over the memory \
              limit: {what}; with as many modes over the structure's {ns} DOFs and the basis made of them, more \
@@ -909,15 +908,36 @@ fn reduced_flexibility(k_r: &DMatrix<f64>, m_r: &DMatrix<f64>, o: usize, c: usiz
 /// The eigenpairs of K x = λ M x (K symmetric, M symmetric positive definite, dense):
 /// λ ascending and X with XᵀMX = I, XᵀKX = diag λ (by M = LLᵀ and the symmetric
 /// eigenproblem of L⁻¹KL⁻ᵀ); `None` when M is not positive definite.
+///
+/// nalgebra's symmetric eigendecomposition can give a vector with another vector's
+/// eigenvalue (its issue 1109, open): on the paper's free rod with every mode kept, the
+/// two lowest held modes came back swapped, the reduced stiffness was indefinite and
+/// the run left the direct run by 3e-3 in contact duration. Where a vector's Rayleigh
+/// quotient and its eigenvalue disagree past 1e-10 of the largest, each vector is taken
+/// with its Rayleigh quotient; otherwise the eigenvalues are taken as they come.
 fn held_modes(k: &DMatrix<f64>, m: &DMatrix<f64>) -> Option<(Vec<f64>, DMatrix<f64>)> {
     let n = k.nrows();
     let l = m.clone().cholesky()?.l();
     let lk = l.solve_lower_triangular(k)?;
     let a = l.solve_lower_triangular(&lk.transpose())?;
-    let eig = ((&a + a.transpose()) * 0.5).symmetric_eigen();
+    let a = (&a + a.transpose()) * 0.5;
+    let eig = a.clone().symmetric_eigen();
+    let quotients: Vec<f64> = (0..n)
+        .map(|i| {
+            let y = eig.eigenvectors.column(i);
+            y.dot(&(&a * y))
+        })
+        .collect();
+    let scale = eig.eigenvalues.amax();
+    let paired = (0..n).all(|i| (quotients[i] - eig.eigenvalues[i]).abs() <= 1e-10 * scale);
+    let values: Vec<f64> = if paired {
+        eig.eigenvalues.iter().copied().collect()
+    } else {
+        quotients
+    };
     let mut order: Vec<usize> = (0..n).collect();
-    order.sort_by(|&i, &j| eig.eigenvalues[i].total_cmp(&eig.eigenvalues[j]));
+    order.sort_by(|&i, &j| values[i].total_cmp(&values[j]));
     let y = DMatrix::from_fn(n, n, |r, c| eig.eigenvectors[(r, order[c])]);
     let x = l.transpose().solve_upper_triangular(&y)?;
-    Some((order.iter().map(|&i| eig.eigenvalues[i]).collect(), x))
+    Some((order.iter().map(|&i| values[i]).collect(), x))
 }
