@@ -205,13 +205,9 @@ pub fn lanczos_factored(
 ) -> Result<(Eigenpairs, Factor), SolveError> {
     let (mut factor, shift) = factorise(sys, labels)?;
     let first = lanczos_with(sys, &mut factor, shift, roots, params, report)?;
-    // A free structure's shift is tiny against its elastic roots ([`factorise`]): its
-    // rigid-body roots' θ is then up to 1e8 times its highest roots', and where most of
-    // its roots are asked for the highest come out inaccurate (the paper's rod, 143 of
-    // its 145: backward errors to 1.2e-3). The extraction is then made again from half
-    // its lowest elastic root below zero, where no θ is more than twice the lowest
-    // elastic root's, and kept when its worst root is better (the first's factor is
-    // dropped meanwhile, and made again if the first is kept).
+    // A free structure whose roots come out inaccurate (the module's notes): again from
+    // half its lowest elastic root below zero, kept when its worst root is better (the
+    // first's factor dropped meanwhile, and made again if the first is kept).
     let worst = |p: &Eigenpairs| p.residuals.iter().copied().fold(0.0_f64, f64::max);
     let elastic = first.values.iter().copied().find(|&l| l >= rigid_below(sys));
     let (Some(elastic), true) = (elastic, shift < 0.0 && worst(&first) > INACCURATE) else {

@@ -43,7 +43,7 @@ impl Drill {
     /// The spring a grid needs for its summed rotational stiffness `k` (in its
     /// displacement frame), or `None` when every direction is stiffened.
     pub fn for_rotations(x: [f64; 3], k: &Matrix3<f64>) -> Option<Self> {
-        let eig = k.symmetric_eigen();
+        let eig = crate::numerics::symmetric_eigen(*k);
         let largest = eig.eigenvalues.amax();
         if largest.is_nan() || largest <= 0.0 {
             return None;

@@ -470,7 +470,6 @@ mod tests {
             .map(|i| s.supernode_end()[i] - s.supernode_begin()[i])
             .max()
             .unwrap();
-        eprintln!("widest supernode: {widest} columns");
         assert!(widest >= k / 2, "widest supernode {widest} columns");
     }
 

@@ -907,34 +907,17 @@ fn reduced_flexibility(k_r: &DMatrix<f64>, m_r: &DMatrix<f64>, o: usize, c: usiz
 
 /// The eigenpairs of K x = λ M x (K symmetric, M symmetric positive definite, dense):
 /// λ ascending and X with XᵀMX = I, XᵀKX = diag λ (by M = LLᵀ and the symmetric
-/// eigenproblem of L⁻¹KL⁻ᵀ); `None` when M is not positive definite.
-///
-/// nalgebra's symmetric eigendecomposition can give a vector with another vector's
-/// eigenvalue (its issue 1109, open): on the paper's free rod with every mode kept, the
-/// two lowest held modes came back swapped, the reduced stiffness was indefinite and
-/// the run left the direct run by 3e-3 in contact duration. Where a vector's Rayleigh
-/// quotient and its eigenvalue disagree past 1e-10 of the largest, each vector is taken
-/// with its Rayleigh quotient; otherwise the eigenvalues are taken as they come.
+/// eigenproblem of L⁻¹KL⁻ᵀ, [`crate::numerics::symmetric_eigen`]: with nalgebra's
+/// pairing alone, the paper's free rod with every mode kept had two held modes
+/// swapped, a reduced stiffness indefinite and a run 3e-3 from the direct run in
+/// contact duration); `None` when M is not positive definite.
 fn held_modes(k: &DMatrix<f64>, m: &DMatrix<f64>) -> Option<(Vec<f64>, DMatrix<f64>)> {
     let n = k.nrows();
     let l = m.clone().cholesky()?.l();
     let lk = l.solve_lower_triangular(k)?;
     let a = l.solve_lower_triangular(&lk.transpose())?;
-    let a = (&a + a.transpose()) * 0.5;
-    let eig = a.clone().symmetric_eigen();
-    let quotients: Vec<f64> = (0..n)
-        .map(|i| {
-            let y = eig.eigenvectors.column(i);
-            y.dot(&(&a * y))
-        })
-        .collect();
-    let scale = eig.eigenvalues.amax();
-    let paired = (0..n).all(|i| (quotients[i] - eig.eigenvalues[i]).abs() <= 1e-10 * scale);
-    let values: Vec<f64> = if paired {
-        eig.eigenvalues.iter().copied().collect()
-    } else {
-        quotients
-    };
+    let eig = crate::numerics::symmetric_eigen((&a + a.transpose()) * 0.5);
+    let values = &eig.eigenvalues;
     let mut order: Vec<usize> = (0..n).collect();
     order.sort_by(|&i, &j| values[i].total_cmp(&values[j]));
     let y = DMatrix::from_fn(n, n, |r, c| eig.eigenvectors[(r, order[c])]);
