@@ -719,7 +719,8 @@ fn json_of(args: &[&str], name: &str) -> Result<serde_json::Value, String> {
 /// force within 1e-10 (measured 1.5e-13, 5.7e-14), the basis exactly as many vectors
 /// as DOFs with mass. The highest mode it reports is the free-free chain's highest
 /// root, f₁/sin(π/288) (144 equal elements, f₁ its lowest elastic root from a normal
-/// modes solution), to 1e-9: from the first, tiny shift it came out 1.4e-3 high, and
+/// modes solution), to 1e-9 (measured 1.1e-12; f₁ comes from another extraction, with
+/// another shift): from the first, tiny shift it came out 1.4e-3 high, and
 /// the extraction is now made again from a second shift. (With those accurate modes,
 /// nalgebra's eigendecomposition of the held modes paired two vectors with each
 /// other's eigenvalues, and the run left the direct run by 3e-3: the duration above
