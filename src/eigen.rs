@@ -230,10 +230,9 @@ pub fn lanczos_factored(
     Ok((kept, factor))
 }
 
-/// [`lanczos`] with K − σM factorised by [`factorise`] (a system of at least one DOF),
-/// so that a caller keeps the factor for its own solves, and is told at each
-/// convergence test how far it has come (`report`).
-pub fn lanczos_with(
+/// One extraction with K − σM factorised by [`factorise`] or [`factor_at`] (a system
+/// of at least one DOF), telling `report` how far it has come at each convergence test.
+fn lanczos_with(
     sys: &System,
     factor: &mut Factor,
     shift: f64,
