@@ -334,10 +334,7 @@ mod tests {
         turned.eigenvectors.set_column(0, &(y0 * c + y1 * s));
         turned.eigenvectors.set_column(1, &(y1 * c - y0 * s));
         assert!(sound(&turned, &a) > 0.01, "the turn is a fault");
-        assert!(
-            !decomposes(&paired(turned, &a), &a),
-            "the pairing alone mends it"
-        );
+        assert!(!decomposes(&paired(turned, &a), &a), "the pairing alone mends it");
         for (what, e) in [("turned", checked(Some(turned), &a)), ("stopped", checked(None, &a))] {
             assert!(sound(&e, &a) <= 1e-12, "{what}: {:e}", sound(&e, &a));
         }
