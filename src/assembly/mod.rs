@@ -499,7 +499,10 @@ pub fn frequencies_of(elements: &[crate::elements::Element], n: usize, count: us
     let kc = sub(&w, &w) - &kwr * krr.solve(&kwr.transpose());
     let s = DVector::from_iterator(w.len(), w.iter().map(|&i| 1.0 / mass[i].sqrt()));
     let a = DMatrix::from_fn(w.len(), w.len(), |i, j| s[i] * kc[(i, j)] * s[j]);
-    let mut ev: Vec<f64> = a.symmetric_eigenvalues().iter().map(|l| l.max(0.0).sqrt()).collect();
+    let mut ev: Vec<f64> = crate::numerics::symmetric_eigenvalues(a)
+        .iter()
+        .map(|l| l.max(0.0).sqrt())
+        .collect();
     ev.sort_by(f64::total_cmp);
     ev.truncate(count);
     Some(ev)

@@ -304,7 +304,7 @@ fn rbe3_terms(r: &crate::deck::cards::Rbe3, geo: &Geometry) -> Result<BTreeMap<i
         )
     };
     let a: Matrix6<f64> = weighted.iter().map(|(&g, w)| s(g).transpose() * w * s(g)).sum();
-    let eig = a.symmetric_eigenvalues();
+    let eig = crate::numerics::symmetric_eigenvalues(a);
     let (lo, hi) = (eig.min(), eig.max());
     if !(hi > 0.0 && lo > RBE3_RANK * hi) {
         return Err(

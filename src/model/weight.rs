@@ -114,7 +114,10 @@ impl RigidBodyMass {
             Some(c) => i0 - (Matrix3::identity() * c.norm_squared() - c * c.transpose()) * m,
             None => i0,
         };
-        let mut principal: Vec<f64> = inertia.symmetric_eigenvalues().iter().copied().collect();
+        let mut principal: Vec<f64> = crate::numerics::symmetric_eigenvalues(inertia)
+            .iter()
+            .copied()
+            .collect();
         principal.sort_by(f64::total_cmp);
         MassProperties {
             mass,

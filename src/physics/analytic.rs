@@ -429,7 +429,7 @@ pub fn cylinder_omega2(r: f64, l: f64, t: f64, nu: f64, (m, n): (usize, usize), 
         + (kx * kt.transpose() + kt * kx.transpose()) * nu
         + tw * tw.transpose() * (2.0 * (1.0 - nu)))
         * k;
-    s.symmetric_eigenvalues().min()
+    crate::numerics::symmetric_eigenvalues(s).min()
 }
 
 /// The lowest Ω = √(ρ(1 − ν²)/E)·Rω of a simply supported closed cylinder by
