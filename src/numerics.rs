@@ -118,7 +118,9 @@ pub fn column_mut(m: faer::MatMut<'_, f64>, c: usize) -> &mut [f64] {
 /// quotient. Its QR iteration can also run without end (its issue 1025, open): it is
 /// given at most 30 sweeps a root (LAPACK's `dsteqr` allows as many). What comes out
 /// is checked, ‖AY − YΛ‖ at most 1e-10 of the largest |λ| and ‖YᵀY − I‖ at most 1e-10
-/// (entry by entry); where the iteration stopped or the check fails, faer's
+/// (entry by entry: a backward-stable decomposition leaves about n·ε, under 1e-13 for
+/// the few hundred rows of a held-mode problem, and the faults seen leave 6.5e-6 and
+/// more); where the iteration stopped or the check fails, faer's
 /// `self_adjoint_eigen` decomposes `a` instead. Where nalgebra's decomposition is
 /// sound (every model run here), it is returned as it comes, in nalgebra's order.
 pub fn symmetric_eigen<D>(a: nalgebra::OMatrix<f64, D, D>) -> nalgebra::SymmetricEigen<f64, D>
